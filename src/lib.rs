@@ -1,0 +1,8 @@
+//! # settle
+//!
+//! Solid particles settling in Newtonian and Bingham fluids. Fluid forces (buoyancy, drag,
+//! yield-stress drag) act as body forces on the particles of a DEM scene, after f-EDEM
+//! (Zhang & Li 2024) and the one-way coupled hydrometer DEM of seed 000.
+
+pub mod dynamics;
+pub mod fluid;
