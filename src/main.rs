@@ -1,1 +1,5 @@
-fn main(){}
+//! `settle`: see `settle --help`.
+
+fn main() {
+    std::process::exit(settle::cli::main());
+}

@@ -15,6 +15,9 @@
 //!   (exponential Euler with φ-functions). Exact at any dt for linear (Stokes) and affine drag
 //!   (the Bingham law below Re' = 1), exact steady states, unconditionally stable.
 
+pub mod stability;
+
+pub use stability::{Monitor, Unstable};
 use crate::fluid::SphereDrag;
 use nalgebra::SVector;
 

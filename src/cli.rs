@@ -1,0 +1,123 @@
+//! The `settle` command line.
+
+use crate::output::free_settling::{rel_error, rel_error_vs_force_balance};
+use crate::run::{run_files, FileReport, RunRequest};
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+
+/// Simulate solid particles settling in Newtonian and Bingham fluids.
+#[derive(Parser, Debug)]
+#[command(name = "settle", version, about, long_about = None)]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Run one or more scenario files; results go to OUT/<scenario name>/.
+    ///
+    /// Each run writes summary.csv (one row per body), timeseries.csv (if recorded), probes.csv
+    /// (velocities at [measure].velocity_at_s), metrics.csv and terminal_velocity.svg (when
+    /// measured velocities exist), and run.toml (effective parameters, version, dt, steps, wall
+    /// time). With several files, OUT/combined/ holds the joint summary and metrics.
+    /// Exit codes: 0 success, 2 bad input (nothing written), 3 unstable run (nothing written).
+    Run {
+        /// Scenario files (TOML).
+        #[arg(required = true)]
+        scenarios: Vec<PathBuf>,
+        /// Output folder.
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+        /// Time step in seconds, overriding time.dt_s of every scenario.
+        #[arg(long)]
+        dt: Option<f64>,
+        /// Override any scenario key, e.g. --set fluid.viscosity_pa_s=0.002 --set physics=ideal-stokes
+        /// or --set 'spheres[0].diameter_m=2e-4'. Repeatable.
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// Print nothing but errors.
+        #[arg(long, short)]
+        quiet: bool,
+    },
+}
+
+/// Parses the arguments, runs, and returns the process exit code.
+pub fn main() -> i32 {
+    let cli = Cli::parse();
+    match cli.command {
+        Command::Run {
+            scenarios,
+            out,
+            dt,
+            set,
+            quiet,
+        } => {
+            let req = RunRequest {
+                files: scenarios,
+                out_dir: out,
+                dt_s: dt,
+                overrides: set,
+            };
+            match run_files(&req) {
+                Ok(reports) => {
+                    if !quiet {
+                        for r in &reports {
+                            print_report(r);
+                        }
+                    }
+                    0
+                }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    e.exit_code()
+                }
+            }
+        }
+    }
+}
+
+fn print_report(r: &FileReport) {
+    let s = &r.prepared.scenario;
+    println!(
+        "{} ({} bodies, dt = {:e} s, {}, {:.3} s wall) -> {}",
+        s.name,
+        r.results.len(),
+        s.time.dt_s,
+        s.time.integrator.name(),
+        r.wall_time_s,
+        r.out.display()
+    );
+    println!(
+        "  {:<8} {:>9} {:>8} {:>10} {:>11} {:>11} {:>9} {:>10} {:>10}",
+        "sphere", "d_mm", "rho", "v_meas", "v_sim", "v_balance", "err", "sim/bal-1", "regime"
+    );
+    for x in &r.results {
+        let sp = &x.case.spec;
+        println!(
+            "  {:<8} {:>9.4} {:>8.0} {:>10} {:>11.5e} {:>11.5e} {:>9} {:>10.2e} {:>10}",
+            x.case.id,
+            sp.diameter_m * 1e3,
+            sp.density_kg_m3,
+            sp.v_measured_m_s.map(|v| format!("{v:.4}")).unwrap_or("-".into()),
+            x.v_simulated_m_s,
+            x.v_force_balance_m_s,
+            rel_error(x).map(|e| format!("{:+.1}%", 100.0 * e)).unwrap_or("-".into()),
+            rel_error_vs_force_balance(x),
+            x.regime.label()
+        );
+    }
+    let stats = crate::output::free_settling::metrics(&r.results);
+    if let Some(all) = stats.last() {
+        println!(
+            "  vs measured: N = {}, mean |err| = {:.1}%, median = {:.1}%, max = {:.1}%, bias = {:+.1}%, within 10%: {:.0}%, within 25%: {:.0}%",
+            all.n,
+            100.0 * all.mean_abs,
+            100.0 * all.median_abs,
+            100.0 * all.max_abs,
+            100.0 * all.bias,
+            100.0 * all.within_10pct,
+            100.0 * all.within_25pct
+        );
+    }
+}

@@ -1,0 +1,151 @@
+//! The DEM engine: a [Rapier](https://rapier.rs) world (f64) whose spheres feel the fluid forces
+//! of [`crate::fluid`], integrated by [`crate::dynamics::advance`]. One source serves both
+//! dimensions: [`dim2`] (rapier2d, gravity along −y) and [`dim3`] (rapier3d, gravity along −z) each
+//! compile `world.rs` against their Rapier crate; gravity acts along the **last** axis.
+//!
+//! # Design
+//!
+//! Rapier integrates contacts and positions; our integrators decide what the fluid does. Before
+//! every Rapier step, [`dim3::World::step`] (same in 2D) computes for every awake dynamic body the
+//! target step `advance(integrator, drag, m, W, v₀, dt)` (`W` = gravity + buoyancy, `m` the 3D sphere
+//! mass ρ π d³/6, also in 2D) and hands it to Rapier in one of two ways:
+//!
+//! - **Free body** (no active contact pair in the narrow phase): the exact scheme. One Rapier step
+//!   does `K` = `num_solver_iterations` Euler substeps with a force held constant, so the body lands at
+//!   `x₀ + v₀dt + a dt² (K+1)/(2K)` with velocity `v₀ + a dt`. We add the force whose acceleration
+//!   `a = (Δx − v₀dt)·2K/((K+1)dt²)` lands exactly on the target displacement `Δx` (minus gravity,
+//!   which Rapier adds itself) and, after the step, add `v_target − (v₀ + a dt)` to the velocity.
+//!   Free flight is then exactly what the integrator says, at any dt (for Stokes drag and the
+//!   exponential integrator: the analytic solution to round-off).
+//! - **Body in contact** (an active contact pair, speculative ones included): damping-style drag,
+//!   so that the contact solver sees the full net weight. The drag is linearised about the current
+//!   speed `s`, `F(v) ≈ F₀ v̂ + k v` with `k = dF/dv(s)`: Rapier's `linear_damping` is set to `k/m`
+//!   (unconditionally stable, applied as `v ← v/(1 + k dt/m)`), buoyancy and `−F₀ v̂` are added as a
+//!   force (`F₀` clamped so that it can at most stop the body within the step; dropped at rest, where
+//!   its direction is undefined). At rest the drag vanishes and the contact force equals the net
+//!   weight.
+//!
+//! Forces go to Rapier as accelerations: `force = acceleration × Rapier's body mass`. Each ball's
+//! Rapier mass is set to the 3D sphere mass, also in 2D (where a disc would otherwise weigh ρ·area
+//! per metre of depth), so contact forces read back in newtons in both dimensions and 2D piles load
+//! their grains like 3D spheres of the same diameters would.
+//!
+//! # Limits
+//!
+//! - **In contact, the position advances with the undamped velocity** (Rapier applies damping after
+//!   integrating positions), so a touching body moving under its weight drifts by about
+//!   `(5/8)·g′·dt²` per step when `dt ≫ τ` (τ = m/k, the drag response time). Keep `dt` so that this
+//!   is a small fraction of the smallest diameter, or `dt ≲ τ`.
+//! - The contact state is the narrow phase's from the previous step (one step of lag): the step in
+//!   which a free body first touches uses the free scheme, and its velocity correction is added on
+//!   top of the contact response.
+//! - The yield-stress (static) part of a Bingham drag is not applied to a body at rest in contact
+//!   (its direction is undefined there); the contact holds the body instead.
+//! - No fluid torque: rotations are free and undamped by the fluid; no hindered settling or
+//!   lubrication between grains beyond what the drag law itself contains.
+//! - `World::contact_force_n` sums the normal contact impulses only (friction impulses are not
+//!   included): on a floor or in a frictionless pile it is the full contact force.
+//! - One length unit and one contact stiffness per world: grains whose diameters differ by orders of
+//!   magnitude do not share a well-tuned world.
+//! - Rapier silently caps every substep's speed at `max_linear_velocity_m_s`; `step` reports any
+//!   body faster than half of it (or non-finite) as [`Unstable`], and refuses a step whose exact
+//!   free-flight force would need an intermediate speed above the cap.
+
+use serde::{Deserialize, Serialize};
+use std::fmt;
+
+/// Numerical settings of a Rapier world, derived from the scene. SI units. Recorded in run.toml.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct EngineSettings {
+    /// Rapier's `length_unit`, m: scales slop, prediction distance, contact recycling, sleep
+    /// threshold and the speed cap. Default: the smallest particle diameter of the scene.
+    pub length_unit_m: f64,
+    /// Natural frequency of the contact constraints, Hz, for dynamic–dynamic and static contacts
+    /// alike. Resting penetration ≈ g′/(2πf)², independent of the size. Default 1e4.
+    pub contact_natural_frequency_hz: f64,
+    /// Damping ratio of the contact constraints. Default 10 (Rapier's).
+    pub damping_ratio: f64,
+    /// Rapier's speed cap, m/s: must exceed every real speed (bodies above half of it are reported
+    /// as unstable). Default: max(400 × length unit, 4 × the scene's largest expected speed).
+    pub max_linear_velocity_m_s: f64,
+    /// Rapier's `num_solver_iterations` = number of substeps K per step. Default 4 (Rapier's).
+    pub num_solver_iterations: usize,
+    /// Whether bodies may fall asleep. Default false: grains settling at µm/s must not sleep.
+    pub can_sleep: bool,
+    /// Coulomb friction coefficient of every collider (balls, floor, walls). Default 0.5 (Rapier's).
+    pub friction: f64,
+}
+
+impl EngineSettings {
+    /// Settings for a scene whose smallest particle has diameter `min_diameter_m` and whose
+    /// fastest body is expected to move at `max_speed_m_s` (e.g. the largest terminal velocity):
+    /// length unit = `min_diameter_m`, 1e4 Hz contacts, damping ratio 10, speed cap
+    /// max(400·lu, 4·`max_speed_m_s`), 4 solver iterations, no sleeping, friction 0.5.
+    pub fn for_scene(min_diameter_m: f64, max_speed_m_s: f64) -> Self {
+        assert!(
+            min_diameter_m > 0.0 && min_diameter_m.is_finite(),
+            "smallest diameter must be positive and finite, got {min_diameter_m}"
+        );
+        Self {
+            length_unit_m: min_diameter_m,
+            contact_natural_frequency_hz: 1e4,
+            damping_ratio: 10.0,
+            max_linear_velocity_m_s: (400.0 * min_diameter_m).max(4.0 * max_speed_m_s.abs()),
+            num_solver_iterations: 4,
+            can_sleep: false,
+            friction: 0.5,
+        }
+    }
+}
+
+/// Index of a body in a world, in the order of `add_sphere` calls (0, 1, …).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+pub struct BodyId(pub usize);
+
+impl fmt::Display for BodyId {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "body {}", self.0)
+    }
+}
+
+/// A step went numerically wrong for one body (the first one found).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Unstable {
+    /// The offending body.
+    pub body: BodyId,
+    /// Simulated time at the end of the failed step, s.
+    pub time_s: f64,
+    /// What went wrong: `"position"` or `"velocity"` (non-finite), `"quarantined"` (Rapier disabled
+    /// the body for a non-finite state), `"speed"` (above half the speed cap), or
+    /// `"intermediate speed"` (the free-flight force would exceed the cap; the step was not taken).
+    pub quantity: &'static str,
+    /// The offending value (speeds in m/s; NaN/∞ for non-finite states).
+    pub value: f64,
+    /// A step that should cure it, s: half the current dt, and for the explicit integrator at most
+    /// half its stability limit 2m/(dF/dv) (i.e. ≤ τ for Stokes drag).
+    pub suggested_dt_s: f64,
+}
+
+impl fmt::Display for Unstable {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{} unstable at t = {:.6e} s: {} = {:.3e}; try dt <= {:.3e} s",
+            self.body, self.time_s, self.quantity, self.value, self.suggested_dt_s
+        )
+    }
+}
+
+impl std::error::Error for Unstable {}
+
+/// 2D world (rapier2d-f64): discs standing for spheres, gravity along −y.
+pub mod dim2 {
+    use rapier2d_f64 as rapier;
+    include!("world.rs");
+}
+
+/// 3D world (rapier3d-f64): spheres, gravity along −z.
+pub mod dim3 {
+    use rapier3d_f64 as rapier;
+    include!("world.rs");
+}

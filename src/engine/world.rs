@@ -1,0 +1,367 @@
+// One Rapier world, compiled once per dimension by `include!` from `super` (see `mod.rs`, where
+// `rapier` is aliased to rapier2d-f64 or rapier3d-f64). Everything dimension-specific comes from
+// `rapier::math::DIM` and glam's slice/array conversions.
+
+use super::{BodyId, EngineSettings, Unstable};
+use crate::dynamics::{self, Integrator};
+use crate::fluid::{buoyancy_n, sphere_mass_kg, SphereDrag};
+use rapier::prelude::{
+    nalgebra::Unit, ColliderBuilder, ColliderHandle, PhysicsWorld, RigidBodyBuilder,
+    RigidBodyHandle, SpringCoefficients,
+};
+
+/// Number of space dimensions of this world.
+pub const DIM: usize = rapier::math::DIM;
+
+/// A vector of this world (nalgebra), SI units.
+pub type Vector = nalgebra::SVector<f64, DIM>;
+
+type RVector = rapier::math::Vector;
+
+fn to_rapier(v: &Vector) -> RVector {
+    RVector::from_slice(v.as_slice())
+}
+
+fn to_na(v: RVector) -> Vector {
+    Vector::from_column_slice(&v.to_array())
+}
+
+/// Unit vector along the gravity axis, pointing up (the last axis).
+pub fn up() -> Vector {
+    let mut e = Vector::zeros();
+    e[DIM - 1] = 1.0;
+    e
+}
+
+/// A sphere in the fluid, as handed to [`World::add_sphere`]. SI units.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FluidBody {
+    /// Initial centre, m.
+    pub position_m: Vector,
+    /// Initial velocity, m/s (relative to the fluid at rest).
+    pub velocity_m_s: Vector,
+    /// Diameter d, m.
+    pub diameter_m: f64,
+    /// Particle density ρp, kg/m³. Mass m = ρp π d³/6 (a sphere, also in 2D).
+    pub density_kg_m3: f64,
+    /// Drag law bound to this sphere and its fluid.
+    pub drag: SphereDrag,
+    /// Constant body force other than gravity and drag, N: buoyancy (+ρf π d³ g/6 upwards) and
+    /// anything else that acts on the sphere. Gravity is added by the world.
+    pub body_force_n: Vector,
+}
+
+impl FluidBody {
+    /// A sphere at rest at `position_m`, of diameter `diameter_m` and density `density_kg_m3`,
+    /// with drag `drag` and the buoyancy of its fluid (`drag.fluid_density_kg_m3`) under gravity
+    /// `gravity_m_s2` as its body force.
+    pub fn at_rest(
+        position_m: Vector,
+        diameter_m: f64,
+        density_kg_m3: f64,
+        drag: SphereDrag,
+        gravity_m_s2: f64,
+    ) -> Self {
+        Self {
+            position_m,
+            velocity_m_s: Vector::zeros(),
+            diameter_m,
+            density_kg_m3,
+            drag,
+            body_force_n: up() * buoyancy_n(diameter_m, drag.fluid_density_kg_m3, gravity_m_s2),
+        }
+    }
+
+    /// Mass of the sphere, kg (ρp π d³/6).
+    pub fn mass_kg(&self) -> f64 {
+        sphere_mass_kg(self.diameter_m, self.density_kg_m3)
+    }
+}
+
+/// Our per-body state beside Rapier's.
+#[derive(Clone, Debug)]
+struct Body {
+    handle: RigidBodyHandle,
+    collider: ColliderHandle,
+    mass_kg: f64,
+    drag: SphereDrag,
+    body_force_n: Vector,
+    /// Velocity correction of the exact free-flight scheme, added after the Rapier step.
+    correction_m_s: Option<Vector>,
+}
+
+/// A Rapier world of fluid-immersed spheres, fixed floors and walls. See the module doc of
+/// [`crate::engine`] for how the fluid forces are coupled.
+pub struct World {
+    physics: PhysicsWorld,
+    settings: EngineSettings,
+    gravity_m_s2: Vector,
+    bodies: Vec<Body>,
+    time_s: f64,
+    last_dt_s: f64,
+}
+
+impl World {
+    /// An empty world with the given settings and gravity `gravity_m_s2` (> 0, m/s²) pointing
+    /// along the negative last axis (−y in 2D, −z in 3D).
+    pub fn new(settings: EngineSettings, gravity_m_s2: f64) -> Self {
+        let mut physics = PhysicsWorld::new();
+        let g = -up() * gravity_m_s2;
+        physics.gravity = to_rapier(&g);
+        let p = &mut physics.integration_parameters;
+        p.length_unit = settings.length_unit_m;
+        let springs =
+            SpringCoefficients::new(settings.contact_natural_frequency_hz, settings.damping_ratio);
+        p.contact_softness = springs;
+        p.static_contact_softness = springs;
+        p.normalized_max_linear_velocity =
+            settings.max_linear_velocity_m_s / settings.length_unit_m;
+        p.num_solver_iterations = settings.num_solver_iterations.max(1);
+        Self {
+            physics,
+            settings,
+            gravity_m_s2: g,
+            bodies: Vec::new(),
+            time_s: 0.0,
+            last_dt_s: 0.0,
+        }
+    }
+
+    /// Adds a dynamic sphere (a disc in 2D) and returns its id. Its Rapier mass is the 3D sphere
+    /// mass; it has no restitution and the settings' friction; it may sleep only if
+    /// `settings.can_sleep`.
+    pub fn add_sphere(&mut self, body: FluidBody) -> BodyId {
+        let mass_kg = body.mass_kg();
+        let rb = RigidBodyBuilder::dynamic()
+            .translation(to_rapier(&body.position_m))
+            .linvel(to_rapier(&body.velocity_m_s))
+            .can_sleep(self.settings.can_sleep);
+        let collider = ColliderBuilder::ball(0.5 * body.diameter_m)
+            .mass(mass_kg)
+            .friction(self.settings.friction)
+            .restitution(0.0);
+        let (handle, collider) = self.physics.insert(rb, collider);
+        self.bodies.push(Body {
+            handle,
+            collider,
+            mass_kg,
+            drag: body.drag,
+            body_force_n: body.body_force_n,
+            correction_m_s: None,
+        });
+        BodyId(self.bodies.len() - 1)
+    }
+
+    /// Adds a fixed floor: the half-space below height `height_m` on the last axis.
+    pub fn add_floor(&mut self, height_m: f64) {
+        self.add_wall(up() * height_m, up());
+    }
+
+    /// Adds a fixed wall: the half-space behind the plane through `point_m` whose normal
+    /// `inward_normal` points into the domain (it need not be unit length).
+    pub fn add_wall(&mut self, point_m: Vector, inward_normal: Vector) {
+        let n = to_rapier(&inward_normal.normalize());
+        let collider = ColliderBuilder::halfspace(Unit::new_unchecked(n))
+            .translation(to_rapier(&point_m))
+            .friction(self.settings.friction)
+            .restitution(0.0);
+        self.physics.insert_collider(collider, None);
+    }
+
+    /// Advances the world by `dt_s`, the fluid forces integrated by `integrator` (see the module
+    /// doc). Errors with [`Unstable`] for the first body whose state is non-finite or faster than
+    /// half the speed cap after the step, or (step not taken) whose free-flight force would need an
+    /// intermediate speed above the cap.
+    pub fn step(&mut self, dt_s: f64, integrator: Integrator) -> Result<(), Unstable> {
+        assert!(dt_s > 0.0 && dt_s.is_finite(), "dt must be positive, got {dt_s}");
+        let k = self.physics.integration_parameters.num_solver_iterations as f64;
+        let cap = self.settings.max_linear_velocity_m_s;
+        self.physics.integration_parameters.dt = dt_s;
+        let g = self.gravity_m_s2;
+
+        for (i, body) in self.bodies.iter_mut().enumerate() {
+            body.correction_m_s = None;
+            let in_contact = self
+                .physics
+                .narrow_phase
+                .contact_pairs_with(body.collider)
+                .any(|p| p.has_any_active_contact());
+            let rb = &mut self.physics.bodies[body.handle];
+            if rb.is_sleeping() || !rb.is_dynamic() {
+                continue;
+            }
+            let m = body.mass_kg;
+            let m_rapier = rb.mass();
+            let v0 = to_na(rb.linvel());
+            rb.reset_forces(false);
+            if in_contact {
+                // Damping-style drag: F(v) ≈ F₀ v̂ + k v about the current speed.
+                let s = v0.norm();
+                let slope = body.drag.slope_n_s_m(s);
+                let mut force = body.body_force_n;
+                if s > 0.0 {
+                    let f0 = (body.drag.force_n(s) - slope * s).min(m * s / dt_s);
+                    force -= v0 * (f0 / s);
+                }
+                rb.set_linear_damping(slope / m);
+                rb.add_force(to_rapier(&(force * (m_rapier / m))), false);
+            } else {
+                // Exact scheme: land on the integrator's displacement, then fix the velocity.
+                let w = g * m + body.body_force_n;
+                let target = dynamics::advance(integrator, &body.drag, m, &w, &v0, dt_s);
+                let a = (target.displacement_m - v0 * dt_s) * (2.0 * k / ((k + 1.0) * dt_s * dt_s));
+                let v_end = v0 + a * dt_s;
+                if !(v_end.norm() < cap) {
+                    return Err(Unstable {
+                        body: BodyId(i),
+                        time_s: self.time_s,
+                        quantity: "intermediate speed",
+                        value: v_end.norm(),
+                        suggested_dt_s: suggested_dt(integrator, body, v0.norm(), dt_s),
+                    });
+                }
+                rb.set_linear_damping(0.0);
+                rb.add_force(to_rapier(&((a - g) * m_rapier)), false);
+                body.correction_m_s = Some(target.velocity_m_s - v_end);
+            }
+        }
+
+        self.physics.step_with_events(&(), &());
+        self.time_s += dt_s;
+        self.last_dt_s = dt_s;
+
+        let quarantined = self.physics.quarantine().bodies().to_vec();
+        let mut first_error = None;
+        for (i, body) in self.bodies.iter().enumerate() {
+            let rb = &mut self.physics.bodies[body.handle];
+            if let Some(c) = body.correction_m_s {
+                let v = rb.linvel() + to_rapier(&c);
+                rb.set_linvel(v, false);
+            }
+            if first_error.is_some() {
+                continue;
+            }
+            let x = to_na(rb.translation());
+            let v = to_na(rb.linvel());
+            let speed = v.norm();
+            let (quantity, value) = if quarantined.contains(&body.handle) {
+                ("quarantined", f64::NAN)
+            } else if !x.iter().all(|c| c.is_finite()) {
+                ("position", x.norm())
+            } else if !speed.is_finite() {
+                ("velocity", speed)
+            } else if speed > 0.5 * cap {
+                ("speed", speed)
+            } else {
+                continue;
+            };
+            first_error = Some(Unstable {
+                body: BodyId(i),
+                time_s: self.time_s,
+                quantity,
+                value,
+                suggested_dt_s: suggested_dt(integrator, body, speed, dt_s),
+            });
+        }
+        match first_error {
+            Some(e) => Err(e),
+            None => Ok(()),
+        }
+    }
+
+    /// Position of a body's centre, m.
+    pub fn position_m(&self, body: BodyId) -> Vector {
+        to_na(self.rigid_body(body).translation())
+    }
+
+    /// Velocity of a body, m/s.
+    pub fn velocity_m_s(&self, body: BodyId) -> Vector {
+        to_na(self.rigid_body(body).linvel())
+    }
+
+    /// Mass of a body (3D sphere mass, also in 2D), kg.
+    pub fn mass_kg(&self, body: BodyId) -> f64 {
+        self.bodies[body.0].mass_kg
+    }
+
+    /// Total normal contact force on a body during the last step, N: the sum of its contact
+    /// pairs' normal impulses divided by dt (friction impulses excluded). Zero before any step.
+    pub fn contact_force_n(&self, body: BodyId) -> Vector {
+        if self.last_dt_s <= 0.0 {
+            return Vector::zeros();
+        }
+        let b = &self.bodies[body.0];
+        let impulse = self
+            .physics
+            .narrow_phase
+            .contact_pairs_with(b.collider)
+            .fold(RVector::ZERO, |acc, pair| {
+                // Σ impulse × normal, the normal pointing from collider1 to collider2: the push
+                // collider1 gives collider2.
+                let j = pair.total_impulse();
+                if pair.collider1 == b.collider {
+                    acc - j
+                } else {
+                    acc + j
+                }
+            });
+        // Rapier's forces are per its body mass: convert through the acceleration.
+        let scale = b.mass_kg / self.rigid_body(body).mass();
+        to_na(impulse) * (scale / self.last_dt_s)
+    }
+
+    /// True if the narrow phase reported an active (possibly speculative) contact for the body at
+    /// the last step: the body was then driven with damping-style drag.
+    pub fn in_contact(&self, body: BodyId) -> bool {
+        self.physics
+            .narrow_phase
+            .contact_pairs_with(self.bodies[body.0].collider)
+            .any(|p| p.has_any_active_contact())
+    }
+
+    /// True if Rapier put the body to sleep (never, unless `settings.can_sleep`).
+    pub fn is_sleeping(&self, body: BodyId) -> bool {
+        self.rigid_body(body).is_sleeping()
+    }
+
+    /// Number of spheres.
+    pub fn len(&self) -> usize {
+        self.bodies.len()
+    }
+
+    /// True if the world has no sphere.
+    pub fn is_empty(&self) -> bool {
+        self.bodies.is_empty()
+    }
+
+    /// Simulated time, s.
+    pub fn time_s(&self) -> f64 {
+        self.time_s
+    }
+
+    /// The settings the world was built with.
+    pub fn settings(&self) -> &EngineSettings {
+        &self.settings
+    }
+
+    /// The underlying Rapier world (read-only), for queries and snapshots.
+    pub fn rapier(&self) -> &PhysicsWorld {
+        &self.physics
+    }
+
+    fn rigid_body(&self, body: BodyId) -> &rapier::prelude::RigidBody {
+        &self.physics.bodies[self.bodies[body.0].handle]
+    }
+}
+
+/// Half the step, and for the explicit integrator at most half its stability limit 2m/(dF/dv).
+fn suggested_dt(integrator: Integrator, body: &Body, speed_m_s: f64, dt_s: f64) -> f64 {
+    let half = 0.5 * dt_s;
+    match integrator {
+        Integrator::Explicit => {
+            let s = if speed_m_s.is_finite() { speed_m_s } else { 0.0 };
+            half.min(0.5 * dynamics::explicit_stable_dt_s(body.mass_kg, body.drag.slope_n_s_m(s)))
+        }
+        _ => half,
+    }
+}

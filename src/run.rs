@@ -1,0 +1,241 @@
+//! Running scenario files: load and validate all of them first (so bad input writes nothing),
+//! run each, stage its outputs and move them into place only on success.
+
+use crate::dynamics::Unstable;
+use crate::output::{self, free_settling as out_fs, StagedDir};
+use crate::scenario::{self, EngineChoice, Kind, Scenario, ScenarioError};
+use crate::scenes::{free_settling, spheres};
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// What `settle run` was asked to do.
+#[derive(Clone, Debug, Default)]
+pub struct RunRequest {
+    /// Scenario files.
+    pub files: Vec<PathBuf>,
+    /// Output folder; each scenario writes `out/<name>/`.
+    pub out_dir: PathBuf,
+    /// Time step override, s.
+    pub dt_s: Option<f64>,
+    /// `KEY=VALUE` overrides applied to every file.
+    pub overrides: Vec<String>,
+}
+
+/// Why a run failed; [`RunError::exit_code`] maps it to the process exit code.
+#[derive(Debug)]
+pub enum RunError {
+    /// Bad input (exit 2).
+    Scenario(ScenarioError),
+    /// The run went unstable (exit 3).
+    Unstable(PathBuf, Unstable),
+    /// Could not write outputs (exit 1).
+    Io(PathBuf, std::io::Error),
+    /// Anything else (exit 1).
+    Other(String),
+}
+
+impl RunError {
+    /// Process exit code: 2 bad input, 3 unstable, 1 other.
+    pub fn exit_code(&self) -> i32 {
+        match self {
+            Self::Scenario(_) => 2,
+            Self::Unstable(..) => 3,
+            _ => 1,
+        }
+    }
+}
+
+impl std::fmt::Display for RunError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Scenario(e) => write!(f, "{e}"),
+            Self::Unstable(p, u) => write!(f, "{}: {u}; nothing was written", p.display()),
+            Self::Io(p, e) => write!(f, "{}: cannot write outputs: {e}", p.display()),
+            Self::Other(m) => write!(f, "{m}"),
+        }
+    }
+}
+
+impl std::error::Error for RunError {}
+
+/// A loaded scenario ready to run.
+#[derive(Clone, Debug)]
+pub struct Prepared {
+    /// The file.
+    pub path: PathBuf,
+    /// The effective scenario (overrides applied).
+    pub scenario: Scenario,
+    /// Its spheres.
+    pub spheres: Vec<spheres::SphereCase>,
+}
+
+/// Loads and validates a scenario with the request's overrides (`--dt` is `time.dt_s`).
+pub fn prepare(path: &Path, dt_s: Option<f64>, overrides: &[String]) -> Result<Prepared, ScenarioError> {
+    let mut ov = overrides.to_vec();
+    if let Some(dt) = dt_s {
+        ov.push(format!("time.dt_s={dt:e}"));
+    }
+    let scenario = scenario::load(path, &ov)?;
+    let spheres = spheres::spheres(&scenario, path)?;
+    Ok(Prepared {
+        path: path.to_path_buf(),
+        scenario,
+        spheres,
+    })
+}
+
+/// Result of one scenario file.
+pub struct FileReport {
+    /// The prepared scenario.
+    pub prepared: Prepared,
+    /// Per-sphere results.
+    pub results: Vec<free_settling::SphereResult>,
+    /// Where the outputs went.
+    pub out: PathBuf,
+    /// Wall time of the simulation, s.
+    pub wall_time_s: f64,
+}
+
+#[derive(Serialize)]
+struct RunMeta<'a> {
+    settle_version: &'a str,
+    scenario_file: String,
+    status: &'a str,
+    engine: &'a str,
+    integrator: &'a str,
+    dt_s: f64,
+    steps: u64,
+    bodies: usize,
+    wall_time_s: f64,
+}
+
+#[derive(Serialize)]
+struct RunToml<'a> {
+    run: RunMeta<'a>,
+    scenario: &'a Scenario,
+}
+
+/// Which engine a scenario runs on after `auto` is resolved.
+pub fn engine_name(s: &Scenario) -> &'static str {
+    match (s.kind, s.engine) {
+        (_, EngineChoice::Rapier) => "rapier",
+        (Kind::FreeSettling, _) => "free",
+    }
+}
+
+/// Runs one prepared scenario and writes its outputs under `out_dir`.
+pub fn run_one(p: &Prepared, out_dir: &Path) -> Result<FileReport, RunError> {
+    let s = &p.scenario;
+    let opts = free_settling::RunOptions {
+        dt_s: s.time.dt_s,
+        integrator: s.time.integrator,
+        timeseries: s.record.timeseries,
+    };
+    let t0 = Instant::now();
+    let results = match engine_name(s) {
+        "rapier" => crate::scenes::free_settling::run_rapier(s, &p.spheres, opts),
+        _ => free_settling::run(s, &p.spheres, opts),
+    }
+    .map_err(|u| RunError::Unstable(p.path.clone(), u))?;
+    let wall = t0.elapsed().as_secs_f64();
+
+    let io = |e: std::io::Error| RunError::Io(p.path.clone(), e);
+    let stage = StagedDir::new(out_dir, &s.name).map_err(io)?;
+    let integ = s.time.integrator.name();
+    let rows: Vec<Vec<String>> = results
+        .iter()
+        .map(|r| out_fs::summary_row(r, s.time.dt_s, integ))
+        .collect();
+    out_fs::write_summary(&stage.path("summary.csv"), &rows).map_err(io)?;
+    if s.record.timeseries {
+        out_fs::write_timeseries(&stage.path("timeseries.csv"), &results).map_err(io)?;
+    }
+    if results.iter().any(|r| !r.probes.is_empty()) {
+        out_fs::write_probes(&stage.path("probes.csv"), &results).map_err(io)?;
+    }
+    let stats = out_fs::metrics(&results);
+    if !stats.is_empty() {
+        out_fs::write_metrics(&stage.path("metrics.csv"), &stats).map_err(io)?;
+        out_fs::write_chart(
+            &stage.path("terminal_velocity.svg"),
+            &format!("{}: terminal velocity, measured (o) and simulated (•)", s.name),
+            &results,
+        )
+        .map_err(RunError::Other)?;
+    }
+    let meta = RunToml {
+        run: RunMeta {
+            settle_version: env!("CARGO_PKG_VERSION"),
+            scenario_file: p.path.display().to_string(),
+            status: "complete",
+            engine: engine_name(s),
+            integrator: integ,
+            dt_s: s.time.dt_s,
+            steps: results.iter().map(|r| r.steps).sum(),
+            bodies: results.len(),
+            wall_time_s: wall,
+        },
+        scenario: s,
+    };
+    let text = toml::to_string(&meta).map_err(|e| RunError::Other(e.to_string()))?;
+    output::write_atomic(&stage.path("run.toml"), text.as_bytes()).map_err(io)?;
+    let out = stage.commit().map_err(io)?;
+    Ok(FileReport {
+        prepared: p.clone(),
+        results,
+        out,
+        wall_time_s: wall,
+    })
+}
+
+/// Runs every file of a request. All files are validated before any runs; with several files a
+/// combined `summary.csv` and `metrics.csv` go to `out_dir/combined/`.
+pub fn run_files(req: &RunRequest) -> Result<Vec<FileReport>, RunError> {
+    let prepared: Vec<Prepared> = req
+        .files
+        .iter()
+        .map(|f| prepare(f, req.dt_s, &req.overrides))
+        .collect::<Result<_, _>>()
+        .map_err(RunError::Scenario)?;
+    let mut names = std::collections::HashSet::new();
+    for p in &prepared {
+        if !names.insert(p.scenario.name.clone()) {
+            return Err(RunError::Scenario(ScenarioError::new(
+                &p.path,
+                Some("name"),
+                format!("`{}` is used by another scenario of this run: names must be unique", p.scenario.name),
+            )));
+        }
+    }
+    let mut reports = Vec::new();
+    for p in &prepared {
+        reports.push(run_one(p, &req.out_dir)?);
+    }
+    if reports.len() > 1 {
+        write_combined(&req.out_dir, &reports)?;
+    }
+    Ok(reports)
+}
+
+fn write_combined(out_dir: &Path, reports: &[FileReport]) -> Result<(), RunError> {
+    let p = Path::new("combined");
+    let io = |e: std::io::Error| RunError::Io(p.to_path_buf(), e);
+    let stage = StagedDir::new(out_dir, "combined").map_err(io)?;
+    let mut rows = Vec::new();
+    let mut all = Vec::new();
+    for r in reports {
+        let s = &r.prepared.scenario;
+        for x in &r.results {
+            rows.push(out_fs::summary_row(x, s.time.dt_s, s.time.integrator.name()));
+        }
+        all.extend(r.results.iter().cloned());
+    }
+    out_fs::write_summary(&stage.path("summary.csv"), &rows).map_err(io)?;
+    let stats = out_fs::metrics(&all);
+    if !stats.is_empty() {
+        out_fs::write_metrics(&stage.path("metrics.csv"), &stats).map_err(io)?;
+    }
+    stage.commit().map_err(io)?;
+    Ok(())
+}

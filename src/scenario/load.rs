@@ -1,0 +1,147 @@
+//! Loading a scenario: TOML parsing, `--set KEY=VALUE` overrides, schema errors that name the
+//! file and the key, then validation of ranges.
+
+use super::schema::Scenario;
+use super::validate::validate;
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+/// A scenario that cannot be run: one line naming the file, the key and what is allowed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ScenarioError {
+    /// The scenario file.
+    pub file: PathBuf,
+    /// The offending key as a dotted path (`spheres[0].diameter_m`), if one is known.
+    pub key: Option<String>,
+    /// What is wrong and what is allowed.
+    pub message: String,
+}
+
+impl ScenarioError {
+    pub(crate) fn new(file: &Path, key: Option<&str>, message: impl Into<String>) -> Self {
+        Self {
+            file: file.to_path_buf(),
+            key: key.map(str::to_string),
+            message: message.into().replace('\n', " "),
+        }
+    }
+}
+
+impl fmt::Display for ScenarioError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match &self.key {
+            Some(k) => write!(f, "{}: key `{}`: {}", self.file.display(), k, self.message),
+            None => write!(f, "{}: {}", self.file.display(), self.message),
+        }
+    }
+}
+
+impl std::error::Error for ScenarioError {}
+
+/// Reads, overrides, parses and validates a scenario file. `overrides` are `KEY=VALUE` strings
+/// (`fluid.viscosity_pa_s=0.002`, `spheres[0].diameter_m=1e-4`, `physics=ideal-stokes`).
+pub fn load(path: &Path, overrides: &[String]) -> Result<Scenario, ScenarioError> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| ScenarioError::new(path, None, format!("cannot read the file: {e}")))?;
+    load_str(&text, path, overrides)
+}
+
+/// As [`load`], from the text of a file; `path` names it in errors.
+pub fn load_str(text: &str, path: &Path, overrides: &[String]) -> Result<Scenario, ScenarioError> {
+    let mut table: toml::Table = text.parse().map_err(|e: toml::de::Error| {
+        let line = e
+            .span()
+            .map(|s| format!("line {}: ", text[..s.start].lines().count().max(1)))
+            .unwrap_or_default();
+        ScenarioError::new(path, None, format!("TOML syntax error: {line}{}", e.message()))
+    })?;
+    for o in overrides {
+        apply_override(&mut table, o).map_err(|m| ScenarioError::new(path, None, m))?;
+    }
+    let value = toml::Value::Table(table);
+    let scenario: Scenario = serde_path_to_error::deserialize(value).map_err(|e| {
+        let key = e.path().to_string();
+        let msg = e.inner().to_string();
+        // serde names a missing field relative to its table; give the full path.
+        let key = match (msg.strip_prefix("missing field `"), key.as_str()) {
+            (Some(rest), parent) => {
+                let field = rest.trim_end_matches('`');
+                if parent == "." {
+                    field.to_string()
+                } else {
+                    format!("{parent}.{field}")
+                }
+            }
+            _ => key,
+        };
+        let key = if key == "." { None } else { Some(key) };
+        ScenarioError::new(path, key.as_deref(), msg)
+    })?;
+    validate(&scenario, path)?;
+    Ok(scenario)
+}
+
+/// Applies one `KEY=VALUE` override to a TOML table. The value is parsed as TOML (number,
+/// boolean, array, quoted string) and otherwise taken as a bare string. Keys are dotted paths;
+/// `name[i]` indexes an array of tables. Missing tables are created.
+pub fn apply_override(table: &mut toml::Table, assignment: &str) -> Result<(), String> {
+    let (key, raw) = assignment
+        .split_once('=')
+        .ok_or_else(|| format!("--set `{assignment}`: expected KEY=VALUE"))?;
+    let key = key.trim();
+    let raw = raw.trim();
+    let mut value = Some(match format!("v = {raw}").parse::<toml::Table>() {
+        Ok(mut t) => t.remove("v").expect("parsed key"),
+        Err(_) => toml::Value::String(raw.to_string()),
+    });
+    let parts: Vec<&str> = key.split('.').collect();
+    let mut cur = table;
+    for (i, part) in parts.iter().enumerate() {
+        let last = i + 1 == parts.len();
+        let (name, index) = match part.split_once('[') {
+            Some((n, rest)) => {
+                let idx: usize = rest
+                    .trim_end_matches(']')
+                    .parse()
+                    .map_err(|_| format!("--set `{key}`: bad index in `{part}`"))?;
+                (n, Some(idx))
+            }
+            None => (*part, None),
+        };
+        if name.is_empty() {
+            return Err(format!("--set `{key}`: empty key segment"));
+        }
+        match index {
+            None if last => {
+                cur.insert(name.to_string(), value.take().expect("set once"));
+                return Ok(());
+            }
+            None => {
+                let entry = cur
+                    .entry(name.to_string())
+                    .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+                cur = entry
+                    .as_table_mut()
+                    .ok_or_else(|| format!("--set `{key}`: `{name}` is not a table"))?;
+            }
+            Some(idx) => {
+                let arr = cur
+                    .get_mut(name)
+                    .and_then(|v| v.as_array_mut())
+                    .ok_or_else(|| format!("--set `{key}`: `{name}` is not an array"))?;
+                let len = arr.len();
+                let elem = arr.get_mut(idx).ok_or_else(|| {
+                    format!("--set `{key}`: index {idx} out of range (`{name}` has {len})")
+                })?;
+                if last {
+                    *elem = value.take().expect("set once");
+                    return Ok(());
+                }
+                cur = elem
+                    .as_table_mut()
+                    .ok_or_else(|| format!("--set `{key}`: `{name}[{idx}]` is not a table"))?;
+            }
+        }
+    }
+    Ok(())
+}

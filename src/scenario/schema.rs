@@ -1,0 +1,312 @@
+//! The scenario schema (serde). Defaults are documented on each field.
+
+use crate::dynamics::Integrator;
+use serde::{Deserialize, Serialize};
+
+/// Standard gravity used when a scenario does not set `gravity_m_s2`, m/s².
+pub const DEFAULT_GRAVITY_M_S2: f64 = 9.81;
+
+/// A whole scenario file.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Scenario {
+    /// Name of the run; results go to `OUT/<name>/`. Letters, digits, `_`, `-`, `.` only.
+    pub name: String,
+    /// What kind of scene this is.
+    pub kind: Kind,
+    /// 2 or 3. Default 3.
+    #[serde(default = "default_dimension")]
+    pub dimension: u8,
+    /// Free text shown in `run.toml`.
+    #[serde(default)]
+    pub description: String,
+    /// `full` (default) or `ideal-stokes`: Stokes drag with the fluid's (plastic) viscosity, no
+    /// yield stress, no voidage, no contacts — the reference case for checking the pipeline.
+    #[serde(default)]
+    pub physics: Physics,
+    /// Which engine advances the bodies. Default `auto`.
+    #[serde(default)]
+    pub engine: EngineChoice,
+    /// Magnitude of gravity, m/s², acting along −z in 3D and −y in 2D. Default 9.81.
+    #[serde(default = "default_gravity")]
+    pub gravity_m_s2: f64,
+    /// The fluid.
+    pub fluid: Fluid,
+    /// The drag law.
+    pub drag: Drag,
+    /// Time step, duration and integrator.
+    pub time: Time,
+    /// The container (tank, cylinder); none for an unbounded fluid.
+    #[serde(default)]
+    pub container: Option<Container>,
+    /// How bodies are released.
+    #[serde(default)]
+    pub release: Release,
+    /// Spheres listed inline.
+    #[serde(default)]
+    pub spheres: Vec<SphereSpec>,
+    /// Spheres read from a CSV file (in addition to `spheres`).
+    #[serde(default)]
+    pub spheres_csv: Option<SpheresCsv>,
+    /// How terminal velocity and other quantities are measured.
+    #[serde(default)]
+    pub measure: Option<Measure>,
+    /// What to record.
+    #[serde(default)]
+    pub record: Record,
+    /// Default settings for `settle sweep`.
+    #[serde(default)]
+    pub sweep: Option<SweepSpec>,
+}
+
+fn default_dimension() -> u8 {
+    3
+}
+fn default_gravity() -> f64 {
+    DEFAULT_GRAVITY_M_S2
+}
+
+/// Kinds of scene.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum Kind {
+    /// Independent spheres settling from rest in a still fluid, no contacts between them
+    /// (f-EDEM §3 single sphere, §4.1 Valentik–Whitmore tanks). Each sphere runs alone.
+    FreeSettling,
+}
+
+/// Physics switch.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Physics {
+    /// Everything the scenario asks for.
+    #[default]
+    Full,
+    /// Stokes drag only, no yield stress, no voidage, no contacts.
+    IdealStokes,
+}
+
+/// Engine choice.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum EngineChoice {
+    /// `free` where the scene has no contacts, `rapier` otherwise.
+    #[default]
+    Auto,
+    /// Our own integrator only (no contact pipeline): exact free flight, fastest.
+    Free,
+    /// Every body in a Rapier world, fluid forces through the force hook.
+    Rapier,
+}
+
+/// Rheology of the fluid.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum Rheology {
+    /// Newtonian: needs `viscosity_pa_s`.
+    Newtonian,
+    /// Bingham plastic: needs `plastic_viscosity_pa_s` and `yield_stress_pa`.
+    Bingham,
+}
+
+/// The fluid.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Fluid {
+    /// Density ρ_f, kg/m³ (0 < ρ_f ≤ 25 000).
+    pub density_kg_m3: f64,
+    /// `newtonian` or `bingham`.
+    pub rheology: Rheology,
+    /// Dynamic viscosity η, Pa s (Newtonian only; > 0).
+    #[serde(default)]
+    pub viscosity_pa_s: Option<f64>,
+    /// Plastic viscosity η_B, Pa s (Bingham only; > 0).
+    #[serde(default)]
+    pub plastic_viscosity_pa_s: Option<f64>,
+    /// Yield stress τ_y, Pa (Bingham only; ≥ 0).
+    #[serde(default)]
+    pub yield_stress_pa: Option<f64>,
+}
+
+/// Names of the drag laws.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub enum DragLawName {
+    /// Stokes' law, f-EDEM eq. 7.
+    Stokes,
+    /// Dallavalle C_d with Di Felice voidage, seed 000 eqs. 7–9.
+    Dallavalle,
+    /// f-EDEM eqs. 9, 14, 19 (Bingham fluids only).
+    BinghamFedem,
+}
+
+/// The drag law.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Drag {
+    /// `stokes`, `dallavalle` or `bingham-fedem`.
+    pub law: DragLawName,
+    /// Fluid volume fraction ε for `dallavalle`, in (0, 1]. Default 1 (isolated sphere).
+    #[serde(default = "one")]
+    pub voidage: f64,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+/// Time settings.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Time {
+    /// Time step, s (> 0, ≤ `end_s`). `settle run --dt` overrides it.
+    pub dt_s: f64,
+    /// Simulated duration, s (> 0). A free-settling sphere also stops at the container bottom
+    /// or when it is held at rest by the yield stress.
+    pub end_s: f64,
+    /// `explicit`, `implicit` or `exponential` (default).
+    #[serde(default)]
+    pub integrator: Integrator,
+}
+
+/// The container.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Container {
+    /// Height of the fluid column from the bottom to the free surface, m (> 0).
+    pub height_m: f64,
+    /// Diameter of a cylindrical container, m (3D only). Walls are not modelled in free settling.
+    #[serde(default)]
+    pub diameter_m: Option<f64>,
+    /// Width of a rectangular container, m (2D, or 3D square section).
+    #[serde(default)]
+    pub width_m: Option<f64>,
+}
+
+/// Release of the bodies.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq, Default)]
+#[serde(deny_unknown_fields)]
+pub struct Release {
+    /// Depth of the sphere's centre below the free surface at release, m. Default 0, which
+    /// means "just submerged": the centre at one radius below the surface.
+    #[serde(default)]
+    pub depth_m: f64,
+    /// Initial downward speed, m/s. Default 0 (from rest).
+    #[serde(default)]
+    pub velocity_m_s: f64,
+}
+
+/// One sphere.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct SphereSpec {
+    /// Identifier in outputs. Default `sphere-<index>`.
+    #[serde(default)]
+    pub id: Option<String>,
+    /// Diameter d, m (0 < d ≤ 10).
+    pub diameter_m: f64,
+    /// Density ρ_p, kg/m³ (0 < ρ_p ≤ 25 000).
+    pub density_kg_m3: f64,
+    /// Young's modulus E, Pa (optional; for the Rayleigh time, f-EDEM eq. 22).
+    #[serde(default)]
+    pub youngs_modulus_pa: Option<f64>,
+    /// Poisson's ratio ν (optional; −1 < ν < 0.5).
+    #[serde(default)]
+    pub poisson_ratio: Option<f64>,
+    /// Measured terminal velocity, m/s (optional; compared in the summary).
+    #[serde(default)]
+    pub v_measured_m_s: Option<f64>,
+    /// Suspension or group number (optional; reported in the summary).
+    #[serde(default)]
+    pub suspension: Option<u32>,
+}
+
+/// Spheres from a CSV file with columns `sphere_id, suspension, diameter_m, density_kg_m3,
+/// v_terminal_measured_m_s` (extra columns ignored), as `data/valentik_whitmore_1965_spheres.csv`.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct SpheresCsv {
+    /// Path, relative to the scenario file.
+    pub path: String,
+    /// Keep only rows of this suspension (optional).
+    #[serde(default)]
+    pub suspension: Option<u32>,
+}
+
+/// Measurement settings.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Measure {
+    /// Depth below the surface of the first detector of the measuring section, m (optional;
+    /// give both detectors or neither).
+    #[serde(default)]
+    pub section_top_depth_m: Option<f64>,
+    /// Depth of the second detector, m (> top, within the container).
+    #[serde(default)]
+    pub section_bottom_depth_m: Option<f64>,
+    /// Steadiness criterion: the velocity at the two detectors may differ by at most this
+    /// fraction of the section velocity for the reading to count as terminal. Default 0.005.
+    #[serde(default = "default_steady")]
+    pub steady_tolerance: f64,
+    /// Length of the rolling window used to read the simulated terminal velocity, m (optional).
+    /// When set, the sphere keeps falling (past the container bottom if need be, in an
+    /// unbounded column) until the velocities at both ends of the last window differ by at
+    /// most `terminal_tolerance` of the window's mean velocity; that mean is the terminal
+    /// velocity. Without it, the terminal velocity is the section reading or the final velocity.
+    #[serde(default)]
+    pub terminal_window_m: Option<f64>,
+    /// Steadiness criterion of the rolling window (relative). Default 1e-4.
+    #[serde(default = "default_terminal_tol")]
+    pub terminal_tolerance: f64,
+    /// Times at which the velocity is probed (`probes.csv`, used by sweeps), s.
+    #[serde(default)]
+    pub velocity_at_s: Vec<f64>,
+}
+
+fn default_steady() -> f64 {
+    0.005
+}
+
+fn default_terminal_tol() -> f64 {
+    1e-4
+}
+
+/// Recording settings.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Record {
+    /// Write `timeseries.csv`. Default true.
+    #[serde(default = "yes")]
+    pub timeseries: bool,
+    /// Interval between time-series rows, s. Default: every step up to 2000 rows per body.
+    #[serde(default)]
+    pub every_s: Option<f64>,
+}
+
+impl Default for Record {
+    fn default() -> Self {
+        Self {
+            timeseries: true,
+            every_s: None,
+        }
+    }
+}
+
+fn yes() -> bool {
+    true
+}
+
+/// Default settings of `settle sweep` for this scenario.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct SweepSpec {
+    /// Time steps to run, s.
+    #[serde(default)]
+    pub dt_s: Vec<f64>,
+    /// Integrators to compare. Default: all three.
+    #[serde(default)]
+    pub integrators: Vec<Integrator>,
+    /// Relative tolerance for the recommended dt. Default 0.01.
+    #[serde(default)]
+    pub tol: Option<f64>,
+}
