@@ -21,7 +21,7 @@ impl ScenarioError {
     pub(crate) fn new(file: &Path, key: Option<&str>, message: impl Into<String>) -> Self {
         Self {
             file: file.to_path_buf(),
-            key: key.map(str::to_string),
+            key: key.map(|k| k.replace('\n', " ")),
             message: message.into().replace('\n', " "),
         }
     }
@@ -61,11 +61,12 @@ pub fn load_str(text: &str, path: &Path, overrides: &[String]) -> Result<Scenari
     let value = toml::Value::Table(table);
     let scenario: Scenario = serde_path_to_error::deserialize(value).map_err(|e| {
         let key = e.path().to_string();
-        let msg = e.inner().to_string();
+        // `message()`, not `to_string()`: the latter appends ` in `table`` and a newline.
+        let msg = e.inner().message().to_string();
         // serde names a missing field relative to its table; give the full path.
         let key = match (msg.strip_prefix("missing field `"), key.as_str()) {
             (Some(rest), parent) => {
-                let field = rest.trim_end_matches('`');
+                let field = rest.split('`').next().unwrap_or(rest);
                 if parent == "." {
                     field.to_string()
                 } else {
