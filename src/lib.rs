@@ -13,3 +13,5 @@ pub mod scenes;
 pub mod output;
 pub mod run;
 pub mod cli;
+pub mod sweep;
+pub mod sweep_cmd;

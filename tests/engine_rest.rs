@@ -6,7 +6,7 @@
 //! steps (penetration, contact force / net weight, residual speed for each grain size and dt).
 
 use settle::dynamics::Integrator;
-use settle::engine::{dim2, dim3, EngineSettings};
+use settle::engine::{dim2, dim3, ContactDrag, EngineSettings};
 use settle::fluid::{DragLaw, SphereDrag};
 
 const G: f64 = 9.81;
@@ -139,9 +139,11 @@ struct Rest {
 
 /// A grain of diameter `d` released `gap` diameters above a floor at y = 0, stepped at `dt` until
 /// `settle_s` after it should have landed; `None` if the step failed.
-fn grain_on_floor_2d(d: f64, rho_p: f64, dt: f64, gap: f64) -> Option<Rest> {
+fn grain_on_floor_2d(d: f64, rho_p: f64, dt: f64, gap: f64, contact: ContactDrag) -> Option<Rest> {
     let (vt, tau) = stokes_vt_tau(d, rho_p);
-    let mut world = dim2::World::new(EngineSettings::for_scene(d, vt), G);
+    let mut settings = EngineSettings::for_scene(d, vt);
+    settings.contact_drag = contact;
+    let mut world = dim2::World::new(settings, G);
     world.add_floor(0.0);
     let id = world.add_sphere(dim2::FluidBody::at_rest(
         dim2::Vector::new(0.0, (0.5 + gap) * d),
@@ -150,8 +152,8 @@ fn grain_on_floor_2d(d: f64, rho_p: f64, dt: f64, gap: f64) -> Option<Rest> {
         stokes(d),
         G,
     ));
-    // Fall time + 20 τ + 2 ms of contact settling, in whole steps.
-    let t_end = gap * d / vt + 20.0 * tau + 2e-3;
+    // Fall time + 20 τ + 20 ms of contact settling, in whole steps.
+    let t_end = gap * d / vt + 20.0 * tau + 0.02;
     let steps = (t_end / dt).ceil() as usize;
     for _ in 0..steps {
         world.step(dt, Integrator::Exponential).ok()?;
@@ -169,7 +171,7 @@ fn grain_on_floor_2d(d: f64, rho_p: f64, dt: f64, gap: f64) -> Option<Rest> {
 fn fine_and_coarse_grains_come_to_rest_on_the_floor() {
     let rho_p = 2500.0;
     for (d, dt) in [(2.5e-6, 1e-5), (70e-6, 1e-4)] {
-        let rest = grain_on_floor_2d(d, rho_p, dt, 0.5).expect("stable");
+        let rest = grain_on_floor_2d(d, rho_p, dt, 0.5, ContactDrag::EffectiveMass).expect("stable");
         eprintln!("d = {d:e} m, dt = {dt:e} s: {rest:?}");
         assert!(rest.penetration.abs() < 0.01, "d = {d}: {rest:?}");
         assert!((rest.force_ratio - 1.0).abs() < 0.02, "d = {d}: {rest:?}");
@@ -209,11 +211,12 @@ fn max_overlap(world: &dim2::World, ids: &[settle::engine::BodyId], d: f64, widt
 
 /// `n` grains of diameter `d` dropped in rows into a 2D box `width_d` diameters wide; stepped
 /// until well after the last has landed. `None` if a step failed.
-fn pile_2d(n: usize, d: f64, dt: f64, width_d: f64, friction: f64) -> Option<Pile> {
+fn pile_2d(n: usize, d: f64, dt: f64, width_d: f64, friction: f64, contact: ContactDrag) -> Option<Pile> {
     let rho_p = 2500.0;
     let (vt, tau) = stokes_vt_tau(d, rho_p);
     let mut settings = EngineSettings::for_scene(d, vt);
     settings.friction = friction;
+    settings.contact_drag = contact;
     let mut world = dim2::World::new(settings, G);
     let width = width_d * d;
     world.add_floor(0.0);
@@ -239,7 +242,8 @@ fn pile_2d(n: usize, d: f64, dt: f64, width_d: f64, friction: f64) -> Option<Pil
         })
         .collect();
     let rows = n.div_ceil(per_row) as f64;
-    let t_end = 1.3 * rows * d / vt + 50.0 * tau + 0.05;
+    // Three times the fall time of the top row: grains rolling over others take that long to stop.
+    let t_end = 3.0 * 1.3 * rows * d / vt + 50.0 * tau;
     let steps = (t_end / dt).ceil() as usize;
     let mut worst_overlap: f64 = 0.0;
     for step in 0..steps {
@@ -269,13 +273,13 @@ fn pile_2d(n: usize, d: f64, dt: f64, width_d: f64, friction: f64) -> Option<Pil
 fn twenty_coarse_grains_pile_up_in_a_narrow_box() {
     let d = 70e-6;
     // Frictionless: the floor carries the whole weight.
-    let pile = pile_2d(20, d, 1e-4, 4.6, 0.0).expect("stable");
+    let pile = pile_2d(20, d, 1e-4, 4.6, 0.0, ContactDrag::EffectiveMass).expect("stable");
     eprintln!("frictionless pile: {pile:?}");
     assert!(pile.worst_overlap < 0.01, "{pile:?}");
     assert!((pile.force_ratio - 1.0).abs() < 0.02, "{pile:?}");
     assert!(pile.speed_ratio < 1e-2, "{pile:?}");
     // With friction (0.5): overlaps stay small; the walls carry part of the weight (Janssen).
-    let pile = pile_2d(20, d, 1e-4, 4.6, 0.5).expect("stable");
+    let pile = pile_2d(20, d, 1e-4, 4.6, 0.5, ContactDrag::EffectiveMass).expect("stable");
     eprintln!("frictional pile:   {pile:?}");
     assert!(pile.worst_overlap < 0.01, "{pile:?}");
     assert!(pile.force_ratio > 0.5 && pile.force_ratio < 1.02, "{pile:?}");
@@ -287,39 +291,44 @@ fn twenty_coarse_grains_pile_up_in_a_narrow_box() {
 #[ignore]
 fn survey_dt_for_fine_and_coarse_grains() {
     let rho_p = 2500.0;
-    for d in [2.5e-6, 70e-6] {
-        let (vt, tau) = stokes_vt_tau(d, rho_p);
-        for dt in [1e-6, 1e-5, 1e-4, 1e-3] {
-            let t_end = 0.5 * d / vt + 20.0 * tau + 2e-3;
-            if t_end / dt > 2e6 {
-                continue;
-            }
-            match grain_on_floor_2d(d, rho_p, dt, 0.5) {
-                Some(r) => eprintln!(
-                    "d {d:.1e} dt {dt:.0e} (dt/tau {:8.2}): penetration {:+.2e} d, force/weight {:.4}, speed {:.1e} v_t",
-                    dt / tau,
-                    r.penetration,
-                    r.force_ratio,
-                    r.speed_ratio
-                ),
-                None => eprintln!("d {d:.1e} dt {dt:.0e}: unstable"),
+    for contact in [ContactDrag::EffectiveMass, ContactDrag::Damping] {
+        for d in [2.5e-6, 70e-6] {
+            let (vt, tau) = stokes_vt_tau(d, rho_p);
+            for dt in [1e-6, 1e-5, 1e-4, 1e-3] {
+                if (0.5 * d / vt + 0.02) / dt > 2e6 {
+                    continue;
+                }
+                match grain_on_floor_2d(d, rho_p, dt, 0.5, contact) {
+                    Some(r) => eprintln!(
+                        "{contact:?} grain d {d:.1e} dt {dt:.0e} (dt/tau {:7.2}): penetration {:+.2e} d, force/weight {:.4}, speed {:.1e} v_t",
+                        dt / tau,
+                        r.penetration,
+                        r.force_ratio,
+                        r.speed_ratio
+                    ),
+                    None => eprintln!("{contact:?} grain d {d:.1e} dt {dt:.0e}: unstable"),
+                }
             }
         }
-    }
-    for (d, dts) in [(2.5e-6, [1e-5, 1e-4, 1e-3]), (70e-6, [1e-5, 1e-4, 1e-3])] {
-        for dt in dts {
-            for friction in [0.0, 0.5] {
-                let (_, tau) = stokes_vt_tau(d, rho_p);
-                match pile_2d(20, d, dt, 4.6, friction) {
-                    Some(p) => eprintln!(
-                        "pile d {d:.1e} dt {dt:.0e} (dt/tau {:8.2}) friction {friction}: overlap {:.2e} d (worst {:.2e} d), floor force/weight {:.4}, speed {:.1e} v_t",
-                        dt / tau,
-                        p.overlap,
-                        p.worst_overlap,
-                        p.force_ratio,
-                        p.speed_ratio
-                    ),
-                    None => eprintln!("pile d {d:.1e} dt {dt:.0e}: unstable"),
+        let fine_dts: &[f64] = match contact {
+            ContactDrag::EffectiveMass => &[1e-5, 1e-4, 1e-3],
+            ContactDrag::Damping => &[1e-5, 1e-4],
+        };
+        for (d, dts) in [(2.5e-6, fine_dts), (70e-6, &[1e-5, 1e-4, 1e-3])] {
+            let (_, tau) = stokes_vt_tau(d, rho_p);
+            for &dt in dts {
+                for friction in [0.0, 0.5] {
+                    match pile_2d(20, d, dt, 4.6, friction, contact) {
+                        Some(p) => eprintln!(
+                            "{contact:?} pile d {d:.1e} dt {dt:.0e} (dt/tau {:7.2}) friction {friction}: overlap {:.2e} d (worst {:.2e} d), floor force/weight {:.4}, speed {:.1e} v_t",
+                            dt / tau,
+                            p.overlap,
+                            p.worst_overlap,
+                            p.force_ratio,
+                            p.speed_ratio
+                        ),
+                        None => eprintln!("{contact:?} pile d {d:.1e} dt {dt:.0e} friction {friction}: unstable"),
+                    }
                 }
             }
         }

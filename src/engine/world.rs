@@ -2,12 +2,14 @@
 // `rapier` is aliased to rapier2d-f64 or rapier3d-f64). Everything dimension-specific comes from
 // `rapier::math::DIM` and glam's slice/array conversions.
 
-use super::{BodyId, EngineSettings, Unstable};
+use super::{
+    rotational_drag_n_m_s, sphere_inertia_kg_m2, BodyId, ContactDrag, EngineSettings, Unstable,
+};
 use crate::dynamics::{self, Integrator};
 use crate::fluid::{buoyancy_n, sphere_mass_kg, SphereDrag};
 use rapier::prelude::{
-    nalgebra::Unit, ColliderBuilder, ColliderHandle, PhysicsWorld, RigidBodyBuilder,
-    RigidBodyHandle, SpringCoefficients,
+    nalgebra::Unit, ColliderBuilder, ColliderHandle, MassProperties, PhysicsWorld,
+    RigidBodyBuilder, RigidBodyHandle, SpringCoefficients,
 };
 
 /// Number of space dimensions of this world.
@@ -17,6 +19,9 @@ pub const DIM: usize = rapier::math::DIM;
 pub type Vector = nalgebra::SVector<f64, DIM>;
 
 type RVector = rapier::math::Vector;
+
+/// Rapier's default contact prediction distance, in length units.
+const DEFAULT_PREDICTION: f64 = 0.02;
 
 fn to_rapier(v: &Vector) -> RVector {
     RVector::from_slice(v.as_slice())
@@ -83,11 +88,24 @@ impl FluidBody {
 struct Body {
     handle: RigidBodyHandle,
     collider: ColliderHandle,
+    /// Sphere mass m, kg.
     mass_kg: f64,
+    /// Rotational drag rate k_rot/I of the sphere, 1/s.
+    spin_drag_rate_hz: f64,
     drag: SphereDrag,
     body_force_n: Vector,
+    /// Rapier's own mass properties of the ball (its collider's), without any boost.
+    rapier_mprops: MassProperties,
+    /// True while Rapier's mass carries the effective-mass drag boost.
+    boosted: bool,
     /// Velocity correction of the exact free-flight scheme, added after the Rapier step.
     correction_m_s: Option<Vector>,
+}
+
+impl Body {
+    fn rapier_mass_kg(&self) -> f64 {
+        self.rapier_mprops.mass()
+    }
 }
 
 /// A Rapier world of fluid-immersed spheres, fixed floors and walls. See the module doc of
@@ -141,12 +159,17 @@ impl World {
             .friction(self.settings.friction)
             .restitution(0.0);
         let (handle, collider) = self.physics.insert(rb, collider);
+        let rapier_mprops = self.physics.colliders[collider].mass_properties();
+        let inertia = sphere_inertia_kg_m2(mass_kg, body.diameter_m);
         self.bodies.push(Body {
             handle,
             collider,
             mass_kg,
+            spin_drag_rate_hz: rotational_drag_n_m_s(&body.drag) / inertia,
             drag: body.drag,
             body_force_n: body.body_force_n,
+            rapier_mprops,
+            boosted: false,
             correction_m_s: None,
         });
         BodyId(self.bodies.len() - 1)
@@ -169,7 +192,9 @@ impl World {
     }
 
     /// Advances the world by `dt_s`, the fluid forces integrated by `integrator` (see the module
-    /// doc). Errors with [`Unstable`] for the first body whose state is non-finite or faster than
+    /// doc). The contact prediction distance is raised to twice the largest expected travel over
+    /// the step when that exceeds Rapier's default (0.02 length units), so that fast bodies meet
+    /// their contacts before they overlap. Errors with [`Unstable`] for the first body whose state is non-finite or faster than
     /// half the speed cap after the step, or (step not taken) whose free-flight force would need an
     /// intermediate speed above the cap.
     pub fn step(&mut self, dt_s: f64, integrator: Integrator) -> Result<(), Unstable> {
@@ -178,6 +203,8 @@ impl World {
         let cap = self.settings.max_linear_velocity_m_s;
         self.physics.integration_parameters.dt = dt_s;
         let g = self.gravity_m_s2;
+        // Fastest motion expected over this step, for the contact prediction distance.
+        let mut max_speed: f64 = 0.0;
 
         for (i, body) in self.bodies.iter_mut().enumerate() {
             body.correction_m_s = None;
@@ -191,11 +218,13 @@ impl World {
                 continue;
             }
             let m = body.mass_kg;
-            let m_rapier = rb.mass();
+            let m_rapier = body.rapier_mass_kg();
             let v0 = to_na(rb.linvel());
+            let spin_damping = body.spin_drag_rate_hz * dt_s;
             rb.reset_forces(false);
+            rb.reset_torques(false);
             if in_contact {
-                // Damping-style drag: F(v) ≈ F₀ v̂ + k v about the current speed.
+                // Drag linearised about the current speed s: F(v) ≈ F₀ v̂ + k v.
                 let s = v0.norm();
                 let slope = body.drag.slope_n_s_m(s);
                 let mut force = body.body_force_n;
@@ -203,10 +232,38 @@ impl World {
                     let f0 = (body.drag.force_n(s) - slope * s).min(m * s / dt_s);
                     force -= v0 * (f0 / s);
                 }
-                rb.set_linear_damping(slope / m);
-                rb.add_force(to_rapier(&(force * (m_rapier / m))), false);
+                let damping = slope / m * dt_s;
+                max_speed = max_speed.max(v0.norm() + g.norm() * dt_s / (1.0 + damping));
+                let mut force_rapier = force * (m_rapier / m);
+                match self.settings.contact_drag {
+                    ContactDrag::EffectiveMass if damping > 0.0 && spin_damping > 0.0 => {
+                        // Linearly implicit drag inside the solve:
+                        // (m + k dt)(v₁ − v₀) = (F − k v₀) dt + contact impulses, and the same
+                        // for the spin with the rotational drag.
+                        let mut boost = body.rapier_mprops;
+                        boost.inv_mass /= damping;
+                        boost.inv_principal_inertia = boost.inv_principal_inertia / spin_damping;
+                        rb.set_additional_mass_properties(boost, false);
+                        body.boosted = true;
+                        rb.set_linear_damping(0.0);
+                        rb.set_angular_damping(0.0);
+                        force_rapier -= v0 * (slope * m_rapier / m);
+                        // Rapier pulls the boosted mass down with g: only m g is real.
+                        force_rapier -= g * (m_rapier * damping);
+                        let torque = -(rb.angvel() * body.spin_drag_rate_hz)
+                            / body.rapier_mprops.inv_principal_inertia;
+                        rb.add_torque(torque, false);
+                    }
+                    _ => {
+                        unboost(rb, body);
+                        rb.set_linear_damping(damping / dt_s);
+                        rb.set_angular_damping(body.spin_drag_rate_hz);
+                    }
+                }
+                rb.add_force(to_rapier(&force_rapier), false);
             } else {
                 // Exact scheme: land on the integrator's displacement, then fix the velocity.
+                unboost(rb, body);
                 let w = g * m + body.body_force_n;
                 let target = dynamics::advance(integrator, &body.drag, m, &w, &v0, dt_s);
                 let a = (target.displacement_m - v0 * dt_s) * (2.0 * k / ((k + 1.0) * dt_s * dt_s));
@@ -220,12 +277,18 @@ impl World {
                         suggested_dt_s: suggested_dt(integrator, body, v0.norm(), dt_s),
                     });
                 }
+                max_speed = max_speed.max(v0.norm()).max(target.velocity_m_s.norm());
                 rb.set_linear_damping(0.0);
+                rb.set_angular_damping(body.spin_drag_rate_hz);
                 rb.add_force(to_rapier(&((a - g) * m_rapier)), false);
                 body.correction_m_s = Some(target.velocity_m_s - v_end);
             }
         }
 
+        // Contacts must be predicted before bodies meet: at least twice the largest travel.
+        let lu = self.settings.length_unit_m;
+        self.physics.integration_parameters.normalized_prediction_distance =
+            DEFAULT_PREDICTION.max(2.0 * max_speed * dt_s / lu);
         self.physics.step_with_events(&(), &());
         self.time_s += dt_s;
         self.last_dt_s = dt_s;
@@ -305,8 +368,8 @@ impl World {
                     acc + j
                 }
             });
-        // Rapier's forces are per its body mass: convert through the acceleration.
-        let scale = b.mass_kg / self.rigid_body(body).mass();
+        // Rapier's forces are per its (unboosted) body mass: convert through the acceleration.
+        let scale = b.mass_kg / b.rapier_mass_kg();
         to_na(impulse) * (scale / self.last_dt_s)
     }
 
@@ -351,6 +414,14 @@ impl World {
 
     fn rigid_body(&self, body: BodyId) -> &rapier::prelude::RigidBody {
         &self.physics.bodies[self.bodies[body.0].handle]
+    }
+}
+
+/// Removes the effective-mass boost, if any (takes effect at the next Rapier step).
+fn unboost(rb: &mut rapier::prelude::RigidBody, body: &mut Body) {
+    if body.boosted {
+        rb.set_additional_mass(0.0, false);
+        body.boosted = false;
     }
 }
 

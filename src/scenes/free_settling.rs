@@ -188,6 +188,10 @@ pub fn run_sphere<const D: usize>(
     let mut v: SVector<f64, D> = down * v0;
     let mut depth = depth0;
     let mut monitor = Monitor::default();
+    // Released in a still fluid under a constant force with a monotone drag, a sphere's speed
+    // never exceeds max(v₀, v_terminal); an explicit step overshoots past 2× that exactly when
+    // dt > 2 m/(dF/dv).
+    let speed_bound = 2.0 * v0.abs().max(fb.speed_m_s);
     let mut samples = Vec::new();
     let sample = |t: f64, depth: f64, vel: f64| -> Sample {
         let an = analytic.map(|(vt, tau)| stokes_analytic(vt, tau, v0, t));
@@ -230,7 +234,15 @@ pub fn run_sphere<const D: usize>(
     while step < n_steps {
         let s = advance(opts.integrator, &drag, m, &w, &v, dt);
         let v_new = s.velocity_m_s;
-        if let Some(what) = monitor.check((v - v_eq).as_slice(), (v_new - v_eq).as_slice()) {
+        let overshoot = v_new.norm() > speed_bound;
+        let growing = monitor.check((v - v_eq).as_slice(), (v_new - v_eq).as_slice());
+        if overshoot || growing.is_some() {
+            let what = growing.unwrap_or_else(|| {
+                format!(
+                    "speed {:.3e} m/s is above the physical bound 2·max(v₀, v_terminal) = {speed_bound:.3e} m/s",
+                    v_new.norm()
+                )
+            });
             return Err(Unstable {
                 body: case.id.clone(),
                 time_s: (step + 1) as f64 * dt,
@@ -256,9 +268,10 @@ pub fn run_sphere<const D: usize>(
         }
         for &tp in &probe_times {
             if tp > t && tp <= t_new + 1e-12 * dt {
-                let f = (tp - t) / dt;
+                // Dense output: the same scheme over the part of the step up to the probe.
+                let part = advance(opts.integrator, &drag, m, &w, &v, tp - t);
                 let an = analytic.map(|(vt, tau)| stokes_analytic(vt, tau, v0, tp).0);
-                probes.push((tp, speed0 + f * (speed1 - speed0), an));
+                probes.push((tp, -part.velocity_m_s[D - 1], an));
             }
         }
         if let Some((vt, tau)) = analytic {
