@@ -40,6 +40,15 @@ enum Command {
         #[arg(long, short)]
         quiet: bool,
     },
+    /// Benchmarks (wall times and ratios) written to OUT/bench.csv.
+    Bench {
+        /// Output folder.
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+        /// Shorter loops and no full sweep (a quick smoke run).
+        #[arg(long)]
+        quick: bool,
+    },
     /// Time-step sensitivity sweep: run every (integrator, dt) and compare.
     ///
     /// Writes OUT/<name>_sweep/sweep.csv (one row per integrator, dt, body and quantity: value,
@@ -114,6 +123,25 @@ pub fn main() -> i32 {
                     e.exit_code()
                 }
             }
+        }
+        Command::Bench { out, quick } => {
+            let figs = match crate::bench::run(std::path::Path::new("."), quick) {
+                Ok(f) => f,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return 1;
+                }
+            };
+            for f in &figs {
+                println!("{:<16} {:<34} {:>14.6e} {}", f.benchmark, f.quantity, f.value, f.unit);
+            }
+            let path = out.join("bench.csv");
+            if let Err(e) = std::fs::create_dir_all(&out).and_then(|_| crate::bench::write(&path, &figs)) {
+                eprintln!("error: {}: {e}", path.display());
+                return 1;
+            }
+            println!("-> {}", path.display());
+            0
         }
         Command::Sweep {
             scenarios,

@@ -15,3 +15,4 @@ pub mod run;
 pub mod cli;
 pub mod sweep;
 pub mod sweep_cmd;
+pub mod bench;

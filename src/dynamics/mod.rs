@@ -167,6 +167,18 @@ fn exponential<const D: usize>(
     v0: &SVector<f64, D>,
     dt: f64,
 ) -> Step<D> {
+    if let crate::fluid::DragLaw::Stokes { viscosity_pa_s } = drag.law {
+        // Linear drag: the exponential solution needs no implicit solve.
+        let k = 3.0 * std::f64::consts::PI * viscosity_pa_s * drag.diameter_m;
+        let a0 = (w - v0 * k) / m;
+        let (phi1, phi2) = phi12(-k / m * dt);
+        return Step {
+            velocity_m_s: v0 + a0 * (dt * phi1),
+            displacement_m: v0 * dt + a0 * (dt * dt * phi2),
+            motion: Motion::Moving,
+            drag_slope_n_s_m: k,
+        };
+    }
     let be = backward_euler(drag, m, w, v0, dt);
     let s0 = v0.norm();
     match be.motion {

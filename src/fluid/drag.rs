@@ -237,20 +237,20 @@ impl SphereDrag {
     /// branch, or a jump speed (the target falls inside the jump). Safeguarded Newton iteration
     /// on each continuous branch; `guess` (m/s) warm-starts it.
     pub fn solve_implicit(&self, k: f64, target: f64, guess: f64) -> Solved {
-        let h = |s: f64| s + k * self.force_n(s);
         if target <= k * self.static_resistance_n() || target <= 0.0 {
             return Solved::zero();
         }
         // Walk the continuous branches [lo, hi) between jumps; hi of the last one is `target`,
         // because h(s) ≥ s.
         let mut lo = 0.0;
+        let mut branch = 0;
         for &j in self.jump_speeds() {
             if j >= target {
                 break;
             }
             let left = j + k * self.force_below(j);
             if target < left {
-                return self.newton(&h, |s| 1.0 + k * self.slope_n_s_m(s), lo, j, target, guess);
+                return self.branch_root(branch, 1.0, k, target, lo, j, guess);
             }
             if target <= j + k * self.force_above(j) {
                 return Solved {
@@ -259,12 +259,57 @@ impl SphereDrag {
                 };
             }
             lo = j;
+            branch += 1;
+        }
+        self.branch_root(branch, 1.0, k, target, lo, target, guess)
+    }
+
+    /// Polynomial form F(v) = a + b v + c v² of continuous branch `i` (counted from v = 0 across
+    /// the jumps), where the law has one: Stokes (one branch) and the Bingham law of f-EDEM
+    /// (three branches, see [`super::bingham`]). None for Dallavalle.
+    pub fn branch_polynomial(&self, i: usize) -> Option<(f64, f64, f64)> {
+        let d = self.diameter_m;
+        let a_p = sphere_area_m2(d);
+        let rho = self.fluid_density_kg_m3;
+        match self.law {
+            DragLaw::Stokes { viscosity_pa_s } => Some((0.0, 3.0 * PI * viscosity_pa_s * d, 0.0)),
+            DragLaw::Bingham {
+                yield_stress_pa: ty,
+                plastic_viscosity_pa_s: eb,
+            } => {
+                let fy = yield_drag_n(d, ty);
+                Some(match i {
+                    0 => (fy + 12.0 * a_p * ty, 12.0 * a_p * eb / d, 0.0),
+                    1 => (fy + 14.56 * a_p * ty, 14.56 * a_p * eb / d, 0.0975 * rho * a_p),
+                    _ => (fy, 0.0, 0.2 * rho * a_p),
+                })
+            }
+            DragLaw::Dallavalle { .. } => None,
+        }
+    }
+
+    /// Root of `alpha·s + k·F(s) = target` on branch `i` within [lo, hi]: closed form where the
+    /// branch is a polynomial of degree ≤ 2, safeguarded Newton otherwise.
+    #[allow(clippy::too_many_arguments)]
+    fn branch_root(&self, i: usize, alpha: f64, k: f64, target: f64, lo: f64, hi: f64, guess: f64) -> Solved {
+        if let Some((a, b, c)) = self.branch_polynomial(i) {
+            // k c s² + (alpha + k b) s + (k a − target) = 0, positive root in a stable form.
+            let (qa, qb, qc) = (k * c, alpha + k * b, k * a - target);
+            let s = if qa == 0.0 {
+                -qc / qb
+            } else {
+                -2.0 * qc / (qb + (qb * qb - 4.0 * qa * qc).sqrt())
+            };
+            return Solved {
+                speed_m_s: s.clamp(lo, hi),
+                at_jump: false,
+            };
         }
         self.newton(
-            &h,
-            |s| 1.0 + k * self.slope_n_s_m(s),
+            &|s| alpha * s + k * self.force_n(s),
+            |s| alpha + k * self.slope_n_s_m(s),
             lo,
-            target,
+            hi,
             target,
             guess,
         )
@@ -278,9 +323,9 @@ impl SphereDrag {
             return Solved::zero();
         }
         let mut lo = 0.0;
-        for &j in self.jump_speeds() {
+        for (i, &j) in self.jump_speeds().iter().enumerate() {
             if force_n < self.force_below(j) {
-                return self.newton(&|s| self.force_n(s), |s| self.slope_n_s_m(s), lo, j, force_n, j);
+                return self.branch_root(i, 0.0, 1.0, force_n, lo, j, j);
             }
             if force_n <= self.force_above(j) {
                 return Solved {
@@ -294,7 +339,7 @@ impl SphereDrag {
         while self.force_n(hi) < force_n {
             hi *= 2.0;
         }
-        self.newton(&|s| self.force_n(s), |s| self.slope_n_s_m(s), lo, hi, force_n, hi)
+        self.branch_root(self.jump_speeds().len(), 0.0, 1.0, force_n, lo, hi, hi)
     }
 
     /// Drag just below a jump speed (left limit), N: the lower branch's closed form.
