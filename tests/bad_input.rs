@@ -93,7 +93,11 @@ fn assert_nothing_written(o: &Outcome) {
     let allowed: Vec<PathBuf> = ["a", "a/b", "a/b/out"].iter().map(PathBuf::from).collect();
     let t = tree(o.root.path());
     let extra: Vec<&PathBuf> = t.iter().filter(|p| !allowed.contains(p)).collect();
-    assert!(extra.is_empty(), "bad input wrote {extra:?}\nstderr: {}", o.stderr);
+    assert!(
+        extra.is_empty(),
+        "bad input wrote {extra:?}\nstderr: {}",
+        o.stderr
+    );
 }
 
 /// Exit code 2, nothing on stdout, one line on stderr starting `error: ` and naming the file
@@ -104,11 +108,23 @@ fn assert_refused(o: &Outcome, file_name: &str, key: Option<&str>, words: &[&str
     assert_eq!(o.code, Some(2), "exit code; stderr: {e}");
     assert_eq!(o.stdout, "", "stdout on bad input; stderr: {e}");
     assert_eq!(e.lines().count(), 1, "stderr must be one line, got:\n{e}");
-    assert!(e.ends_with('\n') && e.matches('\n').count() == 1, "one line: {e:?}");
-    assert!(e.starts_with("error: "), "stderr must start with `error: `: {e}");
-    assert!(e.contains(file_name), "stderr must name the file `{file_name}`: {e}");
+    assert!(
+        e.ends_with('\n') && e.matches('\n').count() == 1,
+        "one line: {e:?}"
+    );
+    assert!(
+        e.starts_with("error: "),
+        "stderr must start with `error: `: {e}"
+    );
+    assert!(
+        e.contains(file_name),
+        "stderr must name the file `{file_name}`: {e}"
+    );
     if let Some(k) = key {
-        assert!(e.contains(&format!("`{k}`")), "stderr must name the key `{k}`: {e}");
+        assert!(
+            e.contains(&format!("`{k}`")),
+            "stderr must name the key `{k}`: {e}"
+        );
     }
     for w in words {
         assert!(e.contains(w), "stderr must contain `{w}`: {e}");
@@ -163,34 +179,119 @@ fn every_bad_file_has_a_case() {
 }
 
 // Missing keys.
-case!(missing_fluid_density, "missing_fluid_density.toml", Some("fluid.density_kg_m3"), ["missing"]);
-case!(missing_time_table, "missing_time_table.toml", Some("time"), ["missing"]);
+case!(
+    missing_fluid_density,
+    "missing_fluid_density.toml",
+    Some("fluid.density_kg_m3"),
+    ["missing"]
+);
+case!(
+    missing_time_table,
+    "missing_time_table.toml",
+    Some("time"),
+    ["missing"]
+);
 // Unknown keys: the error lists the keys that are allowed.
-case!(unknown_top_level_key, "unknown_top_key.toml", Some("dimenson"), ["unknown field", "`dimension`"]);
-case!(unknown_nested_key, "unknown_nested_key.toml", Some("fluid.viscosity"), ["unknown field", "`viscosity_pa_s`"]);
+case!(
+    unknown_top_level_key,
+    "unknown_top_key.toml",
+    Some("dimenson"),
+    ["unknown field", "`dimension`"]
+);
+case!(
+    unknown_nested_key,
+    "unknown_nested_key.toml",
+    Some("fluid.viscosity"),
+    ["unknown field", "`viscosity_pa_s`"]
+);
 // Ranges.
-case!(negative_diameter, "negative_diameter.toml", Some("spheres[0].diameter_m"), ["-0.0001", "allowed", "0 < diameter_m"]);
-case!(dt_zero, "dt_zero.toml", Some("time.dt_s"), ["allowed", "0 < dt_s"]);
-case!(dt_negative, "dt_negative.toml", Some("time.dt_s"), ["-0.001", "allowed", "0 < dt_s"]);
-case!(dt_above_end, "dt_above_end.toml", Some("time.dt_s"), ["0.05", "allowed", "end_s"]);
-case!(poisson_ratio_07, "poisson_07.toml", Some("spheres[0].poisson_ratio"), ["0.7", "allowed", "0.5"]);
-case!(section_bottom_above_top, "section_inverted.toml", Some("measure.section_bottom_depth_m"), ["allowed", "section_top_depth_m"]);
+case!(
+    negative_diameter,
+    "negative_diameter.toml",
+    Some("spheres[0].diameter_m"),
+    ["-0.0001", "allowed", "0 < diameter_m"]
+);
+case!(
+    dt_zero,
+    "dt_zero.toml",
+    Some("time.dt_s"),
+    ["allowed", "0 < dt_s"]
+);
+case!(
+    dt_negative,
+    "dt_negative.toml",
+    Some("time.dt_s"),
+    ["-0.001", "allowed", "0 < dt_s"]
+);
+case!(
+    dt_above_end,
+    "dt_above_end.toml",
+    Some("time.dt_s"),
+    ["0.05", "allowed", "end_s"]
+);
+case!(
+    poisson_ratio_07,
+    "poisson_07.toml",
+    Some("spheres[0].poisson_ratio"),
+    ["0.7", "allowed", "0.5"]
+);
+case!(
+    section_bottom_above_top,
+    "section_inverted.toml",
+    Some("measure.section_bottom_depth_m"),
+    ["allowed", "section_top_depth_m"]
+);
 // Types and enum values.
-case!(string_for_number, "string_for_number.toml", Some("spheres[0].diameter_m"), ["string", "f64"]);
-case!(unknown_integrator, "unknown_integrator.toml", Some("time.integrator"), ["rk4", "`explicit`", "`implicit`", "`exponential`"]);
+case!(
+    string_for_number,
+    "string_for_number.toml",
+    Some("spheres[0].diameter_m"),
+    ["string", "f64"]
+);
+case!(
+    unknown_integrator,
+    "unknown_integrator.toml",
+    Some("time.integrator"),
+    ["rk4", "`explicit`", "`implicit`", "`exponential`"]
+);
 // Cross-field rules.
-case!(cylinder_in_2d, "dim2_cylinder.toml", Some("container.diameter_m"), ["3D", "width_m"]);
-case!(bingham_drag_with_newtonian_fluid, "bingham_drag_newtonian.toml", Some("drag.law"), ["bingham", "`stokes`", "`dallavalle`"]);
+case!(
+    cylinder_in_2d,
+    "dim2_cylinder.toml",
+    Some("container.diameter_m"),
+    ["3D", "width_m"]
+);
+case!(
+    bingham_drag_with_newtonian_fluid,
+    "bingham_drag_newtonian.toml",
+    Some("drag.law"),
+    ["bingham", "`stokes`", "`dallavalle`"]
+);
 // Output paths must stay in the output folder.
-case!(name_escaping_out_dir, "bad_name.toml", Some("name"), ["../../etc", "letters", "digits"]);
+case!(
+    name_escaping_out_dir,
+    "bad_name.toml",
+    Some("name"),
+    ["../../etc", "letters", "digits"]
+);
 // A CSV of spheres that does not exist.
-case!(spheres_csv_missing, "csv_missing.toml", Some("spheres_csv.path"), ["no_such_spheres.csv", "cannot read"]);
+case!(
+    spheres_csv_missing,
+    "csv_missing.toml",
+    Some("spheres_csv.path"),
+    ["no_such_spheres.csv", "cannot read"]
+);
 
 /// A TOML syntax error names no key but the line (the broken `[drag` header is line 15).
 #[test]
 fn toml_syntax_error() {
     let o = settle_run(&[bad("syntax_error.toml")], &[]);
-    let e = assert_refused(&o, "syntax_error.toml", None, &["TOML syntax error", "line 15"]);
+    let e = assert_refused(
+        &o,
+        "syntax_error.toml",
+        None,
+        &["TOML syntax error", "line 15"],
+    );
     assert!(!e.contains("key `"), "a syntax error names no key: {e}");
 }
 
@@ -212,28 +313,51 @@ fn one_bad_file_among_good_ones_writes_nothing() {
 fn bad_file_first_writes_nothing() {
     let files = [bad("poisson_07.toml"), good("stokes_single.toml")];
     let o = settle_run(&files, &[]);
-    assert_refused(&o, "poisson_07.toml", Some("spheres[0].poisson_ratio"), &["0.5"]);
+    assert_refused(
+        &o,
+        "poisson_07.toml",
+        Some("spheres[0].poisson_ratio"),
+        &["0.5"],
+    );
 }
 
 /// `--set` with a bad value is checked like the file itself.
 #[test]
 fn set_negative_dt() {
     let o = settle_run(&[good("stokes_single.toml")], &["--set", "time.dt_s=-1"]);
-    assert_refused(&o, "stokes_single.toml", Some("time.dt_s"), &["-1", "allowed", "0 < dt_s"]);
+    assert_refused(
+        &o,
+        "stokes_single.toml",
+        Some("time.dt_s"),
+        &["-1", "allowed", "0 < dt_s"],
+    );
 }
 
 /// `--set` naming an unknown key is refused like a typo in the file.
 #[test]
 fn set_unknown_key() {
-    let o = settle_run(&[good("stokes_single.toml")], &["--set", "fluid.viscosity=0.002"]);
-    assert_refused(&o, "stokes_single.toml", Some("fluid.viscosity"), &["unknown field", "`viscosity_pa_s`"]);
+    let o = settle_run(
+        &[good("stokes_single.toml")],
+        &["--set", "fluid.viscosity=0.002"],
+    );
+    assert_refused(
+        &o,
+        "stokes_single.toml",
+        Some("fluid.viscosity"),
+        &["unknown field", "`viscosity_pa_s`"],
+    );
 }
 
 /// `--dt 0` is `time.dt_s = 0`.
 #[test]
 fn dt_flag_zero() {
     let o = settle_run(&[good("stokes_single.toml")], &["--dt", "0"]);
-    assert_refused(&o, "stokes_single.toml", Some("time.dt_s"), &["allowed", "0 < dt_s"]);
+    assert_refused(
+        &o,
+        "stokes_single.toml",
+        Some("time.dt_s"),
+        &["allowed", "0 < dt_s"],
+    );
 }
 
 /// `--dt 0` applies to every file: with two good files, the first is named and nothing written.
@@ -257,30 +381,100 @@ mod fuzz {
     ];
 
     const KEYS: &[&str] = &[
-        "name", "kind", "dimension", "physics", "engine", "gravity_m_s2", "description",
-        "fluid.density_kg_m3", "fluid.rheology", "fluid.viscosity_pa_s",
-        "fluid.plastic_viscosity_pa_s", "fluid.yield_stress_pa", "drag.law", "drag.voidage",
-        "time.dt_s", "time.end_s", "time.integrator", "container.height_m",
-        "container.diameter_m", "container.width_m", "release.depth_m", "release.velocity_m_s",
-        "spheres", "spheres_csv.path", "spheres_csv.suspension", "measure.section_top_depth_m",
-        "measure.section_bottom_depth_m", "measure.terminal_window_m", "measure.velocity_at_s",
-        "measure.steady_tolerance", "record.every_s", "record.timeseries", "sweep.dt_s",
-        "sweep.tol", "sweep.integrators", "fluid", "time", "x", "\"we\\nird\"", "a.\"b\\nc\"",
-        "diameter_m", "poisson_ratio", "dt_s",
+        "name",
+        "kind",
+        "dimension",
+        "physics",
+        "engine",
+        "gravity_m_s2",
+        "description",
+        "fluid.density_kg_m3",
+        "fluid.rheology",
+        "fluid.viscosity_pa_s",
+        "fluid.plastic_viscosity_pa_s",
+        "fluid.yield_stress_pa",
+        "drag.law",
+        "drag.voidage",
+        "time.dt_s",
+        "time.end_s",
+        "time.integrator",
+        "container.height_m",
+        "container.diameter_m",
+        "container.width_m",
+        "release.depth_m",
+        "release.velocity_m_s",
+        "spheres",
+        "spheres_csv.path",
+        "spheres_csv.suspension",
+        "measure.section_top_depth_m",
+        "measure.section_bottom_depth_m",
+        "measure.terminal_window_m",
+        "measure.velocity_at_s",
+        "measure.steady_tolerance",
+        "record.every_s",
+        "record.timeseries",
+        "sweep.dt_s",
+        "sweep.tol",
+        "sweep.integrators",
+        "fluid",
+        "time",
+        "x",
+        "\"we\\nird\"",
+        "a.\"b\\nc\"",
+        "diameter_m",
+        "poisson_ratio",
+        "dt_s",
     ];
 
     const VALUES: &[&str] = &[
-        "0", "-1", "1", "3", "2", "300", "-0.0", "0.5", "0.7", "1e308", "-1e308", "1e-308",
-        "nan", "-nan", "inf", "-inf", "true", "\"\"", "\"../../etc\"", "\"bingham\"",
-        "\"newtonian\"", "\"bingham-fedem\"", "\"rk4\"", "\"stokes\"", "\"é\\n\"", "[]",
-        "[1, nan]", "[-1.0, 0.0]", "{}", "[{diameter_m = 1e-4, density_kg_m3 = 2000.0}]",
-        "[{diameter_m = nan, density_kg_m3 = -1.0}]", "{ dt_s = 1, end_s = 1 }",
-        "1979-05-27T07:32:00Z", "9223372036854775807", "-9223372036854775808",
+        "0",
+        "-1",
+        "1",
+        "3",
+        "2",
+        "300",
+        "-0.0",
+        "0.5",
+        "0.7",
+        "1e308",
+        "-1e308",
+        "1e-308",
+        "nan",
+        "-nan",
+        "inf",
+        "-inf",
+        "true",
+        "\"\"",
+        "\"../../etc\"",
+        "\"bingham\"",
+        "\"newtonian\"",
+        "\"bingham-fedem\"",
+        "\"rk4\"",
+        "\"stokes\"",
+        "\"é\\n\"",
+        "[]",
+        "[1, nan]",
+        "[-1.0, 0.0]",
+        "{}",
+        "[{diameter_m = 1e-4, density_kg_m3 = 2000.0}]",
+        "[{diameter_m = nan, density_kg_m3 = -1.0}]",
+        "{ dt_s = 1, end_s = 1 }",
+        "1979-05-27T07:32:00Z",
+        "9223372036854775807",
+        "-9223372036854775808",
     ];
 
     const OVERRIDE_KEYS: &[&str] = &[
-        "spheres[0].diameter_m", "spheres[9].diameter_m", "spheres[x].diameter_m", "spheres[0]",
-        "spheres_csv.path.x", "a..b", ".", "", "name.x", "time.dt_s.x",
+        "spheres[0].diameter_m",
+        "spheres[9].diameter_m",
+        "spheres[x].diameter_m",
+        "spheres[0]",
+        "spheres_csv.path.x",
+        "a..b",
+        ".",
+        "",
+        "name.x",
+        "time.dt_s.x",
     ];
 
     #[derive(Clone, Debug)]
@@ -305,7 +499,11 @@ mod fuzz {
             (any::<usize>(), byte.clone()).prop_map(|(i, b)| Mutation::Replace(i, b)),
             (any::<usize>(), byte).prop_map(|(i, b)| Mutation::Insert(i, b)),
             (any::<usize>(), 1usize..20).prop_map(|(i, n)| Mutation::Delete(i, n)),
-            (any::<usize>(), prop::sample::select(KEYS), prop::sample::select(VALUES))
+            (
+                any::<usize>(),
+                prop::sample::select(KEYS),
+                prop::sample::select(VALUES)
+            )
                 .prop_map(|(i, k, v)| Mutation::Line(i, k, v)),
         ]
     }
@@ -339,7 +537,10 @@ mod fuzz {
     }
 
     fn override_strategy() -> impl Strategy<Value = Vec<String>> {
-        let key = prop_oneof![prop::sample::select(KEYS), prop::sample::select(OVERRIDE_KEYS)];
+        let key = prop_oneof![
+            prop::sample::select(KEYS),
+            prop::sample::select(OVERRIDE_KEYS)
+        ];
         let one = prop_oneof![
             4 => (key, prop::sample::select(VALUES)).prop_map(|(k, v)| format!("{k}={v}")),
             1 => "[a-z_.\\[\\]0-9=\"-]{0,12}",
