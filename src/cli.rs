@@ -30,7 +30,7 @@ enum Command {
         #[arg(long, default_value = "out")]
         out: PathBuf,
         /// Time step in seconds, overriding time.dt_s of every scenario.
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         dt: Option<f64>,
         /// Override any scenario key, e.g. --set fluid.viscosity_pa_s=0.002 --set physics=ideal-stokes
         /// or --set 'spheres[0].diameter_m=2e-4'. Repeatable.

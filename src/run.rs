@@ -73,6 +73,13 @@ pub struct Prepared {
 /// Loads and validates a scenario with the request's overrides (`--dt` is `time.dt_s`).
 pub fn prepare(path: &Path, dt_s: Option<f64>, overrides: &[String]) -> Result<Prepared, ScenarioError> {
     let mut ov = overrides.to_vec();
+    if let Some(dt) = dt_s.filter(|d| !d.is_finite()) {
+        return Err(ScenarioError::new(
+            path,
+            Some("time.dt_s"),
+            format!("--dt {dt} is out of range: allowed 0 < dt_s ≤ time.end_s s"),
+        ));
+    }
     if let Some(dt) = dt_s {
         ov.push(format!("time.dt_s={dt:e}"));
     }

@@ -222,7 +222,6 @@ impl World {
             let v0 = to_na(rb.linvel());
             let spin_damping = body.spin_drag_rate_hz * dt_s;
             rb.reset_forces(false);
-            rb.reset_torques(false);
             if in_contact {
                 // Drag linearised about the current speed s: F(v) ≈ F₀ v̂ + k v.
                 let s = v0.norm();
@@ -237,22 +236,20 @@ impl World {
                 let mut force_rapier = force * (m_rapier / m);
                 match self.settings.contact_drag {
                     ContactDrag::EffectiveMass if damping > 0.0 && spin_damping > 0.0 => {
-                        // Linearly implicit drag inside the solve:
-                        // (m + k dt)(v₁ − v₀) = (F − k v₀) dt + contact impulses, and the same
-                        // for the spin with the rotational drag.
+                        // Backward-Euler drag inside the solve: mass m + k dt carrying the
+                        // momentum m v₀, so (m + k dt) v₁ = m v₀ + F dt + contact impulses; the
+                        // same for the spin with the rotational drag.
                         let mut boost = body.rapier_mprops;
                         boost.inv_mass /= damping;
                         boost.inv_principal_inertia = boost.inv_principal_inertia / spin_damping;
                         rb.set_additional_mass_properties(boost, false);
                         body.boosted = true;
+                        rb.set_linvel(rb.linvel() / (1.0 + damping), false);
+                        rb.set_angvel(rb.angvel() / (1.0 + spin_damping), false);
                         rb.set_linear_damping(0.0);
                         rb.set_angular_damping(0.0);
-                        force_rapier -= v0 * (slope * m_rapier / m);
                         // Rapier pulls the boosted mass down with g: only m g is real.
                         force_rapier -= g * (m_rapier * damping);
-                        let torque = -(rb.angvel() * body.spin_drag_rate_hz)
-                            / body.rapier_mprops.inv_principal_inertia;
-                        rb.add_torque(torque, false);
                     }
                     _ => {
                         unboost(rb, body);

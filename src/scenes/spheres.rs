@@ -40,7 +40,12 @@ pub fn spheres(scenario: &Scenario, scenario_path: &Path) -> Result<Vec<SphereCa
         let mut rdr = csv::ReaderBuilder::new()
             .comment(Some(b'#'))
             .from_path(&csv_path)
-            .map_err(|e| err(format!("cannot read `{}`: {e}", csv_path.display())))?;
+            .map_err(|e| {
+                err(format!(
+                    "cannot read `{}` (the path is relative to the scenario file's folder): {e}",
+                    csv_path.display()
+                ))
+            })?;
         for (i, row) in rdr.deserialize::<CsvRow>().enumerate() {
             let row = row.map_err(|e| err(format!("`{}` row {}: {e}", csv_path.display(), i + 2)))?;
             if src.suspension.is_some() && row.suspension != src.suspension {
