@@ -127,7 +127,7 @@ struct RunToml<'a> {
 pub fn engine_name(s: &Scenario) -> &'static str {
     match (s.kind, s.engine) {
         (_, EngineChoice::Rapier) => "rapier",
-        (Kind::FreeSettling, _) => "free",
+        (Kind::FreeSettling | Kind::Drop, _) => "free",
     }
 }
 
@@ -150,26 +150,44 @@ pub fn run_one(p: &Prepared, out_dir: &Path) -> Result<FileReport, RunError> {
     let io = |e: std::io::Error| RunError::Io(p.path.clone(), e);
     let stage = StagedDir::new(out_dir, &s.name).map_err(io)?;
     let integ = s.time.integrator.name();
-    let rows: Vec<Vec<String>> = results
-        .iter()
-        .map(|r| out_fs::summary_row(r, s.time.dt_s, integ))
-        .collect();
-    out_fs::write_summary(&stage.path("summary.csv"), &rows).map_err(io)?;
+    match s.kind {
+        Kind::Drop => {
+            let sub = match s.fluid.submergence {
+                crate::scenario::Submergence::Full => "full",
+                crate::scenario::Submergence::Partial => "partial",
+            };
+            crate::output::drop::write_summary(&stage.path("summary.csv"), &results, s.time.dt_s, integ, sub)
+                .map_err(io)?;
+            crate::output::drop::write_chart(
+                &stage.path("settling_distance.svg"),
+                &format!("{}: settling distance against fall height ({sub} submergence)", s.name),
+                &results,
+            )
+            .map_err(RunError::Other)?;
+        }
+        Kind::FreeSettling => {
+            let rows: Vec<Vec<String>> = results
+                .iter()
+                .map(|r| out_fs::summary_row(r, s.time.dt_s, integ))
+                .collect();
+            out_fs::write_summary(&stage.path("summary.csv"), &rows).map_err(io)?;
+            let stats = out_fs::metrics(&results);
+            if !stats.is_empty() {
+                out_fs::write_metrics(&stage.path("metrics.csv"), &stats).map_err(io)?;
+                out_fs::write_chart(
+                    &stage.path("terminal_velocity.svg"),
+                    &format!("{}: terminal velocity, measured (o) and simulated (•)", s.name),
+                    &results,
+                )
+                .map_err(RunError::Other)?;
+            }
+        }
+    }
     if s.record.timeseries {
         out_fs::write_timeseries(&stage.path("timeseries.csv"), &results).map_err(io)?;
     }
     if results.iter().any(|r| !r.probes.is_empty()) {
         out_fs::write_probes(&stage.path("probes.csv"), &results).map_err(io)?;
-    }
-    let stats = out_fs::metrics(&results);
-    if !stats.is_empty() {
-        out_fs::write_metrics(&stage.path("metrics.csv"), &stats).map_err(io)?;
-        out_fs::write_chart(
-            &stage.path("terminal_velocity.svg"),
-            &format!("{}: terminal velocity, measured (o) and simulated (•)", s.name),
-            &results,
-        )
-        .map_err(RunError::Other)?;
     }
     let meta = RunToml {
         run: RunMeta {

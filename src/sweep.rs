@@ -116,6 +116,9 @@ fn rel(a: f64, b: f64) -> f64 {
 
 /// The measured quantities of one body: (name, value, reference).
 fn quantities(r: &SphereResult) -> Vec<(String, f64, f64)> {
+    if r.case.fall_height_m.is_some() {
+        return vec![("settling_distance_m".to_string(), r.final_bottom_depth_m, f64::NAN)];
+    }
     let mut q = vec![(
         "terminal_velocity_m_s".to_string(),
         r.v_simulated_m_s,
@@ -181,8 +184,13 @@ pub fn run_cases(p: &Prepared, cases: &[Case]) -> Vec<Row> {
                     .spheres
                     .iter()
                     .flat_map(|s| {
-                        std::iter::once("terminal_velocity_m_s".to_string())
-                            .chain(probe_names.iter().cloned())
+                        let first = if s.fall_height_m.is_some() {
+                            "settling_distance_m"
+                        } else {
+                            "terminal_velocity_m_s"
+                        };
+                        std::iter::once(first.to_string())
+                            .chain(probe_names.iter().cloned().filter(|_| s.fall_height_m.is_none()))
                             .map(|q| Row {
                                 body: s.id.clone(),
                                 quantity: q,

@@ -37,7 +37,13 @@ fn net_weight_n(d: f64, rho_p: f64) -> f64 {
 // ---------------------------------------------------------------------------------------------
 // 1. Free fall through Rapier = the analytic solution, at small and large dt.
 
-fn free_sphere_3d(d: f64, rho_p: f64, integrator: Integrator, dt: f64, steps: usize) -> Vec<(f64, f64, f64)> {
+fn free_sphere_3d(
+    d: f64,
+    rho_p: f64,
+    integrator: Integrator,
+    dt: f64,
+    steps: usize,
+) -> Vec<(f64, f64, f64)> {
     let (vt, _) = stokes_vt_tau(d, rho_p);
     let mut world = dim3::World::new(EngineSettings::for_scene(d, vt), G);
     let id = world.add_sphere(dim3::FluidBody::at_rest(
@@ -49,10 +55,16 @@ fn free_sphere_3d(d: f64, rho_p: f64, integrator: Integrator, dt: f64, steps: us
     ));
     let mut out = Vec::with_capacity(steps);
     for _ in 0..steps {
-        world.step(dt, integrator).expect("free sphere stays stable");
+        world
+            .step(dt, integrator)
+            .expect("free sphere stays stable");
         let x = world.position_m(id);
         let v = world.velocity_m_s(id);
-        assert_eq!((x[0], x[1], v[0], v[1]), (0.0, 0.0, 0.0, 0.0), "motion stays vertical");
+        assert_eq!(
+            (x[0], x[1], v[0], v[1]),
+            (0.0, 0.0, 0.0, 0.0),
+            "motion stays vertical"
+        );
         out.push((world.time_s(), -x[2], -v[2]));
     }
     out
@@ -74,7 +86,10 @@ fn free_sphere_matches_the_analytic_stokes_solution_at_any_dt() {
             assert!(ex < 1e-6, "dt {dt}, t {t}: x = {depth}, exact {x_exact}");
             worst = worst.max(ev).max(ex);
         }
-        eprintln!("dt = {dt:e} s (dt/tau = {:.3}): worst relative error {worst:.1e}", dt / tau);
+        eprintln!(
+            "dt = {dt:e} s (dt/tau = {:.3}): worst relative error {worst:.1e}",
+            dt / tau
+        );
     }
 }
 
@@ -108,15 +123,40 @@ fn explicit_drag_beyond_two_tau_is_reported_unstable() {
         .expect("explicit drag at dt > 2τ must be reported");
     eprintln!("{err}");
     assert_eq!(err.body, id);
-    assert!(err.suggested_dt_s <= 2.0 * tau, "suggested {} s, 2τ = {} s", err.suggested_dt_s, 2.0 * tau);
+    assert!(
+        err.suggested_dt_s <= 2.0 * tau,
+        "suggested {} s, 2τ = {} s",
+        err.suggested_dt_s,
+        2.0 * tau
+    );
     assert!(err.value > 0.5 * world.settings().max_linear_velocity_m_s || !err.value.is_finite());
     let line = err.to_string();
-    assert!(line.contains("body 1") && line.contains("try dt") && !line.contains('\n'), "{line}");
+    assert!(
+        line.contains("body 1") && line.contains("try dt") && !line.contains('\n'),
+        "{line}"
+    );
+    // A refused step leaves the world as it was: retried at the suggested dt, it recovers.
+    for _ in 0..50 {
+        world
+            .step(err.suggested_dt_s, Integrator::Explicit)
+            .expect("stable at the suggested dt");
+    }
+    let v = -world.velocity_m_s(id)[2];
+    assert!((v / vt - 1.0).abs() < 1e-3, "v = {v}, v_t = {vt}");
 
     // Below 2τ the same scene runs, and the exponential integrator runs at any dt.
-    for (integrator, dt) in [(Integrator::Explicit, 0.5 * tau), (Integrator::Exponential, 100.0 * tau)] {
+    for (integrator, dt) in [
+        (Integrator::Explicit, 0.5 * tau),
+        (Integrator::Exponential, 100.0 * tau),
+    ] {
         let mut world = dim3::World::new(EngineSettings::for_scene(d, vt), G);
-        world.add_sphere(dim3::FluidBody::at_rest(dim3::Vector::zeros(), d, rho_p, stokes(d), G));
+        world.add_sphere(dim3::FluidBody::at_rest(
+            dim3::Vector::zeros(),
+            d,
+            rho_p,
+            stokes(d),
+            G,
+        ));
         for _ in 0..200 {
             world.step(dt, integrator).expect("stable");
         }
@@ -157,7 +197,11 @@ fn grain_on_floor_2d(d: f64, rho_p: f64, dt: f64, gap: f64, contact: ContactDrag
     let steps = (t_end / dt).ceil() as usize;
     for _ in 0..steps {
         world.step(dt, Integrator::Exponential).ok()?;
-        assert!(!world.is_sleeping(id), "grain fell asleep at t = {} s", world.time_s());
+        assert!(
+            !world.is_sleeping(id),
+            "grain fell asleep at t = {} s",
+            world.time_s()
+        );
     }
     let y = world.position_m(id)[1];
     Some(Rest {
@@ -168,10 +212,56 @@ fn grain_on_floor_2d(d: f64, rho_p: f64, dt: f64, gap: f64, contact: ContactDrag
 }
 
 #[test]
+fn a_sphere_comes_to_rest_on_a_3d_floor_and_may_then_sleep_if_allowed() {
+    let (d, rho_p, dt) = (70e-6, 2500.0, 1e-4);
+    let (vt, _) = stokes_vt_tau(d, rho_p);
+    for can_sleep in [false, true] {
+        let mut settings = EngineSettings::for_scene(d, vt);
+        settings.can_sleep = can_sleep;
+        let mut world = dim3::World::new(settings, G);
+        world.add_floor(0.0);
+        let id = world.add_sphere(dim3::FluidBody::at_rest(
+            dim3::Vector::new(0.0, 0.0, d),
+            d,
+            rho_p,
+            stokes(d),
+            G,
+        ));
+        let mut slept_at = None;
+        for _ in 0..20_000 {
+            world.step(dt, Integrator::Exponential).expect("stable");
+            if slept_at.is_none() && world.is_sleeping(id) {
+                slept_at = Some(world.time_s());
+            }
+        }
+        let z = world.position_m(id)[2];
+        let f = world.contact_force_n(id);
+        eprintln!(
+            "3D, can_sleep {can_sleep}: penetration {:.2e} d, force/weight {:.6}, slept at {slept_at:?} s",
+            (0.5 * d - z) / d,
+            f[2] / net_weight_n(d, rho_p)
+        );
+        assert!(((0.5 * d - z) / d).abs() < 0.01);
+        assert_eq!(slept_at.is_some(), can_sleep, "sleeping only if allowed");
+        if !can_sleep {
+            assert!((f[2] / net_weight_n(d, rho_p) - 1.0).abs() < 0.02);
+            assert!(f[0].abs() + f[1].abs() < 1e-6 * f[2]);
+        }
+    }
+    // The settings go to run.toml.
+    let text = toml::to_string(&EngineSettings::for_scene(d, vt)).expect("serializes");
+    assert!(
+        text.contains("length_unit_m") && text.contains("contact_drag = \"effective-mass\""),
+        "{text}"
+    );
+}
+
+#[test]
 fn fine_and_coarse_grains_come_to_rest_on_the_floor() {
     let rho_p = 2500.0;
     for (d, dt) in [(2.5e-6, 1e-5), (70e-6, 1e-4)] {
-        let rest = grain_on_floor_2d(d, rho_p, dt, 0.5, ContactDrag::EffectiveMass).expect("stable");
+        let rest =
+            grain_on_floor_2d(d, rho_p, dt, 0.5, ContactDrag::EffectiveMass).expect("stable");
         eprintln!("d = {d:e} m, dt = {dt:e} s: {rest:?}");
         assert!(rest.penetration.abs() < 0.01, "d = {d}: {rest:?}");
         assert!((rest.force_ratio - 1.0).abs() < 0.02, "d = {d}: {rest:?}");
@@ -211,7 +301,14 @@ fn max_overlap(world: &dim2::World, ids: &[settle::engine::BodyId], d: f64, widt
 
 /// `n` grains of diameter `d` dropped in rows into a 2D box `width_d` diameters wide; stepped
 /// until well after the last has landed. `None` if a step failed.
-fn pile_2d(n: usize, d: f64, dt: f64, width_d: f64, friction: f64, contact: ContactDrag) -> Option<Pile> {
+fn pile_2d(
+    n: usize,
+    d: f64,
+    dt: f64,
+    width_d: f64,
+    friction: f64,
+    contact: ContactDrag,
+) -> Option<Pile> {
     let rho_p = 2500.0;
     let (vt, tau) = stokes_vt_tau(d, rho_p);
     let mut settings = EngineSettings::for_scene(d, vt);
@@ -229,7 +326,7 @@ fn pile_2d(n: usize, d: f64, dt: f64, width_d: f64, friction: f64, contact: Cont
     let ids: Vec<_> = (0..n)
         .map(|i| {
             let (row, col) = (i / per_row, i % per_row);
-            let shift = if row % 2 == 0 { 0.1 } else { 0.35 };
+            let shift = if row.is_multiple_of(2) { 0.1 } else { 0.35 };
             let x = (0.5 + shift + col as f64 * pitch) * d;
             let y = (0.6 + 1.3 * row as f64) * d;
             world.add_sphere(dim2::FluidBody::at_rest(
@@ -251,7 +348,7 @@ fn pile_2d(n: usize, d: f64, dt: f64, width_d: f64, friction: f64, contact: Cont
         for &id in &ids {
             assert!(!world.is_sleeping(id));
         }
-        if step % 10 == 0 {
+        if step.is_multiple_of(10) {
             worst_overlap = worst_overlap.max(max_overlap(&world, &ids, d, width));
         }
     }
@@ -282,7 +379,10 @@ fn twenty_coarse_grains_pile_up_in_a_narrow_box() {
     let pile = pile_2d(20, d, 1e-4, 4.6, 0.5, ContactDrag::EffectiveMass).expect("stable");
     eprintln!("frictional pile:   {pile:?}");
     assert!(pile.worst_overlap < 0.01, "{pile:?}");
-    assert!(pile.force_ratio > 0.5 && pile.force_ratio < 1.02, "{pile:?}");
+    assert!(
+        pile.force_ratio > 0.5 && pile.force_ratio < 1.02,
+        "{pile:?}"
+    );
     assert!(pile.speed_ratio < 1e-2, "{pile:?}");
 }
 

@@ -167,9 +167,9 @@ fn exponential<const D: usize>(
     v0: &SVector<f64, D>,
     dt: f64,
 ) -> Step<D> {
-    if let crate::fluid::DragLaw::Stokes { viscosity_pa_s } = drag.law {
+    if let crate::fluid::DragLaw::Stokes { .. } = drag.law {
         // Linear drag: the exponential solution needs no implicit solve.
-        let k = 3.0 * std::f64::consts::PI * viscosity_pa_s * drag.diameter_m;
+        let k = drag.slope_n_s_m(0.0);
         let a0 = (w - v0 * k) / m;
         let (phi1, phi2) = phi12(-k / m * dt);
         return Step {

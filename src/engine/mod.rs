@@ -17,32 +17,51 @@
 //!   which Rapier adds itself) and, after the step, add `v_target − (v₀ + a dt)` to the velocity.
 //!   Free flight is then exactly what the integrator says, at any dt (for Stokes drag and the
 //!   exponential integrator: the analytic solution to round-off).
-//! - **Body in contact** (an active contact pair, speculative ones included): damping-style drag,
-//!   so that the contact solver sees the full net weight. The drag is linearised about the current
-//!   speed `s`, `F(v) ≈ F₀ v̂ + k v` with `k = dF/dv(s)`: Rapier's `linear_damping` is set to `k/m`
-//!   (unconditionally stable, applied as `v ← v/(1 + k dt/m)`), buoyancy and `−F₀ v̂` are added as a
-//!   force (`F₀` clamped so that it can at most stop the body within the step; dropped at rest, where
-//!   its direction is undefined). At rest the drag vanishes and the contact force equals the net
-//!   weight.
+//! - **Body in contact** (an active contact pair, speculative ones included): the drag must act
+//!   *inside* the contact solve, or the solver does not see the weight (with the exact scheme the
+//!   drag balances gravity before any contact force is needed: a resting 2.5 µm grain at dt = 1e-3 s
+//!   loads the floor with 0.2 % of its weight). The drag is linearised about the current speed `s`,
+//!   `F(v) ≈ F₀ v̂ + k v` with `k = dF/dv(s)`, and handed over as
+//!   [`ContactDrag::EffectiveMass`] (default): backward Euler in the solver's own variables. For the
+//!   step the body's Rapier mass becomes `m + k dt` and its velocity `m v₀/(m + k dt)` (momentum
+//!   kept), so that Rapier's update gives `(m + k dt) v₁ = m v₀ + (W + buoyancy − F₀ v̂) dt + J`,
+//!   `J` the contact impulses: exactly backward Euler on the drag, unconditionally stable, with the
+//!   contact solver seeing the real forces and the drag as extra inertia. The spin gets the same
+//!   treatment with the rotational Stokes drag `π η d³` (inertia `I + π η d³ dt`). At rest the
+//!   contact force equals the net weight at any dt. `F₀` is clamped so that it can at most stop the
+//!   body within the step, and dropped at rest, where its direction is undefined.
+//!   [`ContactDrag::Damping`] (Rapier's `linear_damping` = k/m) is kept for comparison: it gets
+//!   velocities and resting forces right, but Rapier damps only after integrating positions, so a
+//!   loaded grain moves ≈ (1 + k dt/m) too far per step: 20 grains of 2.5 µm (τ = 0.87 µs) piled with
+//!   dt = 1e-5 s pass through each other (overlaps of 1.5 d), where the effective mass keeps overlaps
+//!   below 1.2e-3 d up to dt = 3e-3 s.
 //!
 //! Forces go to Rapier as accelerations: `force = acceleration × Rapier's body mass`. Each ball's
 //! Rapier mass is set to the 3D sphere mass, also in 2D (where a disc would otherwise weigh ρ·area
 //! per metre of depth), so contact forces read back in newtons in both dimensions and 2D piles load
-//! their grains like 3D spheres of the same diameters would.
+//! their grains like 3D spheres of the same diameters would. Free bodies feel the rotational drag
+//! through Rapier's `angular_damping`.
+//!
+//! Before each step the contact prediction distance is raised to twice the largest travel expected
+//! over the step (when that exceeds Rapier's 0.02 length units), so bodies moving more than that per
+//! step still meet their contacts before they overlap.
 //!
 //! # Limits
 //!
-//! - **In contact, the position advances with the undamped velocity** (Rapier applies damping after
-//!   integrating positions), so a touching body moving under its weight drifts by about
-//!   `(5/8)·g′·dt²` per step when `dt ≫ τ` (τ = m/k, the drag response time). Keep `dt` so that this
-//!   is a small fraction of the smallest diameter, or `dt ≲ τ`.
+//! - **In contact, positions lag when dt ≫ τ** (τ = m/k, the drag response time): Rapier's K
+//!   substeps ramp the velocity from `m v₀/(m + k dt)` to `v₁`, so a body in steady motion while in
+//!   contact (sliding, rolling, or crossing the speculative-contact margin above a floor) advances
+//!   between (K+1)/(2K) = 5/8 (dt ≫ τ) and 1 (dt ≪ τ) of `v₁ dt`. Velocities, contact forces and
+//!   resting states are not affected; transients in contact are slowed by up to 3/8.
 //! - The contact state is the narrow phase's from the previous step (one step of lag): the step in
 //!   which a free body first touches uses the free scheme, and its velocity correction is added on
 //!   top of the contact response.
+//! - The drag linearisation is explicit in the speed at which it is taken (the start of the step):
+//!   exact for Stokes drag, first order for non-linear laws.
 //! - The yield-stress (static) part of a Bingham drag is not applied to a body at rest in contact
 //!   (its direction is undefined there); the contact holds the body instead.
-//! - No fluid torque: rotations are free and undamped by the fluid; no hindered settling or
-//!   lubrication between grains beyond what the drag law itself contains.
+//! - Fluid torque is the rotational Stokes drag only; no hindered settling, lubrication or
+//!   fluid-mediated interaction between grains beyond what the drag law itself contains.
 //! - `World::contact_force_n` sums the normal contact impulses only (friction impulses are not
 //!   included): on a floor or in a frictionless pile it is the full contact force.
 //! - One length unit and one contact stiffness per world: grains whose diameters differ by orders of
@@ -50,6 +69,8 @@
 //! - Rapier silently caps every substep's speed at `max_linear_velocity_m_s`; `step` reports any
 //!   body faster than half of it (or non-finite) as [`Unstable`], and refuses a step whose exact
 //!   free-flight force would need an intermediate speed above the cap.
+//! - Piles at large dt/τ (≳ 10 for 70 µm grains, dt ≥ 1e-2 s for 2.5 µm ones) can keep a grain
+//!   jittering at a few % of v_t instead of coming fully to rest; see `tests/engine_rest.rs`.
 
 use crate::fluid::{DragLaw, SphereDrag};
 use serde::{Deserialize, Serialize};
@@ -83,14 +104,14 @@ pub struct EngineSettings {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum ContactDrag {
-    /// Backward-Euler drag inside the solve: the body's Rapier mass and inertia are raised to
-    /// `m + k dt` and `I + k_rot dt` for the step, its momentum kept. Contact forces, velocities
-    /// and positions stay consistent at any dt/τ.
+    /// Backward-Euler drag inside the solve: for the step, the body's Rapier mass and inertia are
+    /// raised to `m + k dt` and `I + k_rot dt` with its momentum kept. Contact forces and velocities
+    /// consistent at any dt/τ; positions in contact lag by up to 3/8 when dt ≫ τ.
     #[default]
     EffectiveMass,
     /// Rapier's `linear_damping` = k/m (and `angular_damping` = k_rot/I). Right velocities and
-    /// resting forces, but positions advance with the undamped velocity: touching grains drift
-    /// about (1 + k dt/m)·(5/8)·F dt²/m per step, which breaks piles once dt ≫ τ.
+    /// resting forces, but positions advance with the undamped velocity: loaded grains move about
+    /// (1 + k dt/m) too far per step, which breaks piles once dt ≫ τ.
     Damping,
 }
 
@@ -133,7 +154,7 @@ impl fmt::Display for BodyId {
 pub struct Unstable {
     /// The offending body.
     pub body: BodyId,
-    /// Simulated time at the end of the failed step, s.
+    /// Simulated time when detected, s: the end of the failed step, or the start of a refused one.
     pub time_s: f64,
     /// What went wrong: `"position"` or `"velocity"` (non-finite), `"quarantined"` (Rapier disabled
     /// the body for a non-finite state), `"speed"` (above half the speed cap), or

@@ -100,6 +100,8 @@ struct Body {
     boosted: bool,
     /// Velocity correction of the exact free-flight scheme, added after the Rapier step.
     correction_m_s: Option<Vector>,
+    /// Effective-mass factors (1 + k dt/m, 1 + k_rot dt/I) dividing the velocities before the step.
+    momentum_scale: Option<(f64, f64)>,
 }
 
 impl Body {
@@ -128,8 +130,10 @@ impl World {
         physics.gravity = to_rapier(&g);
         let p = &mut physics.integration_parameters;
         p.length_unit = settings.length_unit_m;
-        let springs =
-            SpringCoefficients::new(settings.contact_natural_frequency_hz, settings.damping_ratio);
+        let springs = SpringCoefficients::new(
+            settings.contact_natural_frequency_hz,
+            settings.damping_ratio,
+        );
         p.contact_softness = springs;
         p.static_contact_softness = springs;
         p.normalized_max_linear_velocity =
@@ -171,6 +175,7 @@ impl World {
             rapier_mprops,
             boosted: false,
             correction_m_s: None,
+            momentum_scale: None,
         });
         BodyId(self.bodies.len() - 1)
     }
@@ -194,11 +199,17 @@ impl World {
     /// Advances the world by `dt_s`, the fluid forces integrated by `integrator` (see the module
     /// doc). The contact prediction distance is raised to twice the largest expected travel over
     /// the step when that exceeds Rapier's default (0.02 length units), so that fast bodies meet
-    /// their contacts before they overlap. Errors with [`Unstable`] for the first body whose state is non-finite or faster than
-    /// half the speed cap after the step, or (step not taken) whose free-flight force would need an
-    /// intermediate speed above the cap.
+    /// their contacts before they overlap.
+    ///
+    /// Errors with [`Unstable`] for the first body whose state is non-finite or faster than half
+    /// the speed cap after the step, or whose free-flight force would need an intermediate speed
+    /// above the cap; in that last case the step is not taken and the bodies' states are
+    /// untouched, so it may be retried with a smaller dt.
     pub fn step(&mut self, dt_s: f64, integrator: Integrator) -> Result<(), Unstable> {
-        assert!(dt_s > 0.0 && dt_s.is_finite(), "dt must be positive, got {dt_s}");
+        assert!(
+            dt_s > 0.0 && dt_s.is_finite(),
+            "dt must be positive, got {dt_s}"
+        );
         let k = self.physics.integration_parameters.num_solver_iterations as f64;
         let cap = self.settings.max_linear_velocity_m_s;
         self.physics.integration_parameters.dt = dt_s;
@@ -208,6 +219,7 @@ impl World {
 
         for (i, body) in self.bodies.iter_mut().enumerate() {
             body.correction_m_s = None;
+            body.momentum_scale = None;
             let in_contact = self
                 .physics
                 .narrow_phase
@@ -241,11 +253,11 @@ impl World {
                         // same for the spin with the rotational drag.
                         let mut boost = body.rapier_mprops;
                         boost.inv_mass /= damping;
-                        boost.inv_principal_inertia = boost.inv_principal_inertia / spin_damping;
+                        boost.inv_principal_inertia /= spin_damping;
                         rb.set_additional_mass_properties(boost, false);
                         body.boosted = true;
-                        rb.set_linvel(rb.linvel() / (1.0 + damping), false);
-                        rb.set_angvel(rb.angvel() / (1.0 + spin_damping), false);
+                        // Applied below, once no body has refused the step.
+                        body.momentum_scale = Some((1.0 + damping, 1.0 + spin_damping));
                         rb.set_linear_damping(0.0);
                         rb.set_angular_damping(0.0);
                         // Rapier pulls the boosted mass down with g: only m g is real.
@@ -265,7 +277,7 @@ impl World {
                 let target = dynamics::advance(integrator, &body.drag, m, &w, &v0, dt_s);
                 let a = (target.displacement_m - v0 * dt_s) * (2.0 * k / ((k + 1.0) * dt_s * dt_s));
                 let v_end = v0 + a * dt_s;
-                if !(v_end.norm() < cap) {
+                if v_end.norm().is_nan() || v_end.norm() >= cap {
                     return Err(Unstable {
                         body: BodyId(i),
                         time_s: self.time_s,
@@ -282,10 +294,18 @@ impl World {
             }
         }
 
+        for body in &self.bodies {
+            if let Some((linear, angular)) = body.momentum_scale {
+                let rb = &mut self.physics.bodies[body.handle];
+                rb.set_linvel(rb.linvel() / linear, false);
+                rb.set_angvel(rb.angvel() / angular, false);
+            }
+        }
         // Contacts must be predicted before bodies meet: at least twice the largest travel.
         let lu = self.settings.length_unit_m;
-        self.physics.integration_parameters.normalized_prediction_distance =
-            DEFAULT_PREDICTION.max(2.0 * max_speed * dt_s / lu);
+        self.physics
+            .integration_parameters
+            .normalized_prediction_distance = DEFAULT_PREDICTION.max(2.0 * max_speed * dt_s / lu);
         self.physics.step_with_events(&(), &());
         self.time_s += dt_s;
         self.last_dt_s = dt_s;
@@ -427,7 +447,11 @@ fn suggested_dt(integrator: Integrator, body: &Body, speed_m_s: f64, dt_s: f64) 
     let half = 0.5 * dt_s;
     match integrator {
         Integrator::Explicit => {
-            let s = if speed_m_s.is_finite() { speed_m_s } else { 0.0 };
+            let s = if speed_m_s.is_finite() {
+                speed_m_s
+            } else {
+                0.0
+            };
             half.min(0.5 * dynamics::explicit_stable_dt_s(body.mass_kg, body.drag.slope_n_s_m(s)))
         }
         _ => half,

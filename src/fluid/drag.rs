@@ -74,6 +74,7 @@ pub struct SphereDrag {
     pub fluid_density_kg_m3: f64,
     jumps: [f64; 2],
     n_jumps: usize,
+    scale: f64,
 }
 
 impl SphereDrag {
@@ -103,6 +104,17 @@ impl SphereDrag {
             fluid_density_kg_m3,
             jumps,
             n_jumps,
+            scale: 1.0,
+        }
+    }
+
+    /// The same law with every force multiplied by `fraction` ∈ [0, 1]: the drag on a sphere
+    /// crossing the free surface, scaled by the immersed fraction of its projected area
+    /// (`submergence = "partial"`). The jump speeds do not change (Re' does not depend on area).
+    pub fn scaled(&self, fraction: f64) -> Self {
+        Self {
+            scale: fraction,
+            ..*self
         }
     }
 
@@ -115,6 +127,10 @@ impl SphereDrag {
     /// Drag magnitude at speed `speed_m_s` > 0, N. At a jump speed, the value of the branch the
     /// law assigns that speed to (eq. 19: Re' = 1 and Re' = 150 belong to the middle branch).
     pub fn force_n(&self, speed_m_s: f64) -> f64 {
+        self.scale * self.unscaled_force_n(speed_m_s)
+    }
+
+    fn unscaled_force_n(&self, speed_m_s: f64) -> f64 {
         let d = self.diameter_m;
         let rho = self.fluid_density_kg_m3;
         let v = speed_m_s;
@@ -135,7 +151,7 @@ impl SphereDrag {
                 plastic_viscosity_pa_s,
             } => {
                 if v <= 0.0 {
-                    return self.static_resistance_n();
+                    return bingham_static_resistance_n(d, yield_stress_pa);
                 }
                 bingham_drag_n(rho, d, yield_stress_pa, plastic_viscosity_pa_s, v)
             }
@@ -148,13 +164,17 @@ impl SphereDrag {
         match self.law {
             DragLaw::Bingham {
                 yield_stress_pa, ..
-            } => bingham_static_resistance_n(self.diameter_m, yield_stress_pa),
+            } => self.scale * bingham_static_resistance_n(self.diameter_m, yield_stress_pa),
             _ => 0.0,
         }
     }
 
     /// Slope dF/dv at speed `speed_m_s` ≥ 0 within its branch, N s/m (right derivative at 0).
     pub fn slope_n_s_m(&self, speed_m_s: f64) -> f64 {
+        self.scale * self.unscaled_slope_n_s_m(speed_m_s)
+    }
+
+    fn unscaled_slope_n_s_m(&self, speed_m_s: f64) -> f64 {
         let d = self.diameter_m;
         let rho = self.fluid_density_kg_m3;
         let a = sphere_area_m2(d);
@@ -165,9 +185,9 @@ impl SphereDrag {
                 // Central difference on the smooth law, one-sided near zero.
                 let h = (v * 1e-6).max(1e-15);
                 if v > h {
-                    (self.force_n(v + h) - self.force_n(v - h)) / (2.0 * h)
+                    (self.unscaled_force_n(v + h) - self.unscaled_force_n(v - h)) / (2.0 * h)
                 } else {
-                    (self.force_n(v + h) - self.force_n(v)) / h
+                    (self.unscaled_force_n(v + h) - self.unscaled_force_n(v)) / h
                 }
             }
             DragLaw::Bingham {
@@ -219,18 +239,8 @@ impl SphereDrag {
         }
     }
 
-    /// Yield-stress part of the drag, N (zero for Newtonian laws).
-    pub fn yield_part_n(&self) -> f64 {
-        match self.law {
-            DragLaw::Bingham {
-                yield_stress_pa, ..
-            } => yield_drag_n(self.diameter_m, yield_stress_pa),
-            _ => 0.0,
-        }
-    }
-
-    /// Solves `s + k·F(s) = target` for s ≥ 0 with k ≥ 0 — the backward-Euler speed update
-    /// (k = dt/m) — or, with `k = ∞` semantics via [`Self::balance_speed`], the force balance.
+    /// Solves `s + k·F(s) = target` for s ≥ 0 with k ≥ 0: the backward-Euler speed update
+    /// (k = dt/m). [`Self::balance_speed`] solves the force balance F(s) = force the same way.
     ///
     /// The left side is strictly increasing with upward jumps, so the solution is unique: either
     /// s = 0 (the target does not overcome the static resistance), an interior root of one
@@ -268,6 +278,12 @@ impl SphereDrag {
     /// the jumps), where the law has one: Stokes (one branch) and the Bingham law of f-EDEM
     /// (three branches, see [`super::bingham`]). None for Dallavalle.
     pub fn branch_polynomial(&self, i: usize) -> Option<(f64, f64, f64)> {
+        let f = self.scale;
+        self.unscaled_branch_polynomial(i)
+            .map(|(a, b, c)| (f * a, f * b, f * c))
+    }
+
+    fn unscaled_branch_polynomial(&self, i: usize) -> Option<(f64, f64, f64)> {
         let d = self.diameter_m;
         let a_p = sphere_area_m2(d);
         let rho = self.fluid_density_kg_m3;
@@ -337,6 +353,13 @@ impl SphereDrag {
         }
         let mut hi = lo.max(1e-12) * 2.0;
         while self.force_n(hi) < force_n {
+            if hi > 1e300 {
+                // No drag can balance the force (e.g. a zero-scaled law in air).
+                return Solved {
+                    speed_m_s: f64::INFINITY,
+                    at_jump: false,
+                };
+            }
             hi *= 2.0;
         }
         self.branch_root(self.jump_speeds().len(), 0.0, 1.0, force_n, lo, hi, hi)
@@ -356,6 +379,10 @@ impl SphereDrag {
     /// `middle` picks 1 ≤ Re' ≤ 150; otherwise the branch below Re' = 1 for speeds up to the
     /// first jump and above Re' = 150 beyond it.
     fn bingham_branch_force(&self, speed_m_s: f64, middle: bool) -> f64 {
+        self.scale * self.unscaled_branch_force(speed_m_s, middle)
+    }
+
+    fn unscaled_branch_force(&self, speed_m_s: f64, middle: bool) -> f64 {
         let d = self.diameter_m;
         let a = sphere_area_m2(d);
         let rho = self.fluid_density_kg_m3;
@@ -374,7 +401,7 @@ impl SphereDrag {
                     fy + 0.2 * rho * a * v * v
                 }
             }
-            _ => self.force_n(v),
+            _ => self.unscaled_force_n(v),
         }
     }
 

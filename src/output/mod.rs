@@ -2,6 +2,7 @@
 //! result), CSV tables, `run.toml`, metrics and charts.
 
 pub mod chart;
+pub mod drop;
 pub mod free_settling;
 pub mod metrics;
 

@@ -73,6 +73,22 @@ pub enum Kind {
     /// Independent spheres settling from rest in a still fluid, no contacts between them
     /// (f-EDEM §3 single sphere, §4.1 Valentik–Whitmore tanks). Each sphere runs alone.
     FreeSettling,
+    /// Spheres dropped from `release.fall_heights_m` above the free surface through air into the
+    /// fluid, each alone, until they stop (f-EDEM §4.2 steel balls in paste backfill).
+    Drop,
+}
+
+/// How fluid forces act on a sphere crossing the free surface.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum Submergence {
+    /// f-EDEM: the whole buoyancy and drag act from the moment the sphere's lowest point
+    /// touches the surface.
+    #[default]
+    Full,
+    /// Buoyancy on the immersed spherical cap's volume, drag scaled by the immersed fraction of
+    /// the projected area, while the sphere crosses the surface.
+    Partial,
 }
 
 /// Physics switch.
@@ -126,6 +142,9 @@ pub struct Fluid {
     /// Yield stress τ_y, Pa (Bingham only; ≥ 0).
     #[serde(default)]
     pub yield_stress_pa: Option<f64>,
+    /// `full` (default) or `partial`: fluid forces on a sphere crossing the free surface.
+    #[serde(default)]
+    pub submergence: Submergence,
 }
 
 /// Names of the drag laws.
@@ -194,6 +213,10 @@ pub struct Release {
     /// Initial downward speed, m/s. Default 0 (from rest).
     #[serde(default)]
     pub velocity_m_s: f64,
+    /// Fall heights of the sphere's lowest point above the free surface, m (kind `drop`): every
+    /// sphere is dropped from each, from rest, as an independent case.
+    #[serde(default)]
+    pub fall_heights_m: Vec<f64>,
 }
 
 /// One sphere.

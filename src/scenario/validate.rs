@@ -123,6 +123,19 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
     c.in_closed("release.depth_m", s.release.depth_m, 0.0, 1e4, "m")?;
     c.in_closed("release.velocity_m_s", s.release.velocity_m_s, 0.0, 1e3, "m/s")?;
 
+    for (i, h) in s.release.fall_heights_m.iter().enumerate() {
+        c.in_closed(&format!("release.fall_heights_m[{i}]"), *h, 0.0, 1e4, "m")?;
+    }
+    match s.kind {
+        Kind::Drop if s.release.fall_heights_m.is_empty() => {
+            return Err(c.err("release.fall_heights_m", "missing: kind = \"drop\" needs at least one fall height ≥ 0 m"));
+        }
+        Kind::FreeSettling if !s.release.fall_heights_m.is_empty() => {
+            return Err(c.err("release.fall_heights_m", "only allowed with kind = \"drop\" (free_settling releases submerged spheres at release.depth_m)"));
+        }
+        _ => {}
+    }
+
     // Spheres.
     if s.spheres.is_empty() && s.spheres_csv.is_none() {
         return Err(c.err("spheres", "missing: give at least one [[spheres]] table or a [spheres_csv] file"));

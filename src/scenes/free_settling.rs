@@ -19,10 +19,10 @@
 use super::sphere_drag;
 use super::spheres::SphereCase;
 use crate::contact::rayleigh_time_s;
-use crate::dynamics::{advance, explicit_stable_dt_s, Integrator, Monitor, Motion, Unstable};
+use crate::dynamics::{advance, explicit_stable_dt_s, Integrator, Monitor, Motion, Step, Unstable};
 use crate::fluid::bingham::reynolds_bingham;
 use crate::fluid::{sphere_mass_kg, DragLaw, DragRegime, SphereDrag};
-use crate::scenario::Scenario;
+use crate::scenario::{Scenario, Submergence};
 use nalgebra::SVector;
 
 /// Options of one run that do not belong in the scenario file.
@@ -116,6 +116,35 @@ pub struct SphereResult {
     pub end_time_s: f64,
     /// Why the run ended.
     pub stop: StopReason,
+    /// Speed when the lowest point reached the free surface, m/s (drops).
+    pub entry_velocity_m_s: Option<f64>,
+    /// Final depth of the sphere's lowest point below the free surface, m.
+    pub final_bottom_depth_m: f64,
+    /// Time at which the sphere came to rest, s (None if it never stopped).
+    pub stop_time_s: Option<f64>,
+}
+
+/// Immersed fractions (volume, projected area) of a sphere of diameter `d_m` whose centre is
+/// `depth_m` below the free surface (negative above). `full`: both 1 as soon as the lowest point
+/// touches the surface (f-EDEM); `partial`: the spherical cap below the surface,
+/// V_cap = π h² (3r − h)/3, and its projected area π (2 r h − h²) while h < r.
+pub fn immersion(depth_m: f64, d_m: f64, submergence: Submergence) -> (f64, f64) {
+    let r = 0.5 * d_m;
+    let h = (depth_m + r).clamp(0.0, d_m);
+    match submergence {
+        Submergence::Full => {
+            if depth_m + r >= 0.0 {
+                (1.0, 1.0)
+            } else {
+                (0.0, 0.0)
+            }
+        }
+        Submergence::Partial => {
+            let vol = h * h * (3.0 * r - h) / (4.0 * r * r * r);
+            let area = if h >= r { 1.0 } else { h * (2.0 * r - h) / (r * r) };
+            (vol, area)
+        }
+    }
 }
 
 /// Stokes solution for a sphere started at speed v₀ (downward): returns (v(t), distance(t)).
@@ -167,11 +196,15 @@ pub fn run_sphere<const D: usize>(
         _ => None,
     };
 
-    let depth0 = if scenario.release.depth_m > 0.0 {
-        scenario.release.depth_m
-    } else {
-        0.5 * d
+    let depth0 = match case.fall_height_m {
+        Some(h) => -(h + 0.5 * d),
+        None if scenario.release.depth_m > 0.0 => scenario.release.depth_m,
+        None => 0.5 * d,
     };
+    // Spheres released submerged stay submerged: constant forces. Drops cross the surface.
+    let crossing = case.fall_height_m.is_some();
+    let submergence = scenario.fluid.submergence;
+    let m_fluid = sphere_mass_kg(d, rho_f);
     let bottom = scenario
         .container
         .as_ref()
@@ -191,7 +224,9 @@ pub fn run_sphere<const D: usize>(
     // Released in a still fluid under a constant force with a monotone drag, a sphere's speed
     // never exceeds max(v₀, v_terminal); an explicit step overshoots past 2× that exactly when
     // dt > 2 m/(dF/dv).
-    let speed_bound = 2.0 * v0.abs().max(fb.speed_m_s);
+    let fall = case.fall_height_m.map(|h| (v0 * v0 + 2.0 * g * (h + d)).sqrt()).unwrap_or(0.0);
+    let speed_bound = 2.0 * v0.abs().max(fb.speed_m_s).max(fall);
+    let mut entry: Option<f64> = if crossing && depth0 + 0.5 * d >= 0.0 { Some(v0) } else { None };
     let mut samples = Vec::new();
     let sample = |t: f64, depth: f64, vel: f64| -> Sample {
         let an = analytic.map(|(vt, tau)| stokes_analytic(vt, tau, v0, t));
@@ -232,7 +267,29 @@ pub fn run_sphere<const D: usize>(
     let mut step = 0u64;
     let mut t = 0.0;
     while step < n_steps {
-        let s = advance(opts.integrator, &drag, m, &w, &v, dt);
+        let s = if crossing {
+            let gap = -(depth + 0.5 * d); // lowest point above the surface, m
+            let s_down = -v[D - 1];
+            let free_fall = s_down * dt + 0.5 * g * dt * dt;
+            if submergence == Submergence::Full && gap > 0.0 && free_fall > gap {
+                // Entry inside the step: fall exactly to the surface, then the rest of the step
+                // with the full fluid forces (event location, so entry is not late by a step).
+                let t_c = 2.0 * gap / (s_down + (s_down * s_down + 2.0 * g * gap).sqrt());
+                let v_c = v + down * (g * t_c);
+                entry = Some(s_down + g * t_c);
+                let rest = advance(opts.integrator, &drag, m, &w, &v_c, dt - t_c);
+                Step {
+                    displacement_m: down * gap + rest.displacement_m,
+                    ..rest
+                }
+            } else {
+                let (fv, fa) = immersion(depth, d, submergence);
+                let w_now = down * (m * g - fv * m_fluid * g);
+                advance(opts.integrator, &drag.scaled(fa), m, &w_now, &v, dt)
+            }
+        } else {
+            advance(opts.integrator, &drag, m, &w, &v, dt)
+        };
         let v_new = s.velocity_m_s;
         let overshoot = v_new.norm() > speed_bound;
         let growing = monitor.check((v - v_eq).as_slice(), (v_new - v_eq).as_slice());
@@ -257,6 +314,10 @@ pub fn run_sphere<const D: usize>(
         let depth_new = depth - s.displacement_m[D - 1];
         step += 1;
         let t_new = step as f64 * dt;
+        if crossing && entry.is_none() && depth_new + 0.5 * d >= 0.0 {
+            let f = (-0.5 * d - depth) / (depth_new - depth);
+            entry = Some(speed0 + f * (speed1 - speed0));
+        }
         // Detector crossings, interpolated within the step.
         if let Some((top, bot, _)) = section {
             for (level, slot) in [(top, &mut cross_top), (bot, &mut cross_bottom)] {
@@ -365,6 +426,9 @@ pub fn run_sphere<const D: usize>(
         steps: step,
         end_time_s: t,
         stop,
+        entry_velocity_m_s: entry,
+        final_bottom_depth_m: depth + 0.5 * d,
+        stop_time_s: (stop == StopReason::Static).then_some(t),
     })
 }
 

@@ -11,6 +11,8 @@ pub struct SphereCase {
     pub id: String,
     /// The sphere's properties.
     pub spec: SphereSpec,
+    /// Fall height of the lowest point above the free surface, m (kind `drop`).
+    pub fall_height_m: Option<f64>,
 }
 
 #[derive(Deserialize)]
@@ -31,6 +33,7 @@ pub fn spheres(scenario: &Scenario, scenario_path: &Path) -> Result<Vec<SphereCa
         .map(|(i, s)| SphereCase {
             id: s.id.clone().unwrap_or_else(|| format!("sphere-{i}")),
             spec: s.clone(),
+            fall_height_m: None,
         })
         .collect();
     if let Some(src) = &scenario.spheres_csv {
@@ -69,6 +72,7 @@ pub fn spheres(scenario: &Scenario, scenario_path: &Path) -> Result<Vec<SphereCa
             out.push(SphereCase {
                 id: row.sphere_id,
                 spec,
+                fall_height_m: None,
             });
         }
         if out.is_empty() {
@@ -78,6 +82,18 @@ pub fn spheres(scenario: &Scenario, scenario_path: &Path) -> Result<Vec<SphereCa
                 src.suspension.map(|s| format!(" of suspension {s}")).unwrap_or_default()
             )));
         }
+    }
+    if !scenario.release.fall_heights_m.is_empty() {
+        out = out
+            .iter()
+            .flat_map(|c| {
+                scenario.release.fall_heights_m.iter().map(move |h| SphereCase {
+                    id: format!("{}-H{}mm", c.id, (h * 1e3 * 10.0).round() / 10.0),
+                    spec: c.spec.clone(),
+                    fall_height_m: Some(*h),
+                })
+            })
+            .collect();
     }
     Ok(out)
 }
