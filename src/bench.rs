@@ -34,7 +34,14 @@ fn fig(b: &str, q: &str, v: f64, u: &str) -> Figure {
 
 fn valentik(root: &Path) -> Result<Vec<Prepared>, String> {
     (1..=6)
-        .map(|n| prepare(&root.join(format!("scenarios/valentik_susp{n}.toml")), None, &[]).map_err(|e| e.to_string()))
+        .map(|n| {
+            prepare(
+                &root.join(format!("scenarios/valentik_susp{n}.toml")),
+                None,
+                &[],
+            )
+            .map_err(|e| e.to_string())
+        })
         .collect()
 }
 
@@ -42,7 +49,11 @@ fn run_all(ps: &[Prepared], dt: f64, integ: Integrator) -> (f64, u64) {
     let t0 = Instant::now();
     let mut steps = 0;
     for p in ps {
-        let opts = RunOptions { dt_s: dt, integrator: integ, timeseries: false };
+        let opts = RunOptions {
+            dt_s: dt,
+            integrator: integ,
+            timeseries: false,
+        };
         let r = free_settling::run(&p.scenario, &p.spheres, opts).expect("stable");
         steps += r.iter().map(|x| x.steps).sum::<u64>();
     }
@@ -55,7 +66,13 @@ pub fn run(root: &Path, quick: bool) -> Result<Vec<Figure>, String> {
 
     // 1. Integrator step cost against the analytic floor (Stokes sphere of f-EDEM Table 1).
     let d = 1e-4;
-    let drag = SphereDrag::new(DragLaw::Stokes { viscosity_pa_s: 1e-3 }, d, 1000.0);
+    let drag = SphereDrag::new(
+        DragLaw::Stokes {
+            viscosity_pa_s: 1e-3,
+        },
+        d,
+        1000.0,
+    );
     let m = sphere_mass_kg(d, 2700.0);
     let w = Vector3::new(0.0, 0.0, -(m - sphere_mass_kg(d, 1000.0)) * 9.81);
     let n = if quick { 1_000_000 } else { 20_000_000 };
@@ -67,7 +84,10 @@ pub fn run(root: &Path, quick: bool) -> Result<Vec<Figure>, String> {
     }
     black_box(v);
     let ours = t0.elapsed().as_secs_f64() / n as f64 * 1e9;
-    let (vt, tau) = (-w.z / (3.0 * std::f64::consts::PI * 1e-3 * d), m / (3.0 * std::f64::consts::PI * 1e-3 * d));
+    let (vt, tau) = (
+        -w.z / (3.0 * std::f64::consts::PI * 1e-3 * d),
+        m / (3.0 * std::f64::consts::PI * 1e-3 * d),
+    );
     let e = (-dt / tau).exp();
     let t0 = Instant::now();
     let mut s = 0.0f64;
@@ -84,16 +104,36 @@ pub fn run(root: &Path, quick: bool) -> Result<Vec<Figure>, String> {
     out.push(fig("stokes_step", "ratio_ours_to_floor", ours / floor, "-"));
 
     // 2. Bingham step cost (Newton solve of the set-valued implicit equation + exponential).
-    let drag_b = SphereDrag::new(DragLaw::Bingham { yield_stress_pa: 30.5, plastic_viscosity_pa_s: 0.0131 }, 0.0254, 1280.0);
+    let drag_b = SphereDrag::new(
+        DragLaw::Bingham {
+            yield_stress_pa: 30.5,
+            plastic_viscosity_pa_s: 0.0131,
+        },
+        0.0254,
+        1280.0,
+    );
     let mb = sphere_mass_kg(0.0254, 6142.0);
     let wb = Vector3::new(0.0, 0.0, -(mb - sphere_mass_kg(0.0254, 1280.0)) * 9.81);
     let t0 = Instant::now();
     let mut v = Vector3::zeros();
     for _ in 0..n {
-        v = advance(Integrator::Exponential, &drag_b, mb, &wb, black_box(&v), 1e-4).velocity_m_s;
+        v = advance(
+            Integrator::Exponential,
+            &drag_b,
+            mb,
+            &wb,
+            black_box(&v),
+            1e-4,
+        )
+        .velocity_m_s;
     }
     black_box(v);
-    out.push(fig("bingham_step", "exponential_step_ns", t0.elapsed().as_secs_f64() / n as f64 * 1e9, "ns"));
+    out.push(fig(
+        "bingham_step",
+        "exponential_step_ns",
+        t0.elapsed().as_secs_f64() / n as f64 * 1e9,
+        "ns",
+    ));
 
     // 3. All 121 Valentik spheres, default dt (1e-3 s), and large against small dt.
     let ps = valentik(root)?;
@@ -104,23 +144,47 @@ pub fn run(root: &Path, quick: bool) -> Result<Vec<Figure>, String> {
     let small = if quick { 1e-4 } else { 1e-5 };
     let (w_small, s_small) = run_all(&ps, small, Integrator::Exponential);
     out.push(fig("valentik_121", "wall_time_dt_1e-1_s", w_big, "s"));
-    out.push(fig("valentik_121", &format!("wall_time_dt_{small:e}_s"), w_small, "s"));
-    out.push(fig("valentik_121", &format!("steps_dt_{small:e}"), s_small as f64, "steps"));
-    out.push(fig("valentik_121", "ratio_small_dt_to_large_dt_wall", w_small / w_big.max(1e-9), "-"));
+    out.push(fig(
+        "valentik_121",
+        &format!("wall_time_dt_{small:e}_s"),
+        w_small,
+        "s",
+    ));
+    out.push(fig(
+        "valentik_121",
+        &format!("steps_dt_{small:e}"),
+        s_small as f64,
+        "steps",
+    ));
+    out.push(fig(
+        "valentik_121",
+        "ratio_small_dt_to_large_dt_wall",
+        w_small / w_big.max(1e-9),
+        "-",
+    ));
 
     // 4. The full Valentik sweep: 6 scenarios × 10 dt (1e-5 … 3e-1 s) × 3 integrators.
     if !quick {
         let t0 = Instant::now();
         let mut cases = 0;
         for p in &ps {
-            let sw = p.scenario.sweep.as_ref().ok_or("valentik scenario without [sweep]")?;
+            let sw = p
+                .scenario
+                .sweep
+                .as_ref()
+                .ok_or("valentik scenario without [sweep]")?;
             let grid = crate::sweep::grid(&Integrator::ALL, &sw.dt_s);
             cases += grid.len();
             let mut rows = crate::sweep::run_cases(p, &grid);
             crate::sweep::finish(&mut rows);
         }
         out.push(fig("valentik_sweep", "cases", cases as f64, "cases"));
-        out.push(fig("valentik_sweep", "wall_time_s", t0.elapsed().as_secs_f64(), "s"));
+        out.push(fig(
+            "valentik_sweep",
+            "wall_time_s",
+            t0.elapsed().as_secs_f64(),
+            "s",
+        ));
     }
     Ok(out)
 }
@@ -128,10 +192,16 @@ pub fn run(root: &Path, quick: bool) -> Result<Vec<Figure>, String> {
 /// Writes figures as `bench.csv` (`benchmark,quantity,value,unit`).
 pub fn write(path: &Path, figs: &[Figure]) -> std::io::Result<()> {
     let mut w = csv::Writer::from_path(path).map_err(std::io::Error::other)?;
-    w.write_record(["benchmark", "quantity", "value", "unit"]).map_err(std::io::Error::other)?;
+    w.write_record(["benchmark", "quantity", "value", "unit"])
+        .map_err(std::io::Error::other)?;
     for f in figs {
-        w.write_record([f.benchmark.clone(), f.quantity.clone(), format!("{}", f.value), f.unit.clone()])
-            .map_err(std::io::Error::other)?;
+        w.write_record([
+            f.benchmark.clone(),
+            f.quantity.clone(),
+            format!("{}", f.value),
+            f.unit.clone(),
+        ])
+        .map_err(std::io::Error::other)?;
     }
     w.flush()
 }

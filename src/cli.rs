@@ -133,10 +133,15 @@ pub fn main() -> i32 {
                 }
             };
             for f in &figs {
-                println!("{:<16} {:<34} {:>14.6e} {}", f.benchmark, f.quantity, f.value, f.unit);
+                println!(
+                    "{:<16} {:<34} {:>14.6e} {}",
+                    f.benchmark, f.quantity, f.value, f.unit
+                );
             }
             let path = out.join("bench.csv");
-            if let Err(e) = std::fs::create_dir_all(&out).and_then(|_| crate::bench::write(&path, &figs)) {
+            if let Err(e) =
+                std::fs::create_dir_all(&out).and_then(|_| crate::bench::write(&path, &figs))
+            {
                 eprintln!("error: {}: {e}", path.display());
                 return 1;
             }
@@ -202,10 +207,14 @@ fn print_report(r: &FileReport) {
             x.case.id,
             sp.diameter_m * 1e3,
             sp.density_kg_m3,
-            sp.v_measured_m_s.map(|v| format!("{v:.4}")).unwrap_or("-".into()),
+            sp.v_measured_m_s
+                .map(|v| format!("{v:.4}"))
+                .unwrap_or("-".into()),
             x.v_simulated_m_s,
             x.v_force_balance_m_s,
-            rel_error(x).map(|e| format!("{:+.1}%", 100.0 * e)).unwrap_or("-".into()),
+            rel_error(x)
+                .map(|e| format!("{:+.1}%", 100.0 * e))
+                .unwrap_or("-".into()),
             rel_error_vs_force_balance(x),
             x.regime.label()
         );

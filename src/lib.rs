@@ -4,15 +4,15 @@
 //! yield-stress drag) act as body forces on the particles of a DEM scene, after f-EDEM
 //! (Zhang & Li 2024) and the one-way coupled hydrometer DEM of seed 000.
 
+pub mod bench;
+pub mod cli;
 pub mod contact;
 pub mod dynamics;
 pub mod engine;
 pub mod fluid;
-pub mod scenario;
-pub mod scenes;
 pub mod output;
 pub mod run;
-pub mod cli;
+pub mod scenario;
+pub mod scenes;
 pub mod sweep;
 pub mod sweep_cmd;
-pub mod bench;

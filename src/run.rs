@@ -71,7 +71,11 @@ pub struct Prepared {
 }
 
 /// Loads and validates a scenario with the request's overrides (`--dt` is `time.dt_s`).
-pub fn prepare(path: &Path, dt_s: Option<f64>, overrides: &[String]) -> Result<Prepared, ScenarioError> {
+pub fn prepare(
+    path: &Path,
+    dt_s: Option<f64>,
+    overrides: &[String],
+) -> Result<Prepared, ScenarioError> {
     let mut ov = overrides.to_vec();
     if let Some(dt) = dt_s.filter(|d| !d.is_finite()) {
         return Err(ScenarioError::new(
@@ -120,6 +124,10 @@ struct RunMeta<'a> {
 #[derive(Serialize)]
 struct RunToml<'a> {
     run: RunMeta<'a>,
+    /// Rapier settings derived from the scene (engine = "rapier"): each sphere has its own world
+    /// with these settings and length_unit_m = its diameter; shown for the smallest sphere.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    engine_settings: Option<crate::engine::EngineSettings>,
     scenario: &'a Scenario,
 }
 
@@ -156,11 +164,20 @@ pub fn run_one(p: &Prepared, out_dir: &Path) -> Result<FileReport, RunError> {
                 crate::scenario::Submergence::Full => "full",
                 crate::scenario::Submergence::Partial => "partial",
             };
-            crate::output::drop::write_summary(&stage.path("summary.csv"), &results, s.time.dt_s, integ, sub)
-                .map_err(io)?;
+            crate::output::drop::write_summary(
+                &stage.path("summary.csv"),
+                &results,
+                s.time.dt_s,
+                integ,
+                sub,
+            )
+            .map_err(io)?;
             crate::output::drop::write_chart(
                 &stage.path("settling_distance.svg"),
-                &format!("{}: settling distance against fall height ({sub} submergence)", s.name),
+                &format!(
+                    "{}: settling distance against fall height ({sub} submergence)",
+                    s.name
+                ),
                 &results,
             )
             .map_err(RunError::Other)?;
@@ -176,7 +193,10 @@ pub fn run_one(p: &Prepared, out_dir: &Path) -> Result<FileReport, RunError> {
                 out_fs::write_metrics(&stage.path("metrics.csv"), &stats).map_err(io)?;
                 out_fs::write_chart(
                     &stage.path("terminal_velocity.svg"),
-                    &format!("{}: terminal velocity, measured (o) and simulated (•)", s.name),
+                    &format!(
+                        "{}: terminal velocity, measured (o) and simulated (•)",
+                        s.name
+                    ),
                     &results,
                 )
                 .map_err(RunError::Other)?;
@@ -201,6 +221,18 @@ pub fn run_one(p: &Prepared, out_dir: &Path) -> Result<FileReport, RunError> {
             bodies: results.len(),
             wall_time_s: wall,
         },
+        engine_settings: (engine_name(s) == "rapier").then(|| {
+            let d_min = p
+                .spheres
+                .iter()
+                .map(|c| c.spec.diameter_m)
+                .fold(f64::INFINITY, f64::min);
+            let v_max = results
+                .iter()
+                .map(|r| r.v_force_balance_m_s.abs())
+                .fold(0.0, f64::max);
+            crate::engine::EngineSettings::for_scene(d_min, 2.0 * v_max)
+        }),
         scenario: s,
     };
     let text = toml::to_string(&meta).map_err(|e| RunError::Other(e.to_string()))?;
@@ -229,7 +261,10 @@ pub fn run_files(req: &RunRequest) -> Result<Vec<FileReport>, RunError> {
             return Err(RunError::Scenario(ScenarioError::new(
                 &p.path,
                 Some("name"),
-                format!("`{}` is used by another scenario of this run: names must be unique", p.scenario.name),
+                format!(
+                    "`{}` is used by another scenario of this run: names must be unique",
+                    p.scenario.name
+                ),
             )));
         }
     }
@@ -252,7 +287,11 @@ fn write_combined(out_dir: &Path, reports: &[FileReport]) -> Result<(), RunError
     for r in reports {
         let s = &r.prepared.scenario;
         for x in &r.results {
-            rows.push(out_fs::summary_row(x, s.time.dt_s, s.time.integrator.name()));
+            rows.push(out_fs::summary_row(
+                x,
+                s.time.dt_s,
+                s.time.integrator.name(),
+            ));
         }
         all.extend(r.results.iter().cloned());
     }

@@ -30,7 +30,12 @@ pub fn grid(integrators: &[Integrator], dts: &[f64]) -> Vec<Case> {
     dts.dedup();
     integrators
         .iter()
-        .flat_map(|&i| dts.iter().map(move |&dt_s| Case { integrator: i, dt_s }))
+        .flat_map(|&i| {
+            dts.iter().map(move |&dt_s| Case {
+                integrator: i,
+                dt_s,
+            })
+        })
         .collect()
 }
 
@@ -117,7 +122,11 @@ fn rel(a: f64, b: f64) -> f64 {
 /// The measured quantities of one body: (name, value, reference).
 fn quantities(r: &SphereResult) -> Vec<(String, f64, f64)> {
     if r.case.fall_height_m.is_some() {
-        return vec![("settling_distance_m".to_string(), r.final_bottom_depth_m, f64::NAN)];
+        return vec![(
+            "settling_distance_m".to_string(),
+            r.final_bottom_depth_m,
+            f64::NAN,
+        )];
     }
     let mut q = vec![(
         "terminal_velocity_m_s".to_string(),
@@ -138,7 +147,12 @@ pub fn run_cases(p: &Prepared, cases: &[Case]) -> Vec<Row> {
         .scenario
         .measure
         .as_ref()
-        .map(|m| m.velocity_at_s.iter().map(|t| format!("velocity_at_{t}s_m_s")).collect())
+        .map(|m| {
+            m.velocity_at_s
+                .iter()
+                .map(|t| format!("velocity_at_{t}s_m_s"))
+                .collect()
+        })
         .unwrap_or_default();
     cases
         .par_iter()
@@ -190,7 +204,12 @@ pub fn run_cases(p: &Prepared, cases: &[Case]) -> Vec<Row> {
                             "terminal_velocity_m_s"
                         };
                         std::iter::once(first.to_string())
-                            .chain(probe_names.iter().cloned().filter(|_| s.fall_height_m.is_none()))
+                            .chain(
+                                probe_names
+                                    .iter()
+                                    .filter(|_| s.fall_height_m.is_none())
+                                    .cloned(),
+                            )
                             .map(|q| Row {
                                 body: s.id.clone(),
                                 quantity: q,
@@ -208,7 +227,12 @@ pub fn run_cases(p: &Prepared, cases: &[Case]) -> Vec<Row> {
 /// finest dt whose case is stable. Rows are sorted by integrator order, dt descending, body,
 /// quantity, so that merged shards equal an unsharded sweep row for row.
 pub fn finish(rows: &mut [Row]) {
-    let order = |name: &str| Integrator::ALL.iter().position(|i| i.name() == name).unwrap_or(9);
+    let order = |name: &str| {
+        Integrator::ALL
+            .iter()
+            .position(|i| i.name() == name)
+            .unwrap_or(9)
+    };
     rows.sort_by(|a, b| {
         order(&a.integrator)
             .cmp(&order(&b.integrator))
@@ -264,7 +288,11 @@ pub fn read_rows(path: &Path) -> io::Result<Vec<Row>> {
     for rec in rdr.records() {
         let rec = rec.map_err(io::Error::other)?;
         let f = |i: usize| rec.get(i).unwrap_or("").to_string();
-        let x = |i: usize| rec.get(i).and_then(|s| s.parse::<f64>().ok()).unwrap_or(f64::NAN);
+        let x = |i: usize| {
+            rec.get(i)
+                .and_then(|s| s.parse::<f64>().ok())
+                .unwrap_or(f64::NAN)
+        };
         out.push(Row {
             integrator: f(0),
             dt_s: x(1),
@@ -314,7 +342,10 @@ pub fn summarise(rows: &[Row]) -> Vec<CaseSummary> {
             errors: BTreeMap::new(),
         });
         e.steps += r.steps;
-        let q = e.errors.entry(r.quantity.clone()).or_insert((0.0, f64::NAN));
+        let q = e
+            .errors
+            .entry(r.quantity.clone())
+            .or_insert((0.0, f64::NAN));
         let fin = r.error_vs_finest.abs();
         if fin.is_finite() {
             q.0 = q.0.max(fin);
@@ -325,15 +356,27 @@ pub fn summarise(rows: &[Row]) -> Vec<CaseSummary> {
         }
     }
     let mut v: Vec<CaseSummary> = map.into_values().collect();
-    let order = |name: &str| Integrator::ALL.iter().position(|i| i.name() == name).unwrap_or(9);
-    v.sort_by(|a, b| order(&a.integrator).cmp(&order(&b.integrator)).then(b.dt_s.total_cmp(&a.dt_s)));
+    let order = |name: &str| {
+        Integrator::ALL
+            .iter()
+            .position(|i| i.name() == name)
+            .unwrap_or(9)
+    };
+    v.sort_by(|a, b| {
+        order(&a.integrator)
+            .cmp(&order(&b.integrator))
+            .then(b.dt_s.total_cmp(&a.dt_s))
+    });
     v
 }
 
 /// Largest stable dt of `integrator` whose error against the finest is under `tol` for every
 /// quantity (and every smaller dt too, so the answer is not a lucky cancellation).
 pub fn recommended_dt(summaries: &[CaseSummary], integrator: &str, tol: f64) -> Option<f64> {
-    let mut cases: Vec<&CaseSummary> = summaries.iter().filter(|s| s.integrator == integrator).collect();
+    let mut cases: Vec<&CaseSummary> = summaries
+        .iter()
+        .filter(|s| s.integrator == integrator)
+        .collect();
     cases.sort_by(|a, b| a.dt_s.total_cmp(&b.dt_s));
     let mut best = None;
     for c in cases {
@@ -355,18 +398,29 @@ pub fn charts(dir: &Path, title: &str, summaries: &[CaseSummary]) -> Result<(), 
     for s in summaries.iter().filter(|s| s.stable) {
         let mut worst: f64 = 0.0;
         for (q, (fin, re)) in &s.errors {
-            by_q.entry((s.integrator.clone(), q.clone())).or_default().push((s.dt_s, fin.max(floor)));
+            by_q.entry((s.integrator.clone(), q.clone()))
+                .or_default()
+                .push((s.dt_s, fin.max(floor)));
             let e = if re.is_finite() { *re } else { *fin };
             worst = worst.max(e);
         }
-        speed.entry(s.integrator.clone()).or_default().push((s.wall_time_s.max(1e-6), worst.max(floor)));
+        speed
+            .entry(s.integrator.clone())
+            .or_default()
+            .push((s.wall_time_s.max(1e-6), worst.max(floor)));
     }
     let series: Vec<Series> = by_q
         .into_iter()
         .enumerate()
         .map(|(i, ((integ, q), mut pts))| {
             pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-            Series { label: format!("{integ}: {q}"), points: pts, colour: i, filled: true, line: true }
+            Series {
+                label: format!("{integ}: {q}"),
+                points: pts,
+                colour: i,
+                filled: true,
+                line: true,
+            }
         })
         .collect();
     scatter_svg(
@@ -383,7 +437,13 @@ pub fn charts(dir: &Path, title: &str, summaries: &[CaseSummary]) -> Result<(), 
         .enumerate()
         .map(|(i, (integ, mut pts))| {
             pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-            Series { label: integ, points: pts, colour: i, filled: true, line: true }
+            Series {
+                label: integ,
+                points: pts,
+                colour: i,
+                filled: true,
+                line: true,
+            }
         })
         .collect();
     scatter_svg(

@@ -44,7 +44,11 @@ fn arg_err(msg: String) -> RunError {
 }
 
 fn parse_shard(s: &str) -> Result<(usize, usize), RunError> {
-    let bad = || arg_err(format!("--shard `{s}`: expected I/N with 1 ≤ I ≤ N, e.g. 2/8"));
+    let bad = || {
+        arg_err(format!(
+            "--shard `{s}`: expected I/N with 1 ≤ I ≤ N, e.g. 2/8"
+        ))
+    };
     let (i, n) = s.split_once('/').ok_or_else(bad)?;
     let (i, n): (usize, usize) = (i.parse().map_err(|_| bad())?, n.parse().map_err(|_| bad())?);
     if i == 0 || n == 0 || i > n {
@@ -55,8 +59,17 @@ fn parse_shard(s: &str) -> Result<(usize, usize), RunError> {
 
 fn integrators(names: &[String], p: &Prepared) -> Result<Vec<Integrator>, RunError> {
     if names.is_empty() {
-        let from_file = p.scenario.sweep.as_ref().map(|s| s.integrators.clone()).unwrap_or_default();
-        return Ok(if from_file.is_empty() { Integrator::ALL.to_vec() } else { from_file });
+        let from_file = p
+            .scenario
+            .sweep
+            .as_ref()
+            .map(|s| s.integrators.clone())
+            .unwrap_or_default();
+        return Ok(if from_file.is_empty() {
+            Integrator::ALL.to_vec()
+        } else {
+            from_file
+        });
     }
     names
         .iter()
@@ -65,7 +78,11 @@ fn integrators(names: &[String], p: &Prepared) -> Result<Vec<Integrator>, RunErr
                 .iter()
                 .copied()
                 .find(|i| i.name() == n.trim())
-                .ok_or_else(|| arg_err(format!("--integrator `{n}`: allowed explicit, implicit, exponential")))
+                .ok_or_else(|| {
+                    arg_err(format!(
+                        "--integrator `{n}`: allowed explicit, implicit, exponential"
+                    ))
+                })
         })
         .collect()
 }
@@ -73,16 +90,28 @@ fn integrators(names: &[String], p: &Prepared) -> Result<Vec<Integrator>, RunErr
 fn dts(args: &SweepArgs, p: &Prepared) -> Result<Vec<f64>, RunError> {
     let mut v = args.dt.clone();
     if let Some(r) = &args.dt_range {
-        let bad = || arg_err(format!("--dt-range `{r}`: expected LO:HI with 0 < LO < HI, e.g. 1e-8:1e-1"));
+        let bad = || {
+            arg_err(format!(
+                "--dt-range `{r}`: expected LO:HI with 0 < LO < HI, e.g. 1e-8:1e-1"
+            ))
+        };
         let (lo, hi) = r.split_once(':').ok_or_else(bad)?;
-        let (lo, hi): (f64, f64) = (lo.parse().map_err(|_| bad())?, hi.parse().map_err(|_| bad())?);
+        let (lo, hi): (f64, f64) = (
+            lo.parse().map_err(|_| bad())?,
+            hi.parse().map_err(|_| bad())?,
+        );
         if !(lo > 0.0 && hi > lo && hi.is_finite()) || args.per_decade == 0 {
             return Err(bad());
         }
         v.extend(sweep::dt_range(lo, hi, args.per_decade));
     }
     if v.is_empty() {
-        v = p.scenario.sweep.as_ref().map(|s| s.dt_s.clone()).unwrap_or_default();
+        v = p
+            .scenario
+            .sweep
+            .as_ref()
+            .map(|s| s.dt_s.clone())
+            .unwrap_or_default();
     }
     if v.is_empty() {
         return Err(arg_err(format!(
@@ -92,7 +121,9 @@ fn dts(args: &SweepArgs, p: &Prepared) -> Result<Vec<f64>, RunError> {
     }
     for dt in &v {
         if !(*dt > 0.0 && dt.is_finite()) {
-            return Err(arg_err(format!("time step {dt} is out of range: allowed dt > 0 s")));
+            return Err(arg_err(format!(
+                "time step {dt} is out of range: allowed dt > 0 s"
+            )));
         }
     }
     Ok(v)
@@ -127,15 +158,26 @@ pub fn sweep(args: &SweepArgs) -> Result<(), RunError> {
                 sweep::write_rows(&tmp, &rows).map_err(io)?;
                 std::fs::rename(&tmp, &file).map_err(io)?;
                 if !args.quiet {
-                    println!("{}: shard {i}/{n} ({} rows) -> {}", p.scenario.name, rows.len(), file.display());
+                    println!(
+                        "{}: shard {i}/{n} ({} rows) -> {}",
+                        p.scenario.name,
+                        rows.len(),
+                        file.display()
+                    );
                 }
             }
             None => {
                 let mut rows = sweep::run_cases(p, &cases);
                 sweep::finish(&mut rows);
                 let stage = StagedDir::new(&args.out, &name).map_err(io)?;
-                write_results(stage.path("").as_path(), &rows, Some(p), tol(args, Some(p)), args.quiet)
-                    .map_err(|e| RunError::Other(format!("{}: {e}", p.path.display())))?;
+                write_results(
+                    stage.path("").as_path(),
+                    &rows,
+                    Some(p),
+                    tol(args, Some(p)),
+                    args.quiet,
+                )
+                .map_err(|e| RunError::Other(format!("{}: {e}", p.path.display())))?;
                 let dest = stage.commit().map_err(io)?;
                 if !args.quiet {
                     println!("  -> {}", dest.display());
@@ -172,39 +214,87 @@ fn merge(args: &SweepArgs) -> Result<(), RunError> {
         }
     }
     if parts == 0 {
-        return Err(arg_err("--merge: no sweep_part_*.csv in the given folders".into()));
+        return Err(arg_err(
+            "--merge: no sweep_part_*.csv in the given folders".into(),
+        ));
     }
     sweep::finish(&mut rows);
-    let prepared = args.scenarios.first().map(|f| prepare(f, None, &args.overrides)).transpose().map_err(RunError::Scenario)?;
-    let dest = if args.out == Path::new("out") { args.merge[0].clone() } else { args.out.clone() };
+    let prepared = args
+        .scenarios
+        .first()
+        .map(|f| prepare(f, None, &args.overrides))
+        .transpose()
+        .map_err(RunError::Scenario)?;
+    let dest = if args.out == Path::new("out") {
+        args.merge[0].clone()
+    } else {
+        args.out.clone()
+    };
     std::fs::create_dir_all(&dest).map_err(|e| RunError::Io(dest.clone(), e))?;
-    write_results(&dest, &rows, prepared.as_ref(), tol(args, prepared.as_ref()), args.quiet)
-        .map_err(|e| RunError::Other(format!("{}: {e}", dest.display())))?;
+    write_results(
+        &dest,
+        &rows,
+        prepared.as_ref(),
+        tol(args, prepared.as_ref()),
+        args.quiet,
+    )
+    .map_err(|e| RunError::Other(format!("{}: {e}", dest.display())))?;
     if !args.quiet {
-        println!("merged {parts} parts ({} rows) -> {}", rows.len(), dest.join("sweep.csv").display());
+        println!(
+            "merged {parts} parts ({} rows) -> {}",
+            rows.len(),
+            dest.join("sweep.csv").display()
+        );
     }
     Ok(())
 }
 
-fn write_results(dir: &Path, rows: &[Row], p: Option<&Prepared>, tol: f64, quiet: bool) -> Result<(), String> {
+fn write_results(
+    dir: &Path,
+    rows: &[Row],
+    p: Option<&Prepared>,
+    tol: f64,
+    quiet: bool,
+) -> Result<(), String> {
     sweep::write_rows(&dir.join("sweep.csv"), rows).map_err(|e| e.to_string())?;
     let sums = sweep::summarise(rows);
-    let title = p.map(|p| p.scenario.name.clone()).unwrap_or_else(|| "sweep".into());
+    let title = p
+        .map(|p| p.scenario.name.clone())
+        .unwrap_or_else(|| "sweep".into());
     sweep::charts(dir, &title, &sums)?;
     // Rayleigh-time rule (f-EDEM eq. 22) for the first sphere with elastic properties.
     let rayleigh = p.and_then(|p| {
         p.spheres.iter().find_map(|c| {
-            Some(rayleigh_time_s(c.spec.diameter_m, c.spec.density_kg_m3, c.spec.youngs_modulus_pa?, c.spec.poisson_ratio?))
+            Some(rayleigh_time_s(
+                c.spec.diameter_m,
+                c.spec.density_kg_m3,
+                c.spec.youngs_modulus_pa?,
+                c.spec.poisson_ratio?,
+            ))
         })
     });
-    let mut w = csv::Writer::from_path(dir.join("recommended_dt.csv")).map_err(|e| e.to_string())?;
-    w.write_record(["integrator", "recommended_dt_s", "tol", "rayleigh_time_s", "rayleigh_20pct_dt_s"])
-        .map_err(|e| e.to_string())?;
+    let mut w =
+        csv::Writer::from_path(dir.join("recommended_dt.csv")).map_err(|e| e.to_string())?;
+    w.write_record([
+        "integrator",
+        "recommended_dt_s",
+        "tol",
+        "rayleigh_time_s",
+        "rayleigh_20pct_dt_s",
+    ])
+    .map_err(|e| e.to_string())?;
     if !quiet {
         println!("{title}: {} cases", sums.len());
-        println!("  {:<12} {:>10} {:>9} {:>10} {:>9}  max |error vs finest| per quantity", "integrator", "dt_s", "status", "wall_s", "steps");
+        println!(
+            "  {:<12} {:>10} {:>9} {:>10} {:>9}  max |error vs finest| per quantity",
+            "integrator", "dt_s", "status", "wall_s", "steps"
+        );
         for s in &sums {
-            let errs: Vec<String> = s.errors.iter().map(|(q, (f, _))| format!("{q}={f:.1e}")).collect();
+            let errs: Vec<String> = s
+                .errors
+                .iter()
+                .map(|(q, (f, _))| format!("{q}={f:.1e}"))
+                .collect();
             println!(
                 "  {:<12} {:>10.1e} {:>9} {:>10.4} {:>9}  {}",
                 s.integrator,
@@ -230,10 +320,18 @@ fn write_results(dir: &Path, rows: &[Row], p: Option<&Prepared>, tol: f64, quiet
         ])
         .map_err(|e| e.to_string())?;
         if !quiet {
-            let r = rec.map(|d| format!("{d:.1e} s")).unwrap_or_else(|| "none in the grid".into());
-            print!("  recommended dt ({}, error vs finest < {tol}): {r}", integ.name());
+            let r = rec
+                .map(|d| format!("{d:.1e} s"))
+                .unwrap_or_else(|| "none in the grid".into());
+            print!(
+                "  recommended dt ({}, error vs finest < {tol}): {r}",
+                integ.name()
+            );
             if let Some(tr) = rayleigh {
-                print!("   [Rayleigh time {tr:.3e} s; 20 % rule {:.3e} s]", 0.2 * tr);
+                print!(
+                    "   [Rayleigh time {tr:.3e} s; 20 % rule {:.3e} s]",
+                    0.2 * tr
+                );
             }
             println!();
         }

@@ -122,23 +122,23 @@ fn explicit_drag_beyond_two_tau_is_reported_unstable() {
         .find_map(|_| world.step(dt, Integrator::Explicit).err())
         .expect("explicit drag at dt > 2τ must be reported");
     eprintln!("{err}");
-    assert_eq!(err.body, id);
+    assert_eq!(err.body, id.to_string());
     assert!(
-        err.suggested_dt_s <= 2.0 * tau,
+        err.stable_dt_s <= 2.0 * tau,
         "suggested {} s, 2τ = {} s",
-        err.suggested_dt_s,
+        err.stable_dt_s,
         2.0 * tau
     );
-    assert!(err.value > 0.5 * world.settings().max_linear_velocity_m_s || !err.value.is_finite());
+    assert!(err.what.contains("speed"), "{}", err.what);
     let line = err.to_string();
     assert!(
-        line.contains("body 1") && line.contains("try dt") && !line.contains('\n'),
+        line.contains("body 1") && line.contains("largest stable dt") && !line.contains('\n'),
         "{line}"
     );
     // A refused step leaves the world as it was: retried at the suggested dt, it recovers.
     for _ in 0..50 {
         world
-            .step(err.suggested_dt_s, Integrator::Explicit)
+            .step(err.stable_dt_s, Integrator::Explicit)
             .expect("stable at the suggested dt");
     }
     let v = -world.velocity_m_s(id)[2];
@@ -384,6 +384,22 @@ fn twenty_coarse_grains_pile_up_in_a_narrow_box() {
         "{pile:?}"
     );
     assert!(pile.speed_ratio < 1e-2, "{pile:?}");
+}
+
+#[test]
+fn twenty_fine_grains_pile_up_at_a_thousand_response_times_per_step() {
+    // 2.5 µm: τ = 0.87 µs, dt = 1e-3 s = 1150 τ. Damping-style contact drag fails here (overlaps
+    // of 1.5 d already at dt = 1e-5 s, see the survey); the effective mass holds.
+    let d = 2.5e-6;
+    for friction in [0.0, 0.5] {
+        let pile = pile_2d(20, d, 1e-3, 4.6, friction, ContactDrag::EffectiveMass).expect("stable");
+        eprintln!("fine pile, friction {friction}: {pile:?}");
+        assert!(pile.worst_overlap < 0.01, "{pile:?}");
+        assert!(pile.speed_ratio < 1e-2, "{pile:?}");
+        if friction == 0.0 {
+            assert!((pile.force_ratio - 1.0).abs() < 0.02, "{pile:?}");
+        }
+    }
 }
 
 /// The dt survey behind the steps chosen above (run with `--ignored --nocapture`).

@@ -18,7 +18,10 @@ const G: f64 = 9.81;
 fn reference_settling_distance(d: f64, h_fall: f64) -> f64 {
     let m = sphere_mass_kg(d, 8135.0);
     let w = (m - sphere_mass_kg(d, RHO_F)) * G;
-    assert!(w < bingham_static_resistance_n(d, TAU_Y), "the ball must stop");
+    assert!(
+        w < bingham_static_resistance_n(d, TAU_Y),
+        "the ball must stop"
+    );
     let acc = |v: f64| (w - bingham_drag_n(RHO_F, d, TAU_Y, ETA_B, v.max(1e-300))) / m;
     let (mut x, mut v) = (0.0f64, (2.0 * G * h_fall).sqrt());
     let h = 1e-6;
@@ -46,7 +49,11 @@ fn settling_distances_match_an_independent_integration() {
     let p = prepare(Path::new("scenarios/paste_single_ball.toml"), None, &[]).unwrap();
     assert_eq!(p.spheres.len(), 18);
     for dt in [1e-5, 1e-4] {
-        let opts = RunOptions { dt_s: dt, integrator: p.scenario.time.integrator, timeseries: false };
+        let opts = RunOptions {
+            dt_s: dt,
+            integrator: p.scenario.time.integrator,
+            timeseries: false,
+        };
         for r in run(&p.scenario, &p.spheres, opts).unwrap() {
             let d = r.case.spec.diameter_m;
             let hf = r.case.fall_height_m.unwrap();
@@ -57,9 +64,18 @@ fn settling_distances_match_an_independent_integration() {
             }
             let reference = reference_settling_distance(d, hf);
             let err = r.final_bottom_depth_m / reference - 1.0;
-            assert!(err.abs() < 0.01, "{} at dt {dt}: {} vs {reference} ({err:+.2e})", r.case.id, r.final_bottom_depth_m);
+            assert!(
+                err.abs() < 0.01,
+                "{} at dt {dt}: {} vs {reference} ({err:+.2e})",
+                r.case.id,
+                r.final_bottom_depth_m
+            );
             let entry = r.entry_velocity_m_s.unwrap();
-            assert!((entry / (2.0 * G * hf).sqrt() - 1.0).abs() < 1e-9, "{}: entry {entry}", r.case.id);
+            assert!(
+                (entry / (2.0 * G * hf).sqrt() - 1.0).abs() < 1e-9,
+                "{}: entry {entry}",
+                r.case.id
+            );
         }
     }
 }
@@ -68,8 +84,17 @@ fn settling_distances_match_an_independent_integration() {
 /// weight − cap buoyancy = static resistance × immersed area fraction, and stops there.
 #[test]
 fn partial_submergence_sinks_a_ball_at_rest_to_its_static_balance() {
-    let p = prepare(Path::new("scenarios/paste_single_ball.toml"), None, &["fluid.submergence=partial".into()]).unwrap();
-    let opts = RunOptions { dt_s: 1e-5, integrator: p.scenario.time.integrator, timeseries: false };
+    let p = prepare(
+        Path::new("scenarios/paste_single_ball.toml"),
+        None,
+        &["fluid.submergence=partial".into()],
+    )
+    .unwrap();
+    let opts = RunOptions {
+        dt_s: 1e-5,
+        integrator: p.scenario.time.integrator,
+        timeseries: false,
+    };
     for r in run(&p.scenario, &p.spheres, opts).unwrap() {
         if r.case.fall_height_m != Some(0.0) {
             continue;
@@ -85,7 +110,15 @@ fn partial_submergence_sinks_a_ball_at_rest_to_its_static_balance() {
         let resist = bingham_static_resistance_n(d, TAU_Y) * area_frac;
         // At rest the static resistance holds the ball: net ≤ resistance. With inertia the ball
         // overshoots the equilibrium depth a little, so resistance ≥ net, within a factor 2.
-        assert!(net <= resist * (1.0 + 1e-9), "{}: net {net} > resistance {resist}", r.case.id);
-        assert!(resist < 2.0 * net, "{}: stopped far beyond its balance", r.case.id);
+        assert!(
+            net <= resist * (1.0 + 1e-9),
+            "{}: net {net} > resistance {resist}",
+            r.case.id
+        );
+        assert!(
+            resist < 2.0 * net,
+            "{}: stopped far beyond its balance",
+            r.case.id
+        );
     }
 }

@@ -32,7 +32,9 @@ fn run_with(dt: f64, integrator: Integrator, overrides: &[&str]) -> Outcome {
 fn exponential_integrator_matches_the_analytic_solution_at_every_dt() {
     for dt in [1e-8, 1e-7, 1e-6, 1e-5, 1e-4, 1e-3, 1e-2] {
         let r = run_at(dt, Integrator::Exponential).expect("stable");
-        let err = r.max_velocity_error_rel.expect("Stokes has an analytic solution");
+        let err = r
+            .max_velocity_error_rel
+            .expect("Stokes has an analytic solution");
         assert!(err < 1e-6, "dt = {dt}: max rel velocity error {err}");
         let vt = r.v_analytic_m_s.unwrap();
         assert!((r.v_simulated_m_s / vt - 1.0).abs() < 1e-6, "dt = {dt}");
@@ -77,14 +79,18 @@ fn rayleigh_time_is_fedem_value() {
 /// and the largest stable dt; below 2τ it converges.
 #[test]
 fn explicit_integrator_fails_beyond_two_response_times() {
-    let ok = run_with(2.5e-3, Integrator::Explicit, &["time.end_s=0.2"]).expect("dt < 2τ is stable");
+    let ok =
+        run_with(2.5e-3, Integrator::Explicit, &["time.end_s=0.2"]).expect("dt < 2τ is stable");
     assert!((ok.v_simulated_m_s / ok.v_analytic_m_s.unwrap() - 1.0).abs() < 1e-6);
     let e = run_at(3.2e-3, Integrator::Explicit).expect_err("dt > 2τ diverges");
     assert_eq!(e.body, "fedem-table1");
     assert!((e.stable_dt_s - 3e-3).abs() < 1e-12);
     assert!(e.time_s > 0.0 && e.time_s <= 0.03);
     let msg = e.to_string();
-    assert!(msg.contains("fedem-table1") && msg.contains("largest stable dt"), "{msg}");
+    assert!(
+        msg.contains("fedem-table1") && msg.contains("largest stable dt"),
+        "{msg}"
+    );
 }
 
 #[test]
@@ -98,14 +104,29 @@ fn explicit_at_fedem_step_is_within_their_tolerance() {
 fn cli_unstable_run_exits_3_and_writes_nothing() {
     let dir = tempfile::tempdir().unwrap();
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_settle"))
-        .args(["run", SCENARIO, "--dt", "5e-3", "--set", "time.integrator=explicit", "--out"])
+        .args([
+            "run",
+            SCENARIO,
+            "--dt",
+            "5e-3",
+            "--set",
+            "time.integrator=explicit",
+            "--out",
+        ])
         .arg(dir.path())
         .output()
         .unwrap();
     assert_eq!(out.status.code(), Some(3));
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("fedem-table1") && err.contains("t = ") && err.contains("3.000e-3"), "{err}");
-    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "something was written");
+    assert!(
+        err.contains("fedem-table1") && err.contains("t = ") && err.contains("3.000e-3"),
+        "{err}"
+    );
+    assert_eq!(
+        std::fs::read_dir(dir.path()).unwrap().count(),
+        0,
+        "something was written"
+    );
 }
 
 #[test]
@@ -121,7 +142,13 @@ fn run_writes_summary_timeseries_probes_and_run_toml() {
     let d = dir.path().join("stokes_single");
     let ts = std::fs::read_to_string(d.join("timeseries.csv")).unwrap();
     let header = ts.lines().next().unwrap();
-    for col in ["time_s", "velocity_m_s", "velocity_analytic_m_s", "depth_m", "depth_analytic_m"] {
+    for col in [
+        "time_s",
+        "velocity_m_s",
+        "velocity_analytic_m_s",
+        "depth_m",
+        "depth_analytic_m",
+    ] {
         assert!(header.split(',').any(|c| c == col), "missing {col}");
     }
     // Every recorded depth matches the analytic depth to 1e-9 m.
@@ -132,7 +159,10 @@ fn run_writes_summary_timeseries_probes_and_run_toml() {
     }
     let summary = std::fs::read_to_string(d.join("summary.csv")).unwrap();
     assert!(summary.starts_with("sphere_id,suspension,diameter_m,density_kg_m3,v_measured_m_s,v_simulated_m_s,v_force_balance_m_s"));
-    let run: toml::Table = std::fs::read_to_string(d.join("run.toml")).unwrap().parse().unwrap();
+    let run: toml::Table = std::fs::read_to_string(d.join("run.toml"))
+        .unwrap()
+        .parse()
+        .unwrap();
     assert_eq!(run["run"]["steps"].as_integer(), Some(3000));
     assert_eq!(run["scenario"]["time"]["dt_s"].as_float(), Some(1e-5));
     assert!(d.join("probes.csv").exists());
@@ -141,8 +171,17 @@ fn run_writes_summary_timeseries_probes_and_run_toml() {
 #[test]
 fn set_overrides_change_the_physics() {
     // Doubling the viscosity halves the terminal velocity (eq. 21).
-    let p = prepare(Path::new(SCENARIO), None, &["fluid.viscosity_pa_s=0.002".into()]).unwrap();
-    let opts = RunOptions { dt_s: 1e-4, integrator: Integrator::Exponential, timeseries: false };
+    let p = prepare(
+        Path::new(SCENARIO),
+        None,
+        &["fluid.viscosity_pa_s=0.002".into()],
+    )
+    .unwrap();
+    let opts = RunOptions {
+        dt_s: 1e-4,
+        integrator: Integrator::Exponential,
+        timeseries: false,
+    };
     let r = run(&p.scenario, &p.spheres, opts).unwrap().remove(0);
     assert!((r.v_analytic_m_s.unwrap() - 9.265e-3 / 2.0).abs() < 1e-12);
 }

@@ -45,11 +45,14 @@ fn merged_shards_equal_the_unsharded_sweep_row_for_row() {
     let dir = tempfile::tempdir().unwrap();
     for i in 1..=4 {
         let part = run_cases(&p, &shard(&cases, i, 4));
-        settle::sweep::write_rows(&dir.path().join(format!("sweep_part_{i}_of_4.csv")), &part).unwrap();
+        settle::sweep::write_rows(&dir.path().join(format!("sweep_part_{i}_of_4.csv")), &part)
+            .unwrap();
     }
     let mut merged = Vec::new();
     for i in 1..=4 {
-        merged.extend(settle::sweep::read_rows(&dir.path().join(format!("sweep_part_{i}_of_4.csv"))).unwrap());
+        merged.extend(
+            settle::sweep::read_rows(&dir.path().join(format!("sweep_part_{i}_of_4.csv"))).unwrap(),
+        );
     }
     finish(&mut merged);
     // Values go through CSV: compare after the same round trip for the unsharded rows.
@@ -64,18 +67,37 @@ fn merged_shards_equal_the_unsharded_sweep_row_for_row() {
 #[test]
 fn the_sweep_reports_explicit_instability_beyond_two_tau() {
     let p = prepare(Path::new("scenarios/stokes_single.toml"), None, &[]).unwrap();
-    let cases = grid(&[Integrator::Explicit, Integrator::Exponential], &[1e-2, 3.5e-3, 2.5e-3, 1e-4]);
+    let cases = grid(
+        &[Integrator::Explicit, Integrator::Exponential],
+        &[1e-2, 3.5e-3, 2.5e-3, 1e-4],
+    );
     let mut rows = run_cases(&p, &cases);
     finish(&mut rows);
     for r in &rows {
         let expect_stable = r.integrator == "exponential" || r.dt_s < 3e-3;
-        assert_eq!(r.status == "stable", expect_stable, "{} dt {}", r.integrator, r.dt_s);
+        assert_eq!(
+            r.status == "stable",
+            expect_stable,
+            "{} dt {}",
+            r.integrator,
+            r.dt_s
+        );
         if r.status == "unstable" {
-            assert!(r.reason.contains("fedem-table1") && r.reason.contains("largest stable dt"), "{}", r.reason);
+            assert!(
+                r.reason.contains("fedem-table1") && r.reason.contains("largest stable dt"),
+                "{}",
+                r.reason
+            );
             assert!(r.value.is_nan());
         }
         if r.integrator == "exponential" {
-            assert!(r.error_vs_reference.abs() < 1e-6, "{} at {}: {}", r.quantity, r.dt_s, r.error_vs_reference);
+            assert!(
+                r.error_vs_reference.abs() < 1e-6,
+                "{} at {}: {}",
+                r.quantity,
+                r.dt_s,
+                r.error_vs_reference
+            );
         }
     }
 }

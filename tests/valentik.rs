@@ -87,7 +87,11 @@ fn every_sphere_reproduces_its_tabulated_re_and_cd() {
                 9.81,
             );
             let tol = half_ulp_printed(cd_tab, 2) + 0.005 * cd_tab;
-            assert!((cd - cd_tab).abs() <= tol, "{}: C_d {cd} vs {cd_tab}", r.sphere_id);
+            assert!(
+                (cd - cd_tab).abs() <= tol,
+                "{}: C_d {cd} vs {cd_tab}",
+                r.sphere_id
+            );
         }
     }
     assert_eq!(&counts[1..], &[27, 16, 18, 17, 19, 24]);
@@ -104,7 +108,11 @@ fn scenario_fluids_match_table2() {
         let s = &susp[&n];
         assert_eq!(f.rheology, Rheology::Bingham);
         assert_eq!(f.density_kg_m3, s.density_kg_m3, "{path}");
-        assert_eq!(f.plastic_viscosity_pa_s, Some(s.plastic_viscosity_pa_s), "{path}");
+        assert_eq!(
+            f.plastic_viscosity_pa_s,
+            Some(s.plastic_viscosity_pa_s),
+            "{path}"
+        );
         assert_eq!(f.yield_stress_pa, Some(s.yield_stress_pa), "{path}");
         assert!(p.spheres.iter().all(|c| c.spec.suspension == Some(n)));
     }
@@ -113,7 +121,12 @@ fn scenario_fluids_match_table2() {
 fn run_all(dt: f64) -> Vec<SphereResult> {
     let mut out = Vec::new();
     for n in 1..=6 {
-        let p = prepare(Path::new(&format!("scenarios/valentik_susp{n}.toml")), Some(dt), &[]).unwrap();
+        let p = prepare(
+            Path::new(&format!("scenarios/valentik_susp{n}.toml")),
+            Some(dt),
+            &[],
+        )
+        .unwrap();
         let opts = RunOptions {
             dt_s: dt,
             integrator: p.scenario.time.integrator,
@@ -134,13 +147,27 @@ fn terminal_velocities_agree_with_the_force_balance_without_chatter() {
     let mut jumps = 0;
     for r in &res {
         let fb = r.v_force_balance_m_s;
-        let err = if fb == 0.0 { r.v_simulated_m_s } else { r.v_simulated_m_s / fb - 1.0 };
-        assert!(err.abs() < 0.005, "{}: {} vs balance {fb}", r.case.id, r.v_simulated_m_s);
+        let err = if fb == 0.0 {
+            r.v_simulated_m_s
+        } else {
+            r.v_simulated_m_s / fb - 1.0
+        };
+        assert!(
+            err.abs() < 0.005,
+            "{}: {} vs balance {fb}",
+            r.case.id,
+            r.v_simulated_m_s
+        );
         if r.force_balance_at_jump {
             jumps += 1;
             assert_eq!(r.regime.label(), "jump", "{}", r.case.id);
         }
-        assert!(matches!(r.stop, StopReason::Steady | StopReason::Static), "{}: {:?}", r.case.id, r.stop);
+        assert!(
+            matches!(r.stop, StopReason::Steady | StopReason::Static),
+            "{}: {:?}",
+            r.case.id,
+            r.stop
+        );
         for w in r.samples.windows(2) {
             assert!(
                 w[1].velocity_m_s >= w[0].velocity_m_s * (1.0 - 1e-12),
@@ -166,7 +193,19 @@ fn overall_error_against_measurements_is_as_documented() {
         .parse()
         .unwrap();
     let get = |k: &str| reference["all"][k].as_float().unwrap();
-    assert!((all.mean_abs - get("mean_abs_rel_error")).abs() < 1e-3, "mean {}", all.mean_abs);
-    assert!((all.median_abs - get("median_abs_rel_error")).abs() < 1e-3, "median {}", all.median_abs);
-    assert!((all.bias - get("bias_rel_error")).abs() < 1e-3, "bias {}", all.bias);
+    assert!(
+        (all.mean_abs - get("mean_abs_rel_error")).abs() < 1e-3,
+        "mean {}",
+        all.mean_abs
+    );
+    assert!(
+        (all.median_abs - get("median_abs_rel_error")).abs() < 1e-3,
+        "median {}",
+        all.median_abs
+    );
+    assert!(
+        (all.bias - get("bias_rel_error")).abs() < 1e-3,
+        "bias {}",
+        all.bias
+    );
 }

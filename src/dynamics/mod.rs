@@ -17,9 +17,9 @@
 
 pub mod stability;
 
-pub use stability::{Monitor, Unstable};
 use crate::fluid::SphereDrag;
 use nalgebra::SVector;
+pub use stability::{Monitor, Unstable};
 
 /// Time-integration scheme for the fluid forces. Default: `Exponential`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]

@@ -18,7 +18,8 @@ pub struct Unstable {
     pub what: String,
     /// The time step in use, s.
     pub dt_s: f64,
-    /// Largest time step expected to be stable for this body, s (infinite if unknown).
+    /// Largest time step expected to be stable for this body, s (infinite if unknown; 0 when no
+    /// step is stable for the scheme in use, e.g. explicit drag at a yield-stress stop).
     pub stable_dt_s: f64,
 }
 
@@ -29,7 +30,12 @@ impl fmt::Display for Unstable {
             "unstable: body `{}` at t = {:.6e} s (step {}): {} with dt = {:.3e} s",
             self.body, self.time_s, self.step, self.what, self.dt_s
         )?;
-        if self.stable_dt_s.is_finite() {
+        if self.stable_dt_s == 0.0 {
+            write!(
+                f,
+                "; no time step makes the explicit scheme hold a body at rest against a yield stress: use integrator = \"implicit\" or \"exponential\""
+            )?;
+        } else if self.stable_dt_s.is_finite() {
             write!(
                 f,
                 "; largest stable dt for this body ≈ {:.3e} s (2m/(dF/dv)): use dt < {:.3e} s or integrator = \"exponential\"",

@@ -138,7 +138,13 @@ fn exponential_matches_a_fine_rk4_reference_for_bingham_settling() {
     );
     let m = sphere_mass_kg(d, 7290.0);
     let wn = (m - sphere_mass_kg(d, 1280.0)) * 9.81;
-    let f = |s: f64| (wn - if s > 0.0 { drag.force_n(s) } else { drag.static_resistance_n() }) / m;
+    let f = |s: f64| {
+        (wn - if s > 0.0 {
+            drag.force_n(s)
+        } else {
+            drag.static_resistance_n()
+        }) / m
+    };
     let (mut s, h) = (0.0f64, 1e-7);
     for _ in 0..100_000 {
         let k1 = f(s);
@@ -179,6 +185,10 @@ fn every_scheme_that_is_stable_ends_at_the_force_balance() {
         for _ in 0..20_000 {
             v = advance(integ, &drag, m, &w, &v, 1e-3).velocity_m_s;
         }
-        assert!((-v.z / vt - 1.0).abs() < 1e-9, "{integ:?}: {} vs {vt}", -v.z);
+        assert!(
+            (-v.z / vt - 1.0).abs() < 1e-9,
+            "{integ:?}: {} vs {vt}",
+            -v.z
+        );
     }
 }

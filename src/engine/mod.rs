@@ -69,9 +69,12 @@
 //! - Rapier silently caps every substep's speed at `max_linear_velocity_m_s`; `step` reports any
 //!   body faster than half of it (or non-finite) as [`Unstable`], and refuses a step whose exact
 //!   free-flight force would need an intermediate speed above the cap.
-//! - Piles at large dt/τ (≳ 10 for 70 µm grains, dt ≥ 1e-2 s for 2.5 µm ones) can keep a grain
-//!   jittering at a few % of v_t instead of coming fully to rest; see `tests/engine_rest.rs`.
+//! - dt is bounded by travel, not by τ: once grains move ≳ 0.1 d per step, transient overlaps pass
+//!   1 % of d (20 grains of 70 µm: worst overlap 1.7e-3 d at dt = 1e-3 s, 1.9e-2 d at 4e-3 s), and
+//!   a frictionless 2.5 µm pile stepped at dt = 1e-2 s kept a grain jittering at 1 % of v_t. See the
+//!   survey in `tests/engine_rest.rs`.
 
+pub use crate::dynamics::Unstable;
 use crate::fluid::{DragLaw, SphereDrag};
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -149,35 +152,28 @@ impl fmt::Display for BodyId {
     }
 }
 
-/// A step went numerically wrong for one body (the first one found).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Unstable {
-    /// The offending body.
-    pub body: BodyId,
-    /// Simulated time when detected, s: the end of the failed step, or the start of a refused one.
-    pub time_s: f64,
-    /// What went wrong: `"position"` or `"velocity"` (non-finite), `"quarantined"` (Rapier disabled
-    /// the body for a non-finite state), `"speed"` (above half the speed cap), or
-    /// `"intermediate speed"` (the free-flight force would exceed the cap; the step was not taken).
-    pub quantity: &'static str,
-    /// The offending value (speeds in m/s; NaN/∞ for non-finite states).
-    pub value: f64,
-    /// A step that should cure it, s: half the current dt, and for the explicit integrator at most
-    /// half its stability limit 2m/(dF/dv) (i.e. ≤ τ for Stokes drag).
-    pub suggested_dt_s: f64,
-}
-
-impl fmt::Display for Unstable {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "{} unstable at t = {:.6e} s: {} = {:.3e}; try dt <= {:.3e} s",
-            self.body, self.time_s, self.quantity, self.value, self.suggested_dt_s
-        )
+/// Builds the run-wide [`Unstable`] report for body `index` of a world: `quantity` is what went
+/// wrong (`"position"` or `"velocity"` non-finite, `"quarantined"` when Rapier disabled the body,
+/// `"speed"` above half the speed cap, `"intermediate speed"` when the free-flight force would
+/// exceed the cap and the step was refused), `value` its value, `suggested_dt_s` a step that should
+/// cure it (half the current dt, and for the explicit integrator at most half its stability limit).
+pub(crate) fn unstable(
+    index: usize,
+    time_s: f64,
+    dt_s: f64,
+    quantity: &str,
+    value: f64,
+    suggested_dt_s: f64,
+) -> Unstable {
+    Unstable {
+        body: BodyId(index).to_string(),
+        time_s,
+        step: (time_s / dt_s).round() as u64,
+        what: format!("{quantity} = {value:.3e}"),
+        dt_s,
+        stable_dt_s: suggested_dt_s,
     }
 }
-
-impl std::error::Error for Unstable {}
 
 /// Rotational drag coefficient of a sphere, N m s: torque = π η d³ ω (Stokes), with η the law's
 /// (plastic) viscosity.

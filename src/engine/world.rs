@@ -3,7 +3,8 @@
 // `rapier::math::DIM` and glam's slice/array conversions.
 
 use super::{
-    rotational_drag_n_m_s, sphere_inertia_kg_m2, BodyId, ContactDrag, EngineSettings, Unstable,
+    rotational_drag_n_m_s, sphere_inertia_kg_m2, unstable, BodyId, ContactDrag, EngineSettings,
+    Unstable,
 };
 use crate::dynamics::{self, Integrator};
 use crate::fluid::{buoyancy_n, sphere_mass_kg, SphereDrag};
@@ -278,13 +279,14 @@ impl World {
                 let a = (target.displacement_m - v0 * dt_s) * (2.0 * k / ((k + 1.0) * dt_s * dt_s));
                 let v_end = v0 + a * dt_s;
                 if v_end.norm().is_nan() || v_end.norm() >= cap {
-                    return Err(Unstable {
-                        body: BodyId(i),
-                        time_s: self.time_s,
-                        quantity: "intermediate speed",
-                        value: v_end.norm(),
-                        suggested_dt_s: suggested_dt(integrator, body, v0.norm(), dt_s),
-                    });
+                    return Err(unstable(
+                        i,
+                        self.time_s,
+                        dt_s,
+                        "intermediate speed",
+                        v_end.norm(),
+                        suggested_dt(integrator, body, v0.norm(), dt_s),
+                    ));
                 }
                 max_speed = max_speed.max(v0.norm()).max(target.velocity_m_s.norm());
                 rb.set_linear_damping(0.0);
@@ -335,13 +337,14 @@ impl World {
             } else {
                 continue;
             };
-            first_error = Some(Unstable {
-                body: BodyId(i),
-                time_s: self.time_s,
+            first_error = Some(unstable(
+                i,
+                self.time_s,
+                dt_s,
                 quantity,
                 value,
-                suggested_dt_s: suggested_dt(integrator, body, speed, dt_s),
-            });
+                suggested_dt(integrator, body, speed, dt_s),
+            ));
         }
         match first_error {
             Some(e) => Err(e),

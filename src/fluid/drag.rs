@@ -296,7 +296,11 @@ impl SphereDrag {
                 let fy = yield_drag_n(d, ty);
                 Some(match i {
                     0 => (fy + 12.0 * a_p * ty, 12.0 * a_p * eb / d, 0.0),
-                    1 => (fy + 14.56 * a_p * ty, 14.56 * a_p * eb / d, 0.0975 * rho * a_p),
+                    1 => (
+                        fy + 14.56 * a_p * ty,
+                        14.56 * a_p * eb / d,
+                        0.0975 * rho * a_p,
+                    ),
                     _ => (fy, 0.0, 0.2 * rho * a_p),
                 })
             }
@@ -307,7 +311,16 @@ impl SphereDrag {
     /// Root of `alpha·s + k·F(s) = target` on branch `i` within [lo, hi]: closed form where the
     /// branch is a polynomial of degree ≤ 2, safeguarded Newton otherwise.
     #[allow(clippy::too_many_arguments)]
-    fn branch_root(&self, i: usize, alpha: f64, k: f64, target: f64, lo: f64, hi: f64, guess: f64) -> Solved {
+    fn branch_root(
+        &self,
+        i: usize,
+        alpha: f64,
+        k: f64,
+        target: f64,
+        lo: f64,
+        hi: f64,
+        guess: f64,
+    ) -> Solved {
         if let Some((a, b, c)) = self.branch_polynomial(i) {
             // k c s² + (alpha + k b) s + (k a − target) = 0, positive root in a stable form.
             let (qa, qb, qc) = (k * c, alpha + k * b, k * a - target);
@@ -432,7 +445,7 @@ impl SphereDrag {
             }
             let slope = df(s);
             let mut next = s - r / slope;
-            if !(next > lo && next < hi) || !next.is_finite() {
+            if !(next > lo && next < hi && next.is_finite()) {
                 next = 0.5 * (lo + hi);
             }
             let done = (next - s).abs() <= 4.0 * f64::EPSILON * s.abs().max(f64::MIN_POSITIVE)
@@ -529,7 +542,10 @@ mod tests {
         let law = susp1(0.019);
         let fs = law.static_resistance_n();
         assert_eq!(law.balance_speed(0.999 * fs).speed_m_s, 0.0);
-        assert_eq!(law.solve_implicit(0.1, 0.1 * 0.999 * fs, 0.0).speed_m_s, 0.0);
+        assert_eq!(
+            law.solve_implicit(0.1, 0.1 * 0.999 * fs, 0.0).speed_m_s,
+            0.0
+        );
     }
 
     #[test]

@@ -93,7 +93,11 @@ pub fn scatter_svg(
                         .draw_series(LineSeries::new(pts.clone(), col.stroke_width(2)))
                         .map_err(|x| e(&x))?;
                 }
-                let style = if s.filled { col.filled() } else { col.stroke_width(2) };
+                let style = if s.filled {
+                    col.filled()
+                } else {
+                    col.stroke_width(2)
+                };
                 chart
                     .draw_series(pts.iter().map(|p| Circle::new(*p, 5, style)))
                     .map_err(|x| e(&x))?

@@ -28,7 +28,13 @@ pub const HEADER: [&str; 12] = [
 ];
 
 /// Writes the drop `summary.csv`.
-pub fn write_summary(path: &Path, results: &[SphereResult], dt_s: f64, integrator: &str, submergence: &str) -> io::Result<()> {
+pub fn write_summary(
+    path: &Path,
+    results: &[SphereResult],
+    dt_s: f64,
+    integrator: &str,
+    submergence: &str,
+) -> io::Result<()> {
     let mut w = csv::Writer::from_path(path).map_err(io::Error::other)?;
     w.write_record(HEADER).map_err(io::Error::other)?;
     for r in results {
@@ -57,17 +63,32 @@ pub fn write_chart(path: &Path, title: &str, results: &[SphereResult]) -> Result
     let mut by_d: BTreeMap<u64, Vec<(f64, f64)>> = BTreeMap::new();
     for r in results {
         let key = (r.case.spec.diameter_m * 1e6).round() as u64;
-        by_d.entry(key)
-            .or_default()
-            .push((r.case.fall_height_m.unwrap_or(0.0) * 1e3, r.final_bottom_depth_m * 1e3));
+        by_d.entry(key).or_default().push((
+            r.case.fall_height_m.unwrap_or(0.0) * 1e3,
+            r.final_bottom_depth_m * 1e3,
+        ));
     }
     let series: Vec<Series> = by_d
         .into_iter()
         .enumerate()
         .map(|(i, (d_um, mut pts))| {
             pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-            Series { label: format!("d = {} mm", d_um as f64 / 1000.0), points: pts, colour: i, filled: true, line: true }
+            Series {
+                label: format!("d = {} mm", d_um as f64 / 1000.0),
+                points: pts,
+                colour: i,
+                filled: true,
+                line: true,
+            }
         })
         .collect();
-    scatter_svg(path, title, "fall height (mm)", "settling distance, ball bottom below surface (mm)", Scale::Linear, Scale::Linear, &series)
+    scatter_svg(
+        path,
+        title,
+        "fall height (mm)",
+        "settling distance, ball bottom below surface (mm)",
+        Scale::Linear,
+        Scale::Linear,
+        &series,
+    )
 }

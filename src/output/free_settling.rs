@@ -74,7 +74,9 @@ pub fn summary_row(r: &SphereResult, dt_s: f64, integrator: &str) -> Vec<String>
         num(rel_error_vs_force_balance(r)),
         r.terminal_steady.map(|b| b.to_string()).unwrap_or_default(),
         opt(r.v_section_m_s),
-        r.steady_in_section.map(|b| b.to_string()).unwrap_or_default(),
+        r.steady_in_section
+            .map(|b| b.to_string())
+            .unwrap_or_default(),
         opt(r.max_velocity_error_rel),
         num(r.response_time_s),
         opt(r.rayleigh_time_s),
@@ -128,8 +130,13 @@ pub fn write_timeseries(path: &Path, results: &[SphereResult]) -> io::Result<()>
 /// Writes `probes.csv` (velocity at the probe times).
 pub fn write_probes(path: &Path, results: &[SphereResult]) -> io::Result<()> {
     let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
-    w.write_record(["sphere_id", "time_s", "velocity_m_s", "velocity_analytic_m_s"])
-        .map_err(csv_err)?;
+    w.write_record([
+        "sphere_id",
+        "time_s",
+        "velocity_m_s",
+        "velocity_analytic_m_s",
+    ])
+    .map_err(csv_err)?;
     for r in results {
         for (t, v, a) in &r.probes {
             w.write_record([r.case.id.clone(), num(*t), num(*v), opt(*a)])
@@ -175,7 +182,8 @@ pub fn write_metrics(path: &Path, stats: &[ErrorStats]) -> io::Result<()> {
 /// Terminal velocity against sphere density, one colour per diameter: measured (hollow) and
 /// simulated (filled), like f-EDEM Fig. 11.
 pub fn write_chart(path: &Path, title: &str, results: &[SphereResult]) -> Result<(), String> {
-    let mut by_d: BTreeMap<u64, (Vec<(f64, f64)>, Vec<(f64, f64)>)> = BTreeMap::new();
+    type Points = Vec<(f64, f64)>;
+    let mut by_d: BTreeMap<u64, (Points, Points)> = BTreeMap::new();
     for r in results {
         let key = (r.case.spec.diameter_m * 1e6).round() as u64;
         let e = by_d.entry(key).or_default();

@@ -53,7 +53,11 @@ pub fn load_str(text: &str, path: &Path, overrides: &[String]) -> Result<Scenari
             .span()
             .map(|s| format!("line {}: ", text[..s.start].lines().count().max(1)))
             .unwrap_or_default();
-        ScenarioError::new(path, None, format!("TOML syntax error: {line}{}", e.message()))
+        ScenarioError::new(
+            path,
+            None,
+            format!("TOML syntax error: {line}{}", e.message()),
+        )
     })?;
     for o in overrides {
         apply_override(&mut table, o).map_err(|m| ScenarioError::new(path, None, m))?;

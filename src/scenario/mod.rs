@@ -9,5 +9,5 @@ mod schema;
 mod validate;
 
 pub use load::{apply_override, load, load_str, ScenarioError};
-pub(crate) use validate::check_sphere;
 pub use schema::*;
+pub(crate) use validate::check_sphere;

@@ -17,19 +17,45 @@ impl Check<'_> {
     }
 
     /// `lo < x ≤ hi` (open below) with the unit in the message.
-    fn in_open_closed(&self, key: &str, x: f64, lo: f64, hi: f64, unit: &str) -> Result<(), ScenarioError> {
+    fn in_open_closed(
+        &self,
+        key: &str,
+        x: f64,
+        lo: f64,
+        hi: f64,
+        unit: &str,
+    ) -> Result<(), ScenarioError> {
         if x.is_finite() && x > lo && x <= hi {
             Ok(())
         } else {
-            Err(self.err(key, format!("{x} is out of range: allowed {lo} < {key_short} ≤ {hi} {unit}", key_short = short(key))))
+            Err(self.err(
+                key,
+                format!(
+                    "{x} is out of range: allowed {lo} < {key_short} ≤ {hi} {unit}",
+                    key_short = short(key)
+                ),
+            ))
         }
     }
 
-    fn in_closed(&self, key: &str, x: f64, lo: f64, hi: f64, unit: &str) -> Result<(), ScenarioError> {
+    fn in_closed(
+        &self,
+        key: &str,
+        x: f64,
+        lo: f64,
+        hi: f64,
+        unit: &str,
+    ) -> Result<(), ScenarioError> {
         if x.is_finite() && x >= lo && x <= hi {
             Ok(())
         } else {
-            Err(self.err(key, format!("{x} is out of range: allowed {lo} ≤ {} ≤ {hi} {unit}", short(key))))
+            Err(self.err(
+                key,
+                format!(
+                    "{x} is out of range: allowed {lo} ≤ {} ≤ {hi} {unit}",
+                    short(key)
+                ),
+            ))
         }
     }
 }
@@ -43,7 +69,10 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
     let c = Check { file };
     if s.name.is_empty()
         || s.name.starts_with('.')
-        || !s.name.chars().all(|ch| ch.is_ascii_alphanumeric() || "_-.".contains(ch))
+        || !s
+            .name
+            .chars()
+            .all(|ch| ch.is_ascii_alphanumeric() || "_-.".contains(ch))
     {
         return Err(c.err(
             "name",
@@ -51,32 +80,57 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
         ));
     }
     if s.dimension != 2 && s.dimension != 3 {
-        return Err(c.err("dimension", format!("{} is not allowed: 2 or 3", s.dimension)));
+        return Err(c.err(
+            "dimension",
+            format!("{} is not allowed: 2 or 3", s.dimension),
+        ));
     }
     c.in_open_closed("gravity_m_s2", s.gravity_m_s2, 0.0, 1000.0, "m/s²")?;
 
     // Fluid.
-    c.in_open_closed("fluid.density_kg_m3", s.fluid.density_kg_m3, 0.0, 25_000.0, "kg/m³")?;
+    c.in_open_closed(
+        "fluid.density_kg_m3",
+        s.fluid.density_kg_m3,
+        0.0,
+        25_000.0,
+        "kg/m³",
+    )?;
     match s.fluid.rheology {
         Rheology::Newtonian => {
             let mu = s.fluid.viscosity_pa_s.ok_or_else(|| {
-                c.err("fluid.viscosity_pa_s", "missing: a newtonian fluid needs its viscosity, 0 < viscosity_pa_s ≤ 1e6 Pa s")
+                c.err(
+                    "fluid.viscosity_pa_s",
+                    "missing: a newtonian fluid needs its viscosity, 0 < viscosity_pa_s ≤ 1e6 Pa s",
+                )
             })?;
             c.in_open_closed("fluid.viscosity_pa_s", mu, 0.0, 1e6, "Pa s")?;
             for k in ["plastic_viscosity_pa_s", "yield_stress_pa"] {
-                let given = if k == "yield_stress_pa" { s.fluid.yield_stress_pa } else { s.fluid.plastic_viscosity_pa_s };
+                let given = if k == "yield_stress_pa" {
+                    s.fluid.yield_stress_pa
+                } else {
+                    s.fluid.plastic_viscosity_pa_s
+                };
                 if given.is_some() {
-                    return Err(c.err(&format!("fluid.{k}"), "only allowed with rheology = \"bingham\""));
+                    return Err(c.err(
+                        &format!("fluid.{k}"),
+                        "only allowed with rheology = \"bingham\"",
+                    ));
                 }
             }
         }
         Rheology::Bingham => {
             let eb = s.fluid.plastic_viscosity_pa_s.ok_or_else(|| {
-                c.err("fluid.plastic_viscosity_pa_s", "missing: a bingham fluid needs 0 < plastic_viscosity_pa_s ≤ 1e6 Pa s")
+                c.err(
+                    "fluid.plastic_viscosity_pa_s",
+                    "missing: a bingham fluid needs 0 < plastic_viscosity_pa_s ≤ 1e6 Pa s",
+                )
             })?;
             c.in_open_closed("fluid.plastic_viscosity_pa_s", eb, 0.0, 1e6, "Pa s")?;
             let ty = s.fluid.yield_stress_pa.ok_or_else(|| {
-                c.err("fluid.yield_stress_pa", "missing: a bingham fluid needs 0 ≤ yield_stress_pa ≤ 1e6 Pa")
+                c.err(
+                    "fluid.yield_stress_pa",
+                    "missing: a bingham fluid needs 0 ≤ yield_stress_pa ≤ 1e6 Pa",
+                )
             })?;
             c.in_closed("fluid.yield_stress_pa", ty, 0.0, 1e6, "Pa")?;
             if s.fluid.viscosity_pa_s.is_some() {
@@ -94,15 +148,30 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
         && s.fluid.rheology == Rheology::Bingham
         && s.physics == Physics::Full
     {
-        return Err(c.err("drag.law", "a bingham fluid needs `bingham-fedem` (or physics = \"ideal-stokes\")"));
+        return Err(c.err(
+            "drag.law",
+            "a bingham fluid needs `bingham-fedem` (or physics = \"ideal-stokes\")",
+        ));
     }
 
     // Time.
     c.in_open_closed("time.end_s", s.time.end_s, 0.0, 1e9, "s")?;
-    c.in_open_closed("time.dt_s", s.time.dt_s, 0.0, s.time.end_s, "s (at most time.end_s)")?;
+    c.in_open_closed(
+        "time.dt_s",
+        s.time.dt_s,
+        0.0,
+        s.time.end_s,
+        "s (at most time.end_s)",
+    )?;
     let steps = s.time.end_s / s.time.dt_s;
     if steps > MAX_STEPS {
-        return Err(c.err("time.dt_s", format!("{:.3e} steps (end_s/dt_s) exceed the limit of {MAX_STEPS:.0e}: raise dt_s", steps)));
+        return Err(c.err(
+            "time.dt_s",
+            format!(
+                "{:.3e} steps (end_s/dt_s) exceed the limit of {MAX_STEPS:.0e}: raise dt_s",
+                steps
+            ),
+        ));
     }
 
     // Container.
@@ -121,14 +190,23 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
 
     // Release.
     c.in_closed("release.depth_m", s.release.depth_m, 0.0, 1e4, "m")?;
-    c.in_closed("release.velocity_m_s", s.release.velocity_m_s, 0.0, 1e3, "m/s")?;
+    c.in_closed(
+        "release.velocity_m_s",
+        s.release.velocity_m_s,
+        0.0,
+        1e3,
+        "m/s",
+    )?;
 
     for (i, h) in s.release.fall_heights_m.iter().enumerate() {
         c.in_closed(&format!("release.fall_heights_m[{i}]"), *h, 0.0, 1e4, "m")?;
     }
     match s.kind {
         Kind::Drop if s.release.fall_heights_m.is_empty() => {
-            return Err(c.err("release.fall_heights_m", "missing: kind = \"drop\" needs at least one fall height ≥ 0 m"));
+            return Err(c.err(
+                "release.fall_heights_m",
+                "missing: kind = \"drop\" needs at least one fall height ≥ 0 m",
+            ));
         }
         Kind::FreeSettling if !s.release.fall_heights_m.is_empty() => {
             return Err(c.err("release.fall_heights_m", "only allowed with kind = \"drop\" (free_settling releases submerged spheres at release.depth_m)"));
@@ -136,9 +214,16 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
         _ => {}
     }
 
+    if s.kind == Kind::Drop && s.engine == EngineChoice::Rapier {
+        return Err(c.err("engine", "`rapier` is not available for kind = \"drop\" yet (no contacts there): allowed `auto`, `free`"));
+    }
+
     // Spheres.
     if s.spheres.is_empty() && s.spheres_csv.is_none() {
-        return Err(c.err("spheres", "missing: give at least one [[spheres]] table or a [spheres_csv] file"));
+        return Err(c.err(
+            "spheres",
+            "missing: give at least one [[spheres]] table or a [spheres_csv] file",
+        ));
     }
     for (i, sp) in s.spheres.iter().enumerate() {
         check_sphere_inner(&c, &format!("spheres[{i}]"), sp, s)?;
@@ -146,26 +231,58 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
 
     // Measurement.
     if let Some(m) = &s.measure {
-        let h = s.container.as_ref().map(|c| c.height_m).unwrap_or(f64::INFINITY);
+        let h = s
+            .container
+            .as_ref()
+            .map(|c| c.height_m)
+            .unwrap_or(f64::INFINITY);
         match (m.section_top_depth_m, m.section_bottom_depth_m) {
             (None, None) => {}
             (Some(top), Some(bot)) => {
-                c.in_closed("measure.section_top_depth_m", top, 0.0, h, "m (within the container)")?;
+                c.in_closed(
+                    "measure.section_top_depth_m",
+                    top,
+                    0.0,
+                    h,
+                    "m (within the container)",
+                )?;
                 if !(bot > top && bot <= h) {
                     return Err(c.err("measure.section_bottom_depth_m", format!(
                         "{bot} is out of range: allowed section_top_depth_m ({top}) < section_bottom_depth_m ≤ container.height_m ({h}) m")));
                 }
             }
-            (Some(_), None) => return Err(c.err("measure.section_bottom_depth_m", "missing: give both detectors of the measuring section or neither")),
-            (None, Some(_)) => return Err(c.err("measure.section_top_depth_m", "missing: give both detectors of the measuring section or neither")),
+            (Some(_), None) => {
+                return Err(c.err(
+                    "measure.section_bottom_depth_m",
+                    "missing: give both detectors of the measuring section or neither",
+                ))
+            }
+            (None, Some(_)) => {
+                return Err(c.err(
+                    "measure.section_top_depth_m",
+                    "missing: give both detectors of the measuring section or neither",
+                ))
+            }
         }
         c.in_open_closed("measure.steady_tolerance", m.steady_tolerance, 0.0, 1.0, "")?;
-        c.in_open_closed("measure.terminal_tolerance", m.terminal_tolerance, 0.0, 1.0, "")?;
+        c.in_open_closed(
+            "measure.terminal_tolerance",
+            m.terminal_tolerance,
+            0.0,
+            1.0,
+            "",
+        )?;
         if let Some(w) = m.terminal_window_m {
             c.in_open_closed("measure.terminal_window_m", w, 0.0, 1e4, "m")?;
         }
         for (i, t) in m.velocity_at_s.iter().enumerate() {
-            c.in_open_closed(&format!("measure.velocity_at_s[{i}]"), *t, 0.0, s.time.end_s, "s (within time.end_s)")?;
+            c.in_open_closed(
+                &format!("measure.velocity_at_s[{i}]"),
+                *t,
+                0.0,
+                s.time.end_s,
+                "s (within time.end_s)",
+            )?;
         }
     }
     if let Some(e) = s.record.every_s {
@@ -183,19 +300,38 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
 }
 
 /// Checks one sphere (also used for spheres read from CSV, with `key` naming the row).
-pub(crate) fn check_sphere(c_file: &Path, key: &str, sp: &SphereSpec, s: &Scenario) -> Result<(), ScenarioError> {
+pub(crate) fn check_sphere(
+    c_file: &Path,
+    key: &str,
+    sp: &SphereSpec,
+    s: &Scenario,
+) -> Result<(), ScenarioError> {
     check_sphere_inner(&Check { file: c_file }, key, sp, s)
 }
 
-fn check_sphere_inner(c: &Check, key: &str, sp: &SphereSpec, s: &Scenario) -> Result<(), ScenarioError> {
+fn check_sphere_inner(
+    c: &Check,
+    key: &str,
+    sp: &SphereSpec,
+    s: &Scenario,
+) -> Result<(), ScenarioError> {
     c.in_open_closed(&format!("{key}.diameter_m"), sp.diameter_m, 0.0, 10.0, "m")?;
-    c.in_open_closed(&format!("{key}.density_kg_m3"), sp.density_kg_m3, 0.0, 25_000.0, "kg/m³")?;
+    c.in_open_closed(
+        &format!("{key}.density_kg_m3"),
+        sp.density_kg_m3,
+        0.0,
+        25_000.0,
+        "kg/m³",
+    )?;
     if let Some(e) = sp.youngs_modulus_pa {
         c.in_open_closed(&format!("{key}.youngs_modulus_pa"), e, 0.0, 1e13, "Pa")?;
     }
     if let Some(nu) = sp.poisson_ratio {
         if !(nu > -1.0 && nu < 0.5) {
-            return Err(c.err(&format!("{key}.poisson_ratio"), format!("{nu} is out of range: allowed -1 < poisson_ratio < 0.5")));
+            return Err(c.err(
+                &format!("{key}.poisson_ratio"),
+                format!("{nu} is out of range: allowed -1 < poisson_ratio < 0.5"),
+            ));
         }
     }
     if let Some(v) = sp.v_measured_m_s {
@@ -203,8 +339,13 @@ fn check_sphere_inner(c: &Check, key: &str, sp: &SphereSpec, s: &Scenario) -> Re
     }
     if let Some(ct) = &s.container {
         if s.release.depth_m + 0.5 * sp.diameter_m > ct.height_m {
-            return Err(c.err("release.depth_m", format!(
-                "{} m puts {key} (d = {} m) below the container bottom at {} m", s.release.depth_m, sp.diameter_m, ct.height_m)));
+            return Err(c.err(
+                "release.depth_m",
+                format!(
+                    "{} m puts {key} (d = {} m) below the container bottom at {} m",
+                    s.release.depth_m, sp.diameter_m, ct.height_m
+                ),
+            ));
         }
     }
     Ok(())

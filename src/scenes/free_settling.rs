@@ -141,7 +141,11 @@ pub fn immersion(depth_m: f64, d_m: f64, submergence: Submergence) -> (f64, f64)
         }
         Submergence::Partial => {
             let vol = h * h * (3.0 * r - h) / (4.0 * r * r * r);
-            let area = if h >= r { 1.0 } else { h * (2.0 * r - h) / (r * r) };
+            let area = if h >= r {
+                1.0
+            } else {
+                h * (2.0 * r - h) / (r * r)
+            };
             (vol, area)
         }
     }
@@ -175,6 +179,20 @@ pub fn run_sphere<const D: usize>(
     scenario: &Scenario,
     case: &SphereCase,
     opts: RunOptions,
+) -> Result<SphereResult, Unstable> {
+    run_sphere_with::<D>(scenario, case, opts, None)
+}
+
+/// A step taken by an engine instead of [`advance`]: given dt, advance the sphere and report its
+/// new velocity and displacement.
+pub type ExternalStep<'a, const D: usize> = &'a mut dyn FnMut(f64) -> Result<Step<D>, Unstable>;
+
+/// As [`run_sphere`], with the steps taken by `external` (a Rapier world) when given.
+pub fn run_sphere_with<const D: usize>(
+    scenario: &Scenario,
+    case: &SphereCase,
+    opts: RunOptions,
+    mut external: Option<ExternalStep<'_, D>>,
 ) -> Result<SphereResult, Unstable> {
     let sp = &case.spec;
     let d = sp.diameter_m;
@@ -224,9 +242,16 @@ pub fn run_sphere<const D: usize>(
     // Released in a still fluid under a constant force with a monotone drag, a sphere's speed
     // never exceeds max(v₀, v_terminal); an explicit step overshoots past 2× that exactly when
     // dt > 2 m/(dF/dv).
-    let fall = case.fall_height_m.map(|h| (v0 * v0 + 2.0 * g * (h + d)).sqrt()).unwrap_or(0.0);
+    let fall = case
+        .fall_height_m
+        .map(|h| (v0 * v0 + 2.0 * g * (h + d)).sqrt())
+        .unwrap_or(0.0);
     let speed_bound = 2.0 * v0.abs().max(fb.speed_m_s).max(fall);
-    let mut entry: Option<f64> = if crossing && depth0 + 0.5 * d >= 0.0 { Some(v0) } else { None };
+    let mut entry: Option<f64> = if crossing && depth0 + 0.5 * d >= 0.0 {
+        Some(v0)
+    } else {
+        None
+    };
     let mut samples = Vec::new();
     let sample = |t: f64, depth: f64, vel: f64| -> Sample {
         let an = analytic.map(|(vt, tau)| stokes_analytic(vt, tau, v0, t));
@@ -248,7 +273,11 @@ pub fn run_sphere<const D: usize>(
         .unwrap_or_default();
     let mut probes = Vec::with_capacity(probe_times.len());
     let section = scenario.measure.as_ref().and_then(|m| {
-        Some((m.section_top_depth_m?, m.section_bottom_depth_m?, m.steady_tolerance))
+        Some((
+            m.section_top_depth_m?,
+            m.section_bottom_depth_m?,
+            m.steady_tolerance,
+        ))
     });
     let window = scenario
         .measure
@@ -267,7 +296,9 @@ pub fn run_sphere<const D: usize>(
     let mut step = 0u64;
     let mut t = 0.0;
     while step < n_steps {
-        let s = if crossing {
+        let s = if let Some(ext) = external.as_mut() {
+            ext(dt)?
+        } else if crossing {
             let gap = -(depth + 0.5 * d); // lowest point above the surface, m
             let s_down = -v[D - 1];
             let free_fall = s_down * dt + 0.5 * g * dt * dt;
@@ -300,13 +331,24 @@ pub fn run_sphere<const D: usize>(
                     v_new.norm()
                 )
             });
+            // A velocity that reverses under a yield-stress drag is the explicit scheme failing to
+            // hold the body at rest (the drag is set-valued there): no dt cures that.
+            let yield_chatter = drag.static_resistance_n() > 0.0 && v.dot(&v_new) < 0.0;
             return Err(Unstable {
                 body: case.id.clone(),
                 time_s: (step + 1) as f64 * dt,
                 step: step + 1,
-                what,
+                what: if yield_chatter {
+                    format!("{what}: the velocity reverses at the yield-stress stop (explicit drag chatters about rest)")
+                } else {
+                    what
+                },
                 dt_s: dt,
-                stable_dt_s: explicit_stable_dt_s(m, s.drag_slope_n_s_m),
+                stable_dt_s: if yield_chatter {
+                    0.0
+                } else {
+                    explicit_stable_dt_s(m, s.drag_slope_n_s_m)
+                },
             });
         }
         let speed0 = -v[D - 1];
@@ -343,7 +385,7 @@ pub fn run_sphere<const D: usize>(
         depth = depth_new;
         t = t_new;
         motion = s.motion;
-        if opts.timeseries && (step % record_every == 0 || step == n_steps) {
+        if opts.timeseries && (step.is_multiple_of(record_every) || step == n_steps) {
             samples.push(sample(t, depth, speed1));
         }
         if let Some((len, tol)) = window {
@@ -355,7 +397,11 @@ pub fn run_sphere<const D: usize>(
             if trail[0].1 <= level {
                 let (ta, da, va) = trail[0];
                 let (tb, db, vb) = trail[1];
-                let f = if db > da { (level - da) / (db - da) } else { 1.0 };
+                let f = if db > da {
+                    (level - da) / (db - da)
+                } else {
+                    1.0
+                };
                 let t_level = ta + f * (tb - ta);
                 let v_level = va + f * (vb - va);
                 let v_win = len / (t - t_level);
@@ -395,13 +441,23 @@ pub fn run_sphere<const D: usize>(
     let regime = if stop == StopReason::Static {
         DragRegime::Static
     } else {
-        drag.regime(v_sim.abs(), motion == Motion::AtJump || (fb.at_jump && (v_sim - fb.speed_m_s).abs() <= 1e-9 * fb.speed_m_s))
+        drag.regime(
+            v_sim.abs(),
+            motion == Motion::AtJump
+                || (fb.at_jump && (v_sim - fb.speed_m_s).abs() <= 1e-3 * fb.speed_m_s),
+        )
     };
     let re_bingham = match drag.law {
         DragLaw::Bingham {
             yield_stress_pa,
             plastic_viscosity_pa_s,
-        } => Some(reynolds_bingham(rho_f, v_sim.abs(), d, yield_stress_pa, plastic_viscosity_pa_s)),
+        } => Some(reynolds_bingham(
+            rho_f,
+            v_sim.abs(),
+            d,
+            yield_stress_pa,
+            plastic_viscosity_pa_s,
+        )),
         _ => None,
     };
     Ok(SphereResult {
@@ -432,12 +488,80 @@ pub fn run_sphere<const D: usize>(
     })
 }
 
-/// Runs every sphere through a Rapier world with the force hook (`engine = "rapier"`).
+/// Runs every sphere through its own Rapier world with the force hook (`engine = "rapier"`):
+/// the same scene as the free engine, through the contact pipeline. It must give the same answer
+/// (tests/engine_free_settling.rs); it costs ~300× more per step.
 pub fn run_rapier(
     scenario: &Scenario,
     cases: &[SphereCase],
     opts: RunOptions,
 ) -> Result<Vec<SphereResult>, Unstable> {
-    let _ = (scenario, cases, opts);
-    unimplemented!("wired once the engine lands")
+    use rayon::prelude::*;
+    cases
+        .par_iter()
+        .map(|c| match scenario.dimension {
+            2 => rapier_sphere_dim2(scenario, c, opts),
+            _ => rapier_sphere_dim3(scenario, c, opts),
+        })
+        .collect()
 }
+
+macro_rules! rapier_sphere {
+    ($name:ident, $dim:ident, $D:literal) => {
+        fn $name(
+            scenario: &Scenario,
+            case: &SphereCase,
+            opts: RunOptions,
+        ) -> Result<SphereResult, Unstable> {
+            use crate::engine::{$dim, EngineSettings};
+            let d = case.spec.diameter_m;
+            let drag = sphere_drag(scenario, d);
+            let g = scenario.gravity_m_s2;
+            let depth0 = if scenario.release.depth_m > 0.0 {
+                scenario.release.depth_m
+            } else {
+                0.5 * d
+            };
+            let v_max = drag
+                .balance_speed(
+                    (sphere_mass_kg(d, case.spec.density_kg_m3)
+                        - sphere_mass_kg(d, drag.fluid_density_kg_m3))
+                    .abs()
+                        * g,
+                )
+                .speed_m_s
+                .max(scenario.release.velocity_m_s);
+            let mut world = $dim::World::new(EngineSettings::for_scene(d, 2.0 * v_max), g);
+            let mut body =
+                $dim::FluidBody::at_rest(-$dim::up() * depth0, d, case.spec.density_kg_m3, drag, g);
+            body.velocity_m_s = -$dim::up() * scenario.release.velocity_m_s;
+            let id = world.add_sphere(body);
+            let mut prev = world.position_m(id);
+            let integrator = opts.integrator;
+            let mut step = move |dt: f64| -> Result<Step<$D>, Unstable> {
+                world.step(dt, integrator).map_err(|mut u| {
+                    u.body = case.id.clone();
+                    u
+                })?;
+                let x = world.position_m(id);
+                let v = world.velocity_m_s(id);
+                let out = Step {
+                    velocity_m_s: v,
+                    displacement_m: x - prev,
+                    motion: if v.iter().all(|c| *c == 0.0) {
+                        Motion::Stuck
+                    } else {
+                        Motion::Moving
+                    },
+                    drag_slope_n_s_m: drag.slope_n_s_m(v.norm()),
+                };
+                prev = x;
+                Ok(out)
+            };
+            run_sphere_with::<$D>(scenario, case, opts, Some(&mut step))
+        }
+    };
+}
+
+rapier_sphere!(rapier_sphere_dim2, dim2, 2);
+rapier_sphere!(rapier_sphere_dim3, dim3, 3);

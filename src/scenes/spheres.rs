@@ -25,7 +25,10 @@ struct CsvRow {
 }
 
 /// Resolves the spheres of `scenario`, read from `scenario_path`'s folder for relative CSV paths.
-pub fn spheres(scenario: &Scenario, scenario_path: &Path) -> Result<Vec<SphereCase>, ScenarioError> {
+pub fn spheres(
+    scenario: &Scenario,
+    scenario_path: &Path,
+) -> Result<Vec<SphereCase>, ScenarioError> {
     let mut out: Vec<SphereCase> = scenario
         .spheres
         .iter()
@@ -50,7 +53,8 @@ pub fn spheres(scenario: &Scenario, scenario_path: &Path) -> Result<Vec<SphereCa
                 ))
             })?;
         for (i, row) in rdr.deserialize::<CsvRow>().enumerate() {
-            let row = row.map_err(|e| err(format!("`{}` row {}: {e}", csv_path.display(), i + 2)))?;
+            let row =
+                row.map_err(|e| err(format!("`{}` row {}: {e}", csv_path.display(), i + 2)))?;
             if src.suspension.is_some() && row.suspension != src.suspension {
                 continue;
             }
@@ -79,7 +83,9 @@ pub fn spheres(scenario: &Scenario, scenario_path: &Path) -> Result<Vec<SphereCa
             return Err(err(format!(
                 "`{}` has no sphere{}",
                 csv_path.display(),
-                src.suspension.map(|s| format!(" of suspension {s}")).unwrap_or_default()
+                src.suspension
+                    .map(|s| format!(" of suspension {s}"))
+                    .unwrap_or_default()
             )));
         }
     }
@@ -87,11 +93,15 @@ pub fn spheres(scenario: &Scenario, scenario_path: &Path) -> Result<Vec<SphereCa
         out = out
             .iter()
             .flat_map(|c| {
-                scenario.release.fall_heights_m.iter().map(move |h| SphereCase {
-                    id: format!("{}-H{}mm", c.id, (h * 1e3 * 10.0).round() / 10.0),
-                    spec: c.spec.clone(),
-                    fall_height_m: Some(*h),
-                })
+                scenario
+                    .release
+                    .fall_heights_m
+                    .iter()
+                    .map(move |h| SphereCase {
+                        id: format!("{}-H{}mm", c.id, (h * 1e3 * 10.0).round() / 10.0),
+                        spec: c.spec.clone(),
+                        fall_height_m: Some(*h),
+                    })
             })
             .collect();
     }
