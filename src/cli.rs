@@ -187,6 +187,18 @@ pub fn main() -> i32 {
 
 fn print_report(r: &FileReport) {
     let s = &r.prepared.scenario;
+    if r.results.is_empty() {
+        println!(
+            "{} ({:.3} s wall) -> {}",
+            s.name,
+            r.wall_time_s,
+            r.out.display()
+        );
+        for l in &r.lines {
+            println!("  {l}");
+        }
+        return;
+    }
     println!(
         "{} ({} bodies, dt = {:e} s, {}, {:.3} s wall) -> {}",
         s.name,

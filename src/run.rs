@@ -100,8 +100,10 @@ pub fn prepare(
 pub struct FileReport {
     /// The prepared scenario.
     pub prepared: Prepared,
-    /// Per-sphere results.
+    /// Per-sphere results (free settling and drops).
     pub results: Vec<free_settling::SphereResult>,
+    /// Summary lines of contact scenes.
+    pub lines: Vec<String>,
     /// Where the outputs went.
     pub out: PathBuf,
     /// Wall time of the simulation, s.
@@ -136,103 +138,57 @@ pub fn engine_name(s: &Scenario) -> &'static str {
     match (s.kind, s.engine) {
         (_, EngineChoice::Rapier) => "rapier",
         (Kind::FreeSettling | Kind::Drop, _) => "free",
+        (Kind::RestitutionDrop | Kind::TiltFriction | Kind::FunnelPour, _) => "rapier",
     }
+}
+
+/// What a scene of a contact kind (restitution drop, tilt, funnel pour) reports to `run_one`
+/// after writing its own files into the staging folder.
+#[derive(Clone, Debug, Default)]
+pub struct SceneReport {
+    /// Total steps over all worlds.
+    pub steps: u64,
+    /// Number of bodies (over all worlds).
+    pub bodies: usize,
+    /// Rapier settings used (recorded in run.toml).
+    pub engine_settings: Option<crate::engine::EngineSettings>,
+    /// Lines printed after the run (a short human-readable summary).
+    pub lines: Vec<String>,
 }
 
 /// Runs one prepared scenario and writes its outputs under `out_dir`.
 pub fn run_one(p: &Prepared, out_dir: &Path) -> Result<FileReport, RunError> {
     let s = &p.scenario;
-    let opts = free_settling::RunOptions {
-        dt_s: s.time.dt_s,
-        integrator: s.time.integrator,
-        timeseries: s.record.timeseries,
-    };
-    let t0 = Instant::now();
-    let results = match engine_name(s) {
-        "rapier" => crate::scenes::free_settling::run_rapier(s, &p.spheres, opts),
-        _ => free_settling::run(s, &p.spheres, opts),
-    }
-    .map_err(|u| RunError::Unstable(p.path.clone(), u))?;
-    let wall = t0.elapsed().as_secs_f64();
-
     let io = |e: std::io::Error| RunError::Io(p.path.clone(), e);
+    let t0 = Instant::now();
     let stage = StagedDir::new(out_dir, &s.name).map_err(io)?;
-    let integ = s.time.integrator.name();
-    match s.kind {
-        Kind::Drop => {
-            let sub = match s.fluid.submergence {
-                crate::scenario::Submergence::Full => "full",
-                crate::scenario::Submergence::Partial => "partial",
-            };
-            crate::output::drop::write_summary(
-                &stage.path("summary.csv"),
-                &results,
-                s.time.dt_s,
-                integ,
-                sub,
-            )
-            .map_err(io)?;
-            crate::output::drop::write_chart(
-                &stage.path("settling_distance.svg"),
-                &format!(
-                    "{}: settling distance against fall height ({sub} submergence)",
-                    s.name
-                ),
-                &results,
-            )
-            .map_err(RunError::Other)?;
+    let (results, report) = match s.kind {
+        Kind::FreeSettling | Kind::Drop => {
+            let results = run_spheres(p)?;
+            let report = write_sphere_outputs(p, &results, &stage)?;
+            (results, report)
         }
-        Kind::FreeSettling => {
-            let rows: Vec<Vec<String>> = results
-                .iter()
-                .map(|r| out_fs::summary_row(r, s.time.dt_s, integ))
-                .collect();
-            out_fs::write_summary(&stage.path("summary.csv"), &rows).map_err(io)?;
-            let stats = out_fs::metrics(&results);
-            if !stats.is_empty() {
-                out_fs::write_metrics(&stage.path("metrics.csv"), &stats).map_err(io)?;
-                out_fs::write_chart(
-                    &stage.path("terminal_velocity.svg"),
-                    &format!(
-                        "{}: terminal velocity, measured (o) and simulated (•)",
-                        s.name
-                    ),
-                    &results,
-                )
-                .map_err(RunError::Other)?;
-            }
-        }
-    }
-    if s.record.timeseries {
-        out_fs::write_timeseries(&stage.path("timeseries.csv"), &results).map_err(io)?;
-    }
-    if results.iter().any(|r| !r.probes.is_empty()) {
-        out_fs::write_probes(&stage.path("probes.csv"), &results).map_err(io)?;
-    }
+        Kind::RestitutionDrop => (
+            Vec::new(),
+            crate::scenes::calibration::run_restitution(p, &stage)?,
+        ),
+        Kind::TiltFriction => (Vec::new(), crate::scenes::calibration::run_tilt(p, &stage)?),
+        Kind::FunnelPour => (Vec::new(), crate::scenes::funnel::run(p, &stage)?),
+    };
+    let wall = t0.elapsed().as_secs_f64();
     let meta = RunToml {
         run: RunMeta {
             settle_version: env!("CARGO_PKG_VERSION"),
             scenario_file: p.path.display().to_string(),
             status: "complete",
             engine: engine_name(s),
-            integrator: integ,
+            integrator: s.time.integrator.name(),
             dt_s: s.time.dt_s,
-            steps: results.iter().map(|r| r.steps).sum(),
-            bodies: results.len(),
+            steps: report.steps,
+            bodies: report.bodies,
             wall_time_s: wall,
         },
-        engine_settings: (engine_name(s) == "rapier").then(|| {
-            let d_min = p
-                .spheres
-                .iter()
-                .map(|c| c.spec.diameter_m)
-                .fold(f64::INFINITY, f64::min);
-            let v_max = results
-                .iter()
-                .map(|r| r.v_force_balance_m_s.abs())
-                .fold(0.0, f64::max);
-            crate::engine::EngineSettings::for_scene(d_min, 2.0 * v_max)
-        }),
+        engine_settings: report.engine_settings,
         scenario: s,
     };
     let text = toml::to_string(&meta).map_err(|e| RunError::Other(e.to_string()))?;
@@ -241,8 +197,101 @@ pub fn run_one(p: &Prepared, out_dir: &Path) -> Result<FileReport, RunError> {
     Ok(FileReport {
         prepared: p.clone(),
         results,
+        lines: report.lines,
         out,
         wall_time_s: wall,
+    })
+}
+
+/// Runs the independent spheres of a free-settling or drop scenario.
+fn run_spheres(p: &Prepared) -> Result<Vec<free_settling::SphereResult>, RunError> {
+    let s = &p.scenario;
+    let opts = free_settling::RunOptions {
+        dt_s: s.time.dt_s,
+        integrator: s.time.integrator,
+        timeseries: s.record.timeseries,
+    };
+    match engine_name(s) {
+        "rapier" => free_settling::run_rapier(s, &p.spheres, opts),
+        _ => free_settling::run(s, &p.spheres, opts),
+    }
+    .map_err(|u| RunError::Unstable(p.path.clone(), u))
+}
+
+/// Writes the files of a free-settling or drop run into the staging folder.
+fn write_sphere_outputs(
+    p: &Prepared,
+    results: &[free_settling::SphereResult],
+    stage: &StagedDir,
+) -> Result<SceneReport, RunError> {
+    let s = &p.scenario;
+    let io = |e: std::io::Error| RunError::Io(p.path.clone(), e);
+    let integ = s.time.integrator.name();
+    if s.kind == Kind::Drop {
+        let sub = match s.fluid.submergence {
+            crate::scenario::Submergence::Full => "full",
+            crate::scenario::Submergence::Partial => "partial",
+        };
+        crate::output::drop::write_summary(
+            &stage.path("summary.csv"),
+            results,
+            s.time.dt_s,
+            integ,
+            sub,
+        )
+        .map_err(io)?;
+        crate::output::drop::write_chart(
+            &stage.path("settling_distance.svg"),
+            &format!(
+                "{}: settling distance against fall height ({sub} submergence)",
+                s.name
+            ),
+            results,
+        )
+        .map_err(RunError::Other)?;
+    } else {
+        let rows: Vec<Vec<String>> = results
+            .iter()
+            .map(|r| out_fs::summary_row(r, s.time.dt_s, integ))
+            .collect();
+        out_fs::write_summary(&stage.path("summary.csv"), &rows).map_err(io)?;
+        let stats = out_fs::metrics(results);
+        if !stats.is_empty() {
+            out_fs::write_metrics(&stage.path("metrics.csv"), &stats).map_err(io)?;
+            out_fs::write_chart(
+                &stage.path("terminal_velocity.svg"),
+                &format!(
+                    "{}: terminal velocity, measured (o) and simulated (•)",
+                    s.name
+                ),
+                results,
+            )
+            .map_err(RunError::Other)?;
+        }
+    }
+    if s.record.timeseries {
+        out_fs::write_timeseries(&stage.path("timeseries.csv"), results).map_err(io)?;
+    }
+    if results.iter().any(|r| !r.probes.is_empty()) {
+        out_fs::write_probes(&stage.path("probes.csv"), results).map_err(io)?;
+    }
+    let engine_settings = (engine_name(s) == "rapier").then(|| {
+        let d_min = p
+            .spheres
+            .iter()
+            .map(|c| c.spec.diameter_m)
+            .fold(f64::INFINITY, f64::min);
+        let v_max = results
+            .iter()
+            .map(|r| r.v_force_balance_m_s.abs())
+            .fold(0.0, f64::max);
+        crate::engine::EngineSettings::for_scene(d_min, 2.0 * v_max)
+    });
+    Ok(SceneReport {
+        steps: results.iter().map(|r| r.steps).sum(),
+        bodies: results.len(),
+        engine_settings,
+        lines: Vec::new(),
     })
 }
 

@@ -57,6 +57,99 @@ pub struct Scenario {
     /// Default settings for `settle sweep`.
     #[serde(default)]
     pub sweep: Option<SweepSpec>,
+    /// Contact properties (scenes with contacts).
+    #[serde(default)]
+    pub contacts: Option<Contacts>,
+    /// Restitution drop settings (kind `restitution_drop`).
+    #[serde(default)]
+    pub restitution_drop: Option<RestitutionDropSpec>,
+    /// Tilt test settings (kind `tilt_friction`).
+    #[serde(default)]
+    pub tilt: Option<TiltSpec>,
+    /// Funnel geometry and release (kind `funnel_pour`).
+    #[serde(default)]
+    pub funnel: Option<FunnelSpec>,
+    /// Repeated runs with different seeds (kind `funnel_pour`).
+    #[serde(default)]
+    pub repeats: Option<Repeats>,
+}
+
+/// Contact properties of every collider of a scene with contacts.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Contacts {
+    /// Coefficient of restitution, 0 ≤ e ≤ 1 (f-EDEM Table 4: 0.612, steel on steel).
+    pub restitution: f64,
+    /// Coulomb (static) friction coefficient ≥ 0 (f-EDEM Table 4: 0.341).
+    pub friction: f64,
+    /// Rolling resistance coefficient μ_r ≥ 0: a torque μ_r · r · |F_n| opposing the rolling
+    /// (f-EDEM Table 4: 0.002). Default 0.
+    #[serde(default)]
+    pub rolling_resistance: f64,
+}
+
+/// Restitution drop test (f-EDEM Appendix II).
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct RestitutionDropSpec {
+    /// Drop heights of the ball's lowest point above the plate, m.
+    pub drop_heights_m: Vec<f64>,
+    /// Measured rebound heights, m (same length; optional).
+    #[serde(default)]
+    pub measured_rebound_heights_m: Vec<f64>,
+}
+
+/// Tilt friction test (f-EDEM Appendix III).
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct TiltSpec {
+    /// Block edge lengths (x, y, z), m.
+    pub block_size_m: Vec<f64>,
+    /// Block density, kg/m³.
+    pub block_density_kg_m3: f64,
+    /// Tilt angles to test, degrees.
+    pub angles_deg: Vec<f64>,
+    /// Simulated time at each angle, s.
+    pub duration_s: f64,
+}
+
+/// Funnel pour (f-EDEM §4.2, Fig. 17): the funnel is not described in the source; see the
+/// scenario file for the geometry used.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct FunnelSpec {
+    /// Number of balls.
+    pub count: usize,
+    /// Inner diameter of the funnel at its top, m.
+    pub top_diameter_m: f64,
+    /// Inner diameter of the outlet, m.
+    pub outlet_diameter_m: f64,
+    /// Height of the conical part, m.
+    pub cone_height_m: f64,
+    /// Height of the outlet above the fluid surface, m (f-EDEM: 0.15).
+    pub outlet_above_surface_m: f64,
+    /// Time at which the balls in the fluid and in the domain are counted (f-EDEM Fig. 20), s.
+    #[serde(default)]
+    pub count_time_s: Option<f64>,
+    /// Heights above the cylinder bottom of the horizontal planes of the presence maps, m.
+    #[serde(default)]
+    pub planes_z_m: Vec<f64>,
+}
+
+/// Repetitions with different seeds.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Repeats {
+    /// Number of runs. Default 1.
+    #[serde(default = "one_usize")]
+    pub count: usize,
+    /// Seed of the first run; run i uses seed + i. Default 0.
+    #[serde(default)]
+    pub seed: u64,
+}
+
+fn one_usize() -> usize {
+    1
 }
 
 fn default_dimension() -> u8 {
@@ -76,6 +169,13 @@ pub enum Kind {
     /// Spheres dropped from `release.fall_heights_m` above the free surface through air into the
     /// fluid, each alone, until they stop (f-EDEM §4.2 steel balls in paste backfill).
     Drop,
+    /// A ball dropped on a plate in air; rebound heights against measurements (f-EDEM App. II).
+    RestitutionDrop,
+    /// A block on a plate tilted to a series of angles: sticks or slides (f-EDEM App. III).
+    TiltFriction,
+    /// Many balls released from a funnel into the fluid-filled cylinder, with contacts (f-EDEM
+    /// §4.2, 68 steel balls into paste backfill), repeated with different seeds.
+    FunnelPour,
 }
 
 /// How fluid forces act on a sphere crossing the free surface.

@@ -219,7 +219,86 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
     }
 
     // Spheres.
-    if s.spheres.is_empty() && s.spheres_csv.is_none() {
+    let need = |present: bool, key: &str, what: &str| -> Result<(), ScenarioError> {
+        if present {
+            Ok(())
+        } else {
+            Err(c.err(
+                key,
+                format!("missing: kind = \"{}\" needs {what}", kind_name(s.kind)),
+            ))
+        }
+    };
+    match s.kind {
+        Kind::RestitutionDrop => {
+            need(
+                s.restitution_drop.is_some(),
+                "restitution_drop",
+                "a [restitution_drop] table with drop_heights_m",
+            )?;
+            need(
+                s.contacts.is_some(),
+                "contacts",
+                "a [contacts] table (restitution, friction)",
+            )?;
+        }
+        Kind::TiltFriction => {
+            need(
+                s.tilt.is_some(),
+                "tilt",
+                "a [tilt] table (block_size_m, block_density_kg_m3, angles_deg, duration_s)",
+            )?;
+            need(
+                s.contacts.is_some(),
+                "contacts",
+                "a [contacts] table (restitution, friction)",
+            )?;
+        }
+        Kind::FunnelPour => {
+            need(
+                s.funnel.is_some(),
+                "funnel",
+                "a [funnel] table (count, geometry)",
+            )?;
+            need(
+                s.contacts.is_some(),
+                "contacts",
+                "a [contacts] table (restitution, friction, rolling_resistance)",
+            )?;
+            need(
+                s.container.as_ref().is_some_and(|c| c.diameter_m.is_some()),
+                "container.diameter_m",
+                "a cylindrical [container] with diameter_m",
+            )?;
+            if s.dimension != 3 {
+                return Err(c.err(
+                    "dimension",
+                    "kind = \"funnel_pour\" is 3D-only (a funnel over a cylinder): allowed 3",
+                ));
+            }
+        }
+        Kind::FreeSettling | Kind::Drop => {}
+    }
+    if let Some(ct) = &s.contacts {
+        c.in_closed("contacts.restitution", ct.restitution, 0.0, 1.0, "")?;
+        c.in_closed("contacts.friction", ct.friction, 0.0, 10.0, "")?;
+        c.in_closed(
+            "contacts.rolling_resistance",
+            ct.rolling_resistance,
+            0.0,
+            1.0,
+            "",
+        )?;
+    }
+    if let Some(r) = &s.repeats {
+        if !(1..=10_000).contains(&r.count) {
+            return Err(c.err(
+                "repeats.count",
+                format!("{} is out of range: allowed 1 ≤ count ≤ 10000", r.count),
+            ));
+        }
+    }
+    if s.kind != Kind::TiltFriction && s.spheres.is_empty() && s.spheres_csv.is_none() {
         return Err(c.err(
             "spheres",
             "missing: give at least one [[spheres]] table or a [spheres_csv] file",
@@ -349,4 +428,15 @@ fn check_sphere_inner(
         }
     }
     Ok(())
+}
+
+/// The name of a kind as written in scenario files.
+pub fn kind_name(k: Kind) -> &'static str {
+    match k {
+        Kind::FreeSettling => "free_settling",
+        Kind::Drop => "drop",
+        Kind::RestitutionDrop => "restitution_drop",
+        Kind::TiltFriction => "tilt_friction",
+        Kind::FunnelPour => "funnel_pour",
+    }
 }

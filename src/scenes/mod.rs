@@ -1,6 +1,8 @@
 //! Scene builders and runners, one module per scenario kind.
 
+pub mod calibration;
 pub mod free_settling;
+pub mod funnel;
 pub mod spheres;
 
 use crate::fluid::{DragLaw, SphereDrag};
