@@ -12,6 +12,7 @@ pub mod engine;
 pub mod fluid;
 pub mod output;
 pub mod run;
+pub mod sample;
 pub mod scenario;
 pub mod scenes;
 pub mod sweep;

@@ -137,7 +137,7 @@ struct RunToml<'a> {
 pub fn engine_name(s: &Scenario) -> &'static str {
     match (s.kind, s.engine) {
         (_, EngineChoice::Rapier) => "rapier",
-        (Kind::FreeSettling | Kind::Drop, _) => "free",
+        (Kind::FreeSettling | Kind::Drop | Kind::Sedimentation, _) => "free",
         (Kind::RestitutionDrop | Kind::TiltFriction | Kind::FunnelPour, _) => "rapier",
     }
 }
@@ -174,6 +174,7 @@ pub fn run_one(p: &Prepared, out_dir: &Path) -> Result<FileReport, RunError> {
         ),
         Kind::TiltFriction => (Vec::new(), crate::scenes::calibration::run_tilt(p, &stage)?),
         Kind::FunnelPour => (Vec::new(), crate::scenes::funnel::run(p, &stage)?),
+        Kind::Sedimentation => (Vec::new(), crate::scenes::sedimentation::run(p, &stage)?),
     };
     let wall = t0.elapsed().as_secs_f64();
     let meta = RunToml {

@@ -195,14 +195,47 @@ pub fn sphere_inertia_kg_m2(mass_kg: f64, diameter_m: f64) -> f64 {
     0.1 * mass_kg * diameter_m * diameter_m
 }
 
+/// Damping of the yield-stress holds' velocity motors, N s/m (Rapier's force-based motor model):
+/// large enough that the motor is a rigid velocity constraint (its compliance 1/(h·D) is ~1e-7
+/// kg⁻¹, against 1/m ≥ 1 kg⁻¹ for any grain up to 1 kg) until it reaches its force limit.
+const HOLD_DAMPING: f64 = 1e12;
+
+/// |ω| of a Rapier angular velocity: a scalar in 2D, a vector in 3D.
+trait SpinNorm {
+    fn spin_norm(&self) -> f64;
+}
+
+impl SpinNorm for f64 {
+    fn spin_norm(&self) -> f64 {
+        self.abs()
+    }
+}
+
+impl SpinNorm for rapier3d_f64::math::Vector {
+    fn spin_norm(&self) -> f64 {
+        self.length()
+    }
+}
+
 /// 2D world (rapier2d-f64): discs standing for spheres, gravity along −y.
 pub mod dim2 {
     use rapier2d_f64 as rapier;
+    /// Rapier's linear joint axes in this dimension (the yield-stress hold's motors).
+    const LIN_AXES: [rapier::prelude::JointAxis; 2] = [
+        rapier::prelude::JointAxis::LinX,
+        rapier::prelude::JointAxis::LinY,
+    ];
     include!("world.rs");
 }
 
 /// 3D world (rapier3d-f64): spheres, gravity along −z.
 pub mod dim3 {
     use rapier3d_f64 as rapier;
+    /// Rapier's linear joint axes in this dimension (the yield-stress hold's motors).
+    const LIN_AXES: [rapier::prelude::JointAxis; 3] = [
+        rapier::prelude::JointAxis::LinX,
+        rapier::prelude::JointAxis::LinY,
+        rapier::prelude::JointAxis::LinZ,
+    ];
     include!("world.rs");
 }

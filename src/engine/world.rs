@@ -103,6 +103,11 @@ struct Body {
     correction_m_s: Option<Vector>,
     /// Effective-mass factors (1 + k dt/m, 1 + k_rot dt/I) dividing the velocities before the step.
     momentum_scale: Option<(f64, f64)>,
+    /// Yield-stress hold (bodies whose drag has a static resistance): a joint to the world's
+    /// fixed ground body whose linear velocity motors (target 0) are limited to `hold_force_n`.
+    hold: Option<rapier::prelude::ImpulseJointHandle>,
+    /// Force limit currently set on every linear axis of the hold, N (0: the hold is off).
+    hold_force_n: f64,
 }
 
 impl Body {
@@ -120,6 +125,27 @@ pub struct World {
     bodies: Vec<Body>,
     time_s: f64,
     last_dt_s: f64,
+    /// Where the fluid is (None: everywhere); see [`World::set_free_surface`].
+    surface: Option<FreeSurface>,
+    /// Rolling-resistance coefficient μ_r; see [`World::set_rolling_resistance`].
+    rolling_resistance: f64,
+    /// Fixed body without collider holding the yield-stress joints (created with the first).
+    ground: Option<RigidBodyHandle>,
+    /// Whether the yield-stress holds act (default true); see [`World::set_yield_hold`].
+    yield_hold: bool,
+}
+
+/// The fluid's extent, for scenes where bodies travel through air before they enter the fluid
+/// (see [`World::set_free_surface`]). SI units.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FreeSurface {
+    /// Height of the free surface on the last axis, m: the fluid lies below it.
+    pub height_m: f64,
+    /// Radius of the fluid column about the vertical axis through the origin, m (a cylindrical
+    /// container); None: the fluid extends sideways without bound.
+    pub radius_m: Option<f64>,
+    /// How the fluid forces act on a sphere crossing the surface (f-EDEM: full).
+    pub submergence: crate::scenario::Submergence,
 }
 
 impl World {
@@ -147,6 +173,10 @@ impl World {
             bodies: Vec::new(),
             time_s: 0.0,
             last_dt_s: 0.0,
+            surface: None,
+            rolling_resistance: 0.0,
+            ground: None,
+            yield_hold: true,
         }
     }
 
@@ -166,6 +196,7 @@ impl World {
         let (handle, collider) = self.physics.insert(rb, collider);
         let rapier_mprops = self.physics.colliders[collider].mass_properties();
         let inertia = sphere_inertia_kg_m2(mass_kg, body.diameter_m);
+        let hold = (body.drag.static_resistance_n() > 0.0).then(|| self.insert_hold(handle));
         self.bodies.push(Body {
             handle,
             collider,
@@ -177,8 +208,136 @@ impl World {
             boosted: false,
             correction_m_s: None,
             momentum_scale: None,
+            hold,
+            hold_force_n: 0.0,
         });
         BodyId(self.bodies.len() - 1)
+    }
+
+    /// Inserts the yield-stress hold of a body: a joint from the fixed ground body with no locked
+    /// axis and a velocity motor (target 0, rigid) on every linear axis, anchored at the body's
+    /// centre (no lever arm: it exerts no torque), its force limit 0 (off) until
+    /// [`World::step`] turns it on.
+    fn insert_hold(&mut self, body: RigidBodyHandle) -> rapier::prelude::ImpulseJointHandle {
+        use rapier::prelude::{GenericJointBuilder, JointAxesMask, MotorModel};
+        let ground = *self
+            .ground
+            .get_or_insert_with(|| self.physics.insert_body(RigidBodyBuilder::fixed()));
+        let mut joint = GenericJointBuilder::new(JointAxesMask::empty());
+        for axis in LIN_AXES {
+            joint = joint
+                .motor_model(axis, MotorModel::ForceBased)
+                .motor_velocity(axis, 0.0, super::HOLD_DAMPING)
+                .motor_max_force(axis, 0.0);
+        }
+        self.physics.insert_impulse_joint(ground, body, joint)
+    }
+
+    /// Sets the force limit of a body's yield-stress hold (no-op if unchanged or without hold).
+    fn set_hold_force(&mut self, index: usize, force_n: f64) {
+        let body = &mut self.bodies[index];
+        let Some(handle) = body.hold else { return };
+        if body.hold_force_n == force_n {
+            return;
+        }
+        body.hold_force_n = force_n;
+        if let Some(joint) = self.physics.impulse_joints.get_mut(handle, false) {
+            for axis in LIN_AXES {
+                joint.data.set_motor_max_force(axis, force_n);
+            }
+        }
+    }
+
+    /// Restricts the fluid to the region below a free surface (and within a cylinder), for scenes
+    /// where bodies fall through air into the fluid (f-EDEM §4.2 funnel pour). Each step, a body's
+    /// drag (and its rotational drag) is scaled by the immersed fraction of its projected area and
+    /// its body force (`FluidBody::body_force_n`, the buoyancy) by the immersed fraction of its
+    /// volume, both from [`crate::scenes::free_settling::immersion`] at the start of the step:
+    /// with `full` submergence both are 1 as soon as the sphere's lowest point is below the
+    /// surface, 0 above; with `partial`, the spherical cap below it. Outside `radius_m` (measured
+    /// from the vertical axis through the origin, at the sphere's centre) there is no fluid. Entry
+    /// is not located within the step (a body enters up to one step late: |v| dt).
+    pub fn set_free_surface(&mut self, surface: FreeSurface) {
+        self.surface = Some(surface);
+    }
+
+    /// Sets the rolling-resistance coefficient μ_r (default 0) of every contact: each step a body
+    /// in contact feels the torque −μ_r r Σ|F_n| ω̂ (r its radius, Σ|F_n| the magnitudes of its
+    /// contact pairs' normal forces over the previous step, ω̂ its spin direction), f-EDEM's and
+    /// EDEM's "type A" rolling friction. The torque is clamped so that it can at most stop the spin
+    /// within the step (|T| dt ≤ I |ω|): it never reverses it. A solid sphere rolling on a plate
+    /// then decelerates at (5/7) μ_r g (tests/funnel.rs).
+    pub fn set_rolling_resistance(&mut self, mu_r: f64) {
+        assert!(
+            mu_r >= 0.0 && mu_r.is_finite(),
+            "rolling resistance must be ≥ 0, got {mu_r}"
+        );
+        self.rolling_resistance = mu_r;
+    }
+
+    /// Turns the yield-stress holds on (default) or off. On: a body in contact whose drag has a
+    /// static resistance F_s (Bingham) and whose momentum the yield stress can cancel within the
+    /// step (m s ≤ F_s dt) gets F_s as the force limit of rigid velocity motors (target 0) on each
+    /// linear axis, solved with the contacts: it stays at rest unless pushed harder than F_s (per
+    /// axis) and a push passes on its full impulse less F_s dt. Off: the engine's former
+    /// behaviour, the static part dropped at rest (kept to show the creep it causes).
+    pub fn set_yield_hold(&mut self, on: bool) {
+        self.yield_hold = on;
+    }
+
+    /// Adds a fixed collider built by the caller (any Rapier shape, with its own friction and
+    /// restitution) and returns its handle, e.g. the faces of a funnel or a removable plug.
+    pub fn add_fixed_collider(
+        &mut self,
+        collider: rapier::prelude::ColliderBuilder,
+    ) -> ColliderHandle {
+        self.physics.insert_collider(collider, None)
+    }
+
+    /// Removes a fixed collider added by [`World::add_fixed_collider`] (e.g. opens an outlet).
+    pub fn remove_fixed_collider(&mut self, handle: ColliderHandle) {
+        self.physics.remove_collider(handle);
+    }
+
+    /// Fluid forces on a body at the start of a step: (drag, body force, spin-drag rate), with the
+    /// free surface's immersed fractions applied if one is set.
+    fn fluid_now(&self, body: &Body) -> (SphereDrag, Vector, f64) {
+        let Some(fs) = self.surface else {
+            return (body.drag, body.body_force_n, body.spin_drag_rate_hz);
+        };
+        let x = to_na(self.physics.bodies[body.handle].translation());
+        let mut horizontal = x;
+        horizontal[DIM - 1] = 0.0;
+        let outside = fs.radius_m.is_some_and(|r| horizontal.norm() > r);
+        let (fv, fa) = if outside {
+            (0.0, 0.0)
+        } else {
+            crate::scenes::free_settling::immersion(
+                fs.height_m - x[DIM - 1],
+                body.drag.diameter_m,
+                fs.submergence,
+            )
+        };
+        (
+            body.drag.scaled(fa),
+            body.body_force_n * fv,
+            body.spin_drag_rate_hz * fa,
+        )
+    }
+
+    /// Σ|F_n| over a body's contact pairs during the last step, N (as [`World::contact_force_n`]
+    /// but summing magnitudes pair by pair).
+    fn normal_force_sum_n(&self, body: &Body) -> f64 {
+        if self.last_dt_s <= 0.0 {
+            return 0.0;
+        }
+        let sum: f64 = self
+            .physics
+            .narrow_phase
+            .contact_pairs_with(body.collider)
+            .map(|pair| to_na(pair.total_impulse()).norm())
+            .sum();
+        sum * (body.mass_kg / body.rapier_mass_kg()) / self.last_dt_s
     }
 
     /// Adds a fixed floor: the half-space below height `height_m` on the last axis.
@@ -195,6 +354,19 @@ impl World {
             .friction(self.settings.friction)
             .restitution(0.0);
         self.physics.insert_collider(collider, None);
+    }
+
+    /// Sets the coefficient of restitution e of every collider already in the world (spheres,
+    /// floors, walls; [`World::add_sphere`] and [`World::add_wall`] create them with e = 0).
+    /// Rapier combines the coefficients of the two colliders of a contact by the rule of higher
+    /// priority of the two; every collider here keeps Rapier's default,
+    /// `CoefficientCombineRule::Average`, so with one e for all colliders every contact's
+    /// restitution is exactly e (a ball with e against a floor with 0 would get e/2). Call it once
+    /// the scene is built: colliders added afterwards still get 0.
+    pub fn set_restitution(&mut self, restitution: f64) {
+        for (_, collider) in self.physics.colliders.iter_mut() {
+            collider.set_restitution(restitution);
+        }
     }
 
     /// Advances the world by `dt_s`, the fluid forces integrated by `integrator` (see the module
@@ -217,6 +389,22 @@ impl World {
         let g = self.gravity_m_s2;
         // Fastest motion expected over this step, for the contact prediction distance.
         let mut max_speed: f64 = 0.0;
+        // Per body: fluid forces now (free surface applied) and Σ|F_n| of the last step.
+        let fluid: Vec<((SphereDrag, Vector, f64), f64)> = self
+            .bodies
+            .iter()
+            .map(|b| {
+                let n = if self.rolling_resistance > 0.0 {
+                    self.normal_force_sum_n(b)
+                } else {
+                    0.0
+                };
+                (self.fluid_now(b), n)
+            })
+            .collect();
+        // Force limits of the yield-stress holds for this step.
+        let mut holds: Vec<(usize, f64)> = Vec::new();
+        let mu_r = self.rolling_resistance;
 
         for (i, body) in self.bodies.iter_mut().enumerate() {
             body.correction_m_s = None;
@@ -233,16 +421,33 @@ impl World {
             let m = body.mass_kg;
             let m_rapier = body.rapier_mass_kg();
             let v0 = to_na(rb.linvel());
-            let spin_damping = body.spin_drag_rate_hz * dt_s;
+            let ((drag, body_force, spin_rate), normal_sum) = fluid[i];
+            let spin_damping = spin_rate * dt_s;
             rb.reset_forces(false);
+            rb.reset_torques(false);
             if in_contact {
                 // Drag linearised about the current speed s: F(v) ≈ F₀ v̂ + k v.
                 let s = v0.norm();
-                let slope = body.drag.slope_n_s_m(s);
-                let mut force = body.body_force_n;
-                if s > 0.0 {
-                    let f0 = (body.drag.force_n(s) - slope * s).min(m * s / dt_s);
+                let slope = drag.slope_n_s_m(s);
+                let mut force = body_force;
+                // Static (yield-stress) resistance F_s: when it can stop the body within the step
+                // (m s ≤ F_s dt) it is the hold's job, set-valued inside the contact solve; else
+                // F₀ v̂ as an explicit force.
+                let fs = drag.static_resistance_n();
+                let held = self.yield_hold && body.hold.is_some() && fs > 0.0 && m * s <= fs * dt_s;
+                holds.push((i, if held { fs } else { 0.0 }));
+                if s > 0.0 && !held {
+                    let f0 = (drag.force_n(s) - slope * s).min(m * s / dt_s);
                     force -= v0 * (f0 / s);
+                }
+                // Rolling resistance −μ_r r Σ|F_n| ω̂, at most stopping the spin in the step.
+                let spin = rb.angvel();
+                let spin_norm = super::SpinNorm::spin_norm(&spin);
+                if mu_r > 0.0 && normal_sum > 0.0 && spin_norm > 0.0 {
+                    let d = body.drag.diameter_m;
+                    let inertia = sphere_inertia_kg_m2(m, d);
+                    let t = (mu_r * 0.5 * d * normal_sum).min(inertia * spin_norm / dt_s);
+                    rb.add_torque(spin * (-t / spin_norm), false);
                 }
                 let damping = slope / m * dt_s;
                 max_speed = max_speed.max(v0.norm() + g.norm() * dt_s / (1.0 + damping));
@@ -267,15 +472,28 @@ impl World {
                     _ => {
                         unboost(rb, body);
                         rb.set_linear_damping(damping / dt_s);
-                        rb.set_angular_damping(body.spin_drag_rate_hz);
+                        rb.set_angular_damping(spin_rate);
                     }
                 }
                 rb.add_force(to_rapier(&force_rapier), false);
             } else {
                 // Exact scheme: land on the integrator's displacement, then fix the velocity.
                 unboost(rb, body);
-                let w = g * m + body.body_force_n;
-                let target = dynamics::advance(integrator, &body.drag, m, &w, &v0, dt_s);
+                holds.push((i, 0.0));
+                let w = g * m + body_force;
+                let target = if drag.slope_n_s_m(0.0) == 0.0 && drag.static_resistance_n() == 0.0
+                {
+                    // No fluid (above a free surface): ballistic.
+                    let a = w / m;
+                    dynamics::Step {
+                        velocity_m_s: v0 + a * dt_s,
+                        displacement_m: v0 * dt_s + a * (0.5 * dt_s * dt_s),
+                        motion: dynamics::Motion::Moving,
+                        drag_slope_n_s_m: 0.0,
+                    }
+                } else {
+                    dynamics::advance(integrator, &drag, m, &w, &v0, dt_s)
+                };
                 let a = (target.displacement_m - v0 * dt_s) * (2.0 * k / ((k + 1.0) * dt_s * dt_s));
                 let v_end = v0 + a * dt_s;
                 if v_end.norm().is_nan() || v_end.norm() >= cap {
@@ -290,12 +508,15 @@ impl World {
                 }
                 max_speed = max_speed.max(v0.norm()).max(target.velocity_m_s.norm());
                 rb.set_linear_damping(0.0);
-                rb.set_angular_damping(body.spin_drag_rate_hz);
+                rb.set_angular_damping(spin_rate);
                 rb.add_force(to_rapier(&((a - g) * m_rapier)), false);
                 body.correction_m_s = Some(target.velocity_m_s - v_end);
             }
         }
 
+        for (i, force_n) in holds {
+            self.set_hold_force(i, force_n);
+        }
         for body in &self.bodies {
             if let Some((linear, angular)) = body.momentum_scale {
                 let rb = &mut self.physics.bodies[body.handle];
@@ -360,6 +581,11 @@ impl World {
     /// Velocity of a body, m/s.
     pub fn velocity_m_s(&self, body: BodyId) -> Vector {
         to_na(self.rigid_body(body).linvel())
+    }
+
+    /// Angular velocity of a body, rad/s (Rapier's type: a scalar in 2D, a vector in 3D).
+    pub fn angular_velocity_rad_s(&self, body: BodyId) -> rapier::math::AngVector {
+        self.rigid_body(body).angvel()
     }
 
     /// Mass of a body (3D sphere mass, also in 2D), kg.

@@ -72,6 +72,83 @@ pub struct Scenario {
     /// Repeated runs with different seeds (kind `funnel_pour`).
     #[serde(default)]
     pub repeats: Option<Repeats>,
+    /// The soil sample (kind `sedimentation`).
+    #[serde(default)]
+    pub sample: Option<SampleSpec>,
+}
+
+/// A soil sample for the sedimentation cylinder (seed 000 §4.4, §5.1).
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct SampleSpec {
+    /// CSV of cumulative distributions (`sample, diameter_m, percent_finer`), relative to the
+    /// scenario file; piecewise linear in log d between its points.
+    pub csv: String,
+    /// Which sample of the file.
+    pub sample: u32,
+    /// Dry mass of soil in the whole cylinder, kg (seed: 0.06).
+    pub mass_kg: f64,
+    /// Grain density ρ_p, kg/m³ (seed: 2500).
+    pub density_kg_m3: f64,
+    /// Number of discrete diameters n_φ, log-spaced over the distribution (seed eq. 15: 220).
+    #[serde(default = "default_n_diameters")]
+    pub n_diameters: usize,
+    /// Number of representative grains N simulated; each carries a statistical weight (the
+    /// number of real grains it stands for). Default 100 000.
+    #[serde(default = "default_particles")]
+    pub particles: usize,
+    /// Seed of the stratified random placement. Default 0.
+    #[serde(default)]
+    pub seed: u64,
+    /// Fraction of the cylinder modelled: two opposing 1° wedges = 1/180 (seed §4.4).
+    #[serde(default = "default_wedge")]
+    pub wedge_fraction: f64,
+    /// Number of horizontal layers of the profiles (seed: n_ly = 4000).
+    #[serde(default = "default_layers")]
+    pub layers: usize,
+    /// Times of the profiles, s. Default: every 10 s to 60 s, then growing by ×1.25 to end_s.
+    #[serde(default)]
+    pub record_times_s: Vec<f64>,
+    /// Times of the snapshots (CSV, VTK and picture), s. Default 60, 300, 900.
+    #[serde(default = "default_snapshots")]
+    pub snapshot_times_s: Vec<f64>,
+    /// Edge of the square cells of the solid-fraction grid that sets the voidage ε of the
+    /// Di Felice factor, m. Default 2e-3 (about 30 of the largest grains).
+    #[serde(default = "default_cell")]
+    pub voidage_cell_m: f64,
+    /// Solid fraction of the deposited bed (its height grows with the deposited volume).
+    /// Default 0.6.
+    #[serde(default = "default_packing")]
+    pub bed_packing: f64,
+    /// Largest time step, s. The step also keeps the fastest suspended grain within half a
+    /// voidage cell per step, and lands on every record time. Default 10.
+    #[serde(default = "default_max_step")]
+    pub max_step_s: f64,
+}
+
+fn default_n_diameters() -> usize {
+    220
+}
+fn default_particles() -> usize {
+    100_000
+}
+fn default_wedge() -> f64 {
+    1.0 / 180.0
+}
+fn default_layers() -> usize {
+    4000
+}
+fn default_snapshots() -> Vec<f64> {
+    vec![60.0, 300.0, 900.0]
+}
+fn default_cell() -> f64 {
+    2e-3
+}
+fn default_packing() -> f64 {
+    0.6
+}
+fn default_max_step() -> f64 {
+    10.0
 }
 
 /// Contact properties of every collider of a scene with contacts.
@@ -176,6 +253,9 @@ pub enum Kind {
     /// Many balls released from a funnel into the fluid-filled cylinder, with contacts (f-EDEM
     /// §4.2, 68 steel balls into paste backfill), repeated with different seeds.
     FunnelPour,
+    /// A 2D projection of the ASTM D422 sedimentation cylinder: a soil sample of representative
+    /// grains settling from a homogeneous suspension (seed 000 §4–5).
+    Sedimentation,
 }
 
 /// How fluid forces act on a sphere crossing the free surface.

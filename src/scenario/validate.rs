@@ -277,6 +277,68 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
                 ));
             }
         }
+        Kind::Sedimentation => {
+            need(
+                s.sample.is_some(),
+                "sample",
+                "a [sample] table (csv, sample, mass_kg, density_kg_m3)",
+            )?;
+            need(
+                s.container.as_ref().is_some_and(|c| c.width_m.is_some()),
+                "container.width_m",
+                "a [container] with width_m (B) and height_m (H)",
+            )?;
+            if s.dimension != 2 {
+                return Err(c.err("dimension", "kind = \"sedimentation\" is the 2D projection of the cylinder (seed 000 §4.4): allowed 2"));
+            }
+            let sm = s.sample.as_ref().expect("checked above");
+            c.in_open_closed("sample.mass_kg", sm.mass_kg, 0.0, 1e3, "kg")?;
+            c.in_open_closed(
+                "sample.density_kg_m3",
+                sm.density_kg_m3,
+                s.fluid.density_kg_m3,
+                25_000.0,
+                "kg/m³ (denser than the fluid)",
+            )?;
+            if !(2..=100_000).contains(&sm.n_diameters) {
+                return Err(c.err(
+                    "sample.n_diameters",
+                    format!(
+                        "{} is out of range: allowed 2 ≤ n_diameters ≤ 100000",
+                        sm.n_diameters
+                    ),
+                ));
+            }
+            if !(1..=20_000_000).contains(&sm.particles) {
+                return Err(c.err("sample.particles", format!(
+                    "{} is out of range: allowed 1 ≤ particles ≤ 2e7 (about {:.1} GB of state at 64 B per grain)",
+                    sm.particles, sm.particles as f64 * 64.0 / 1e9)));
+            }
+            if !(1..=1_000_000).contains(&sm.layers) {
+                return Err(c.err(
+                    "sample.layers",
+                    format!("{} is out of range: allowed 1 ≤ layers ≤ 1e6", sm.layers),
+                ));
+            }
+            c.in_open_closed("sample.wedge_fraction", sm.wedge_fraction, 0.0, 1.0, "")?;
+            c.in_open_closed("sample.voidage_cell_m", sm.voidage_cell_m, 0.0, 1.0, "m")?;
+            c.in_open_closed("sample.bed_packing", sm.bed_packing, 0.0, 0.75, "")?;
+            c.in_open_closed("sample.max_step_s", sm.max_step_s, 0.0, 1e6, "s")?;
+            for (i, t) in sm
+                .record_times_s
+                .iter()
+                .chain(&sm.snapshot_times_s)
+                .enumerate()
+            {
+                c.in_open_closed(
+                    &format!("sample.record_times_s/snapshot_times_s[{i}]"),
+                    *t,
+                    0.0,
+                    s.time.end_s,
+                    "s (within time.end_s)",
+                )?;
+            }
+        }
         Kind::FreeSettling | Kind::Drop => {}
     }
     if let Some(ct) = &s.contacts {
@@ -298,7 +360,10 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
             ));
         }
     }
-    if s.kind != Kind::TiltFriction && s.spheres.is_empty() && s.spheres_csv.is_none() {
+    if !matches!(s.kind, Kind::TiltFriction | Kind::Sedimentation)
+        && s.spheres.is_empty()
+        && s.spheres_csv.is_none()
+    {
         return Err(c.err(
             "spheres",
             "missing: give at least one [[spheres]] table or a [spheres_csv] file",
@@ -438,5 +503,6 @@ pub fn kind_name(k: Kind) -> &'static str {
         Kind::RestitutionDrop => "restitution_drop",
         Kind::TiltFriction => "tilt_friction",
         Kind::FunnelPour => "funnel_pour",
+        Kind::Sedimentation => "sedimentation",
     }
 }

@@ -3,6 +3,7 @@
 pub mod calibration;
 pub mod free_settling;
 pub mod funnel;
+pub mod sedimentation;
 pub mod spheres;
 
 use crate::fluid::{DragLaw, SphereDrag};

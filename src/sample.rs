@@ -1,0 +1,262 @@
+//! Soil samples: cumulative grain-size distributions, their discretisation into n_φ diameters
+//! (seed 000 §4.4, Fig. 5, eq. 15), and representative grains with statistical weights placed by
+//! stratified random sampling (seed Fig. 6).
+
+use rand::seq::SliceRandom;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use std::f64::consts::PI;
+use std::path::Path;
+
+/// A cumulative distribution: percent finer by mass, piecewise linear in log₁₀ d.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Distribution {
+    /// (diameter m, percent finer %) points, ascending in diameter.
+    pub points: Vec<(f64, f64)>,
+}
+
+impl Distribution {
+    /// Percent finer (0–100) at diameter `d_m`, linear in log d between points, 0 below the
+    /// first and 100 above the last.
+    pub fn percent_finer(&self, d_m: f64) -> f64 {
+        let p = &self.points;
+        if d_m < p[0].0 {
+            return 0.0;
+        }
+        for w in p.windows(2) {
+            let ((d0, f0), (d1, f1)) = (w[0], w[1]);
+            if d_m <= d1 {
+                let f = (d_m / d0).ln() / (d1 / d0).ln();
+                return f0 + f * (f1 - f0);
+            }
+        }
+        100.0
+    }
+
+    /// Smallest and largest diameter of the distribution, m.
+    pub fn range_m(&self) -> (f64, f64) {
+        (self.points[0].0, self.points[self.points.len() - 1].0)
+    }
+
+    /// Reads sample `sample` from a CSV with columns `sample, diameter_m, percent_finer`.
+    pub fn load(path: &Path, sample: u32) -> Result<Self, String> {
+        let mut rdr = csv::ReaderBuilder::new()
+            .comment(Some(b'#'))
+            .from_path(path)
+            .map_err(|e| format!("cannot read `{}`: {e}", path.display()))?;
+        let mut points = Vec::new();
+        for (i, rec) in rdr.records().enumerate() {
+            let rec = rec.map_err(|e| format!("`{}` row {}: {e}", path.display(), i + 2))?;
+            let f = |k: usize| -> Result<f64, String> {
+                rec.get(k)
+                    .and_then(|s| s.trim().parse::<f64>().ok())
+                    .ok_or_else(|| {
+                        format!(
+                            "`{}` row {}: column {} is not a number",
+                            path.display(),
+                            i + 2,
+                            k + 1
+                        )
+                    })
+            };
+            if f(0)? as u32 == sample {
+                points.push((f(1)?, f(2)?));
+            }
+        }
+        if points.len() < 2 {
+            return Err(format!(
+                "`{}` has fewer than two points for sample {sample}",
+                path.display()
+            ));
+        }
+        let ok = points
+            .windows(2)
+            .all(|w| w[1].0 > w[0].0 && w[1].1 >= w[0].1)
+            && points
+                .iter()
+                .all(|p| p.0 > 0.0 && (0.0..=100.0).contains(&p.1));
+        if !ok {
+            return Err(format!(
+                "`{}` sample {sample}: diameters must increase, percent finer must not decrease and stay within 0–100",
+                path.display()
+            ));
+        }
+        Ok(Self { points })
+    }
+}
+
+/// One discrete diameter of a sample.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SizeClass {
+    /// Diameter φ_n, m.
+    pub diameter_m: f64,
+    /// Mass fraction of the sample carried by this diameter, (w_n − w_{n−1})/100.
+    pub mass_fraction: f64,
+}
+
+/// Discretises a distribution into `n` log-spaced diameters φ_n (seed Fig. 5): the weight of φ_n
+/// is w_n − w_{n−1}, with w_n the percent finer at the mid-size (φ_n + φ_{n+1})/2 and w_n = 100
+/// for the largest.
+pub fn discretize(dist: &Distribution, n: usize) -> Vec<SizeClass> {
+    let (d0, d1) = dist.range_m();
+    let phi: Vec<f64> = (0..n)
+        .map(|i| d0 * (d1 / d0).powf(i as f64 / (n - 1) as f64))
+        .collect();
+    let mut prev = 0.0;
+    phi.iter()
+        .enumerate()
+        .map(|(i, &d)| {
+            let w = if i + 1 < n {
+                dist.percent_finer(0.5 * (d + phi[i + 1]))
+            } else {
+                100.0
+            };
+            let c = SizeClass {
+                diameter_m: d,
+                mass_fraction: (w - prev) / 100.0,
+            };
+            prev = w;
+            c
+        })
+        .collect()
+}
+
+/// Number of real grains of a class in a sample of mass `mass_kg` (seed eq. 15):
+/// n = 6 m (w_n − w_{n−1}) / (100 ρ_p π φ_n³).
+pub fn real_count(class: &SizeClass, mass_kg: f64, density_kg_m3: f64) -> f64 {
+    6.0 * mass_kg * class.mass_fraction / (density_kg_m3 * PI * class.diameter_m.powi(3))
+}
+
+/// A representative grain: one simulated body standing for `weight` real grains of its class.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Grain {
+    /// Horizontal position in the B × H rectangle, m (0 at the left wall).
+    pub x_m: f64,
+    /// Height of the centre above the bottom, m.
+    pub y_m: f64,
+    /// Diameter, m.
+    pub diameter_m: f64,
+    /// Number of real grains it represents.
+    pub weight: f64,
+    /// Index of its size class.
+    pub class: usize,
+}
+
+/// `n` representative grains of a sample of mass `mass_kg` (the modelled part, e.g. 1/180 of the
+/// cylinder's): each class with mass gets max(1, round(n × mass fraction)) grains of equal
+/// weight, so every grain stands for about the same mass. Grains are shuffled (seeded) and placed
+/// by stratified random sampling in a √n × √n grid of cells of the rectangle's aspect ratio.
+pub fn representative_grains(
+    classes: &[SizeClass],
+    n: usize,
+    mass_kg: f64,
+    density_kg_m3: f64,
+    width_m: f64,
+    height_m: f64,
+    seed: u64,
+) -> Vec<Grain> {
+    let mut grains = Vec::with_capacity(n + classes.len());
+    for (i, c) in classes.iter().enumerate() {
+        if c.mass_fraction <= 0.0 {
+            continue;
+        }
+        let k = ((n as f64 * c.mass_fraction).round() as usize).max(1);
+        let weight = real_count(c, mass_kg, density_kg_m3) / k as f64;
+        for _ in 0..k {
+            grains.push(Grain {
+                x_m: 0.0,
+                y_m: 0.0,
+                diameter_m: c.diameter_m,
+                weight,
+                class: i,
+            });
+        }
+    }
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    grains.shuffle(&mut rng);
+    let m = (grains.len() as f64).sqrt().ceil() as usize;
+    let (cw, ch) = (width_m / m as f64, height_m / m as f64);
+    for (i, g) in grains.iter_mut().enumerate() {
+        let (cx, cy) = ((i % m) as f64, (i / m) as f64);
+        let r = 0.5 * g.diameter_m;
+        g.x_m = ((cx + rng.random::<f64>()) * cw).clamp(r, width_m - r);
+        g.y_m = ((cy + rng.random::<f64>()) * ch).clamp(r, height_m - r);
+    }
+    grains
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample5() -> Distribution {
+        Distribution {
+            points: vec![(2.5e-6, 0.0), (70e-6, 100.0)],
+        }
+    }
+
+    #[test]
+    fn percent_finer_is_linear_in_log_d() {
+        let d = sample5();
+        let mid = (2.5e-6f64 * 70e-6).sqrt();
+        assert!((d.percent_finer(mid) - 50.0).abs() < 1e-9);
+        assert_eq!(d.percent_finer(1e-6), 0.0);
+        assert_eq!(d.percent_finer(1e-4), 100.0);
+    }
+
+    #[test]
+    fn discretisation_conserves_mass_and_follows_the_curve() {
+        let d = sample5();
+        let c = discretize(&d, 220);
+        assert_eq!(c.len(), 220);
+        let total: f64 = c.iter().map(|x| x.mass_fraction).sum();
+        assert!((total - 1.0).abs() < 1e-12);
+        // Cumulative mass at a class equals the curve at its upper mid-size.
+        let mut cum = 0.0;
+        for i in 0..219 {
+            cum += c[i].mass_fraction;
+            let mid = 0.5 * (c[i].diameter_m + c[i + 1].diameter_m);
+            assert!((cum * 100.0 - d.percent_finer(mid)).abs() < 1e-9);
+        }
+    }
+
+    #[test]
+    fn eq15_counts_reproduce_the_mass() {
+        let c = discretize(&sample5(), 220);
+        let (m, rho) = (0.06 / 180.0, 2500.0);
+        let mass: f64 = c
+            .iter()
+            .map(|x| real_count(x, m, rho) * rho * PI * x.diameter_m.powi(3) / 6.0)
+            .sum();
+        assert!((mass / m - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn representative_grains_carry_the_mass_and_fill_the_rectangle() {
+        let c = discretize(&sample5(), 220);
+        let (m, rho) = (0.06 / 180.0, 2500.0);
+        let g = representative_grains(&c, 20_000, m, rho, 0.0635, 0.457, 7);
+        let mass: f64 = g
+            .iter()
+            .map(|x| x.weight * rho * PI * x.diameter_m.powi(3) / 6.0)
+            .sum();
+        assert!((mass / m - 1.0).abs() < 1e-12);
+        assert!(g.len() >= 20_000 && g.len() < 20_300);
+        // Stratified: each horizontal tenth of the height holds 10 % of the grains (±1 %).
+        for k in 0..10 {
+            let n = g
+                .iter()
+                .filter(|x| ((x.y_m / 0.0457) as usize).min(9) == k)
+                .count();
+            assert!(
+                (n as f64 / g.len() as f64 - 0.1).abs() < 0.01,
+                "band {k}: {n}"
+            );
+        }
+        // Same seed, same grains.
+        assert_eq!(
+            g,
+            representative_grains(&c, 20_000, m, rho, 0.0635, 0.457, 7)
+        );
+    }
+}
