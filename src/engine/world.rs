@@ -103,10 +103,11 @@ struct Body {
     correction_m_s: Option<Vector>,
     /// Effective-mass factors (1 + k dt/m, 1 + k_rot dt/I) dividing the velocities before the step.
     momentum_scale: Option<(f64, f64)>,
-    /// Yield-stress hold (bodies whose drag has a static resistance): a joint to the world's
-    /// fixed ground body whose linear velocity motors (target 0) are limited to `hold_force_n`.
+    /// Yield-stress hold while it acts: a joint to the world's fixed ground body whose linear
+    /// velocity motors (target 0) are limited to `hold_force_n` (inserted and removed as needed,
+    /// so that bodies not held cost the solver nothing).
     hold: Option<rapier::prelude::ImpulseJointHandle>,
-    /// Force limit currently set on every linear axis of the hold, N (0: the hold is off).
+    /// Force limit currently set on every linear axis of the hold, N (0: no hold).
     hold_force_n: f64,
 }
 
@@ -196,7 +197,6 @@ impl World {
         let (handle, collider) = self.physics.insert(rb, collider);
         let rapier_mprops = self.physics.colliders[collider].mass_properties();
         let inertia = sphere_inertia_kg_m2(mass_kg, body.diameter_m);
-        let hold = (body.drag.static_resistance_n() > 0.0).then(|| self.insert_hold(handle));
         self.bodies.push(Body {
             handle,
             collider,
@@ -208,17 +208,20 @@ impl World {
             boosted: false,
             correction_m_s: None,
             momentum_scale: None,
-            hold,
+            hold: None,
             hold_force_n: 0.0,
         });
         BodyId(self.bodies.len() - 1)
     }
 
-    /// Inserts the yield-stress hold of a body: a joint from the fixed ground body with no locked
+    /// Inserts a yield-stress hold on a body: a joint from the fixed ground body with no locked
     /// axis and a velocity motor (target 0, rigid) on every linear axis, anchored at the body's
-    /// centre (no lever arm: it exerts no torque), its force limit 0 (off) until
-    /// [`World::step`] turns it on.
-    fn insert_hold(&mut self, body: RigidBodyHandle) -> rapier::prelude::ImpulseJointHandle {
+    /// centre (no lever arm: it exerts no torque), its force limit `force_n`.
+    fn insert_hold(
+        &mut self,
+        body: RigidBodyHandle,
+        force_n: f64,
+    ) -> rapier::prelude::ImpulseJointHandle {
         use rapier::prelude::{GenericJointBuilder, JointAxesMask, MotorModel};
         let ground = *self
             .ground
@@ -228,22 +231,37 @@ impl World {
             joint = joint
                 .motor_model(axis, MotorModel::ForceBased)
                 .motor_velocity(axis, 0.0, super::HOLD_DAMPING)
-                .motor_max_force(axis, 0.0);
+                .motor_max_force(axis, force_n);
         }
         self.physics.insert_impulse_joint(ground, body, joint)
     }
 
-    /// Sets the force limit of a body's yield-stress hold (no-op if unchanged or without hold).
+    /// Sets the force limit of a body's yield-stress hold: inserts the hold, changes its limit or
+    /// removes it (force 0); no-op if unchanged.
     fn set_hold_force(&mut self, index: usize, force_n: f64) {
-        let body = &mut self.bodies[index];
-        let Some(handle) = body.hold else { return };
-        if body.hold_force_n == force_n {
+        let (handle, current, hold) = {
+            let b = &self.bodies[index];
+            (b.handle, b.hold_force_n, b.hold)
+        };
+        if current == force_n {
             return;
         }
-        body.hold_force_n = force_n;
-        if let Some(joint) = self.physics.impulse_joints.get_mut(handle, false) {
-            for axis in LIN_AXES {
-                joint.data.set_motor_max_force(axis, force_n);
+        self.bodies[index].hold_force_n = force_n;
+        match hold {
+            None => {
+                let joint = self.insert_hold(handle, force_n);
+                self.bodies[index].hold = Some(joint);
+            }
+            Some(joint) if force_n <= 0.0 => {
+                self.physics.remove_impulse_joint(joint);
+                self.bodies[index].hold = None;
+            }
+            Some(joint) => {
+                if let Some(j) = self.physics.impulse_joints.get_mut(joint, false) {
+                    for axis in LIN_AXES {
+                        j.data.set_motor_max_force(axis, force_n);
+                    }
+                }
             }
         }
     }
@@ -434,7 +452,7 @@ impl World {
                 // (m s ≤ F_s dt) it is the hold's job, set-valued inside the contact solve; else
                 // F₀ v̂ as an explicit force.
                 let fs = drag.static_resistance_n();
-                let held = self.yield_hold && body.hold.is_some() && fs > 0.0 && m * s <= fs * dt_s;
+                let held = self.yield_hold && fs > 0.0 && m * s <= fs * dt_s;
                 holds.push((i, if held { fs } else { 0.0 }));
                 if s > 0.0 && !held {
                     let f0 = (drag.force_n(s) - slope * s).min(m * s / dt_s);

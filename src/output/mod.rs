@@ -4,6 +4,7 @@
 pub mod chart;
 pub mod drop;
 pub mod free_settling;
+pub mod funnel;
 pub mod metrics;
 
 use std::fs;

@@ -165,7 +165,10 @@ pub struct Contacts {
     pub rolling_resistance: f64,
 }
 
-/// Restitution drop test (f-EDEM Appendix II).
+/// Restitution drop test (f-EDEM Appendix II): one ball (the scenario's single `[[spheres]]`)
+/// dropped from rest on a fixed plate, in the scenario's fluid (air), once per drop height; the
+/// apex after the first bounce is the rebound height. The contact restitution is
+/// `contacts.restitution`.
 #[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct RestitutionDropSpec {
@@ -174,20 +177,48 @@ pub struct RestitutionDropSpec {
     /// Measured rebound heights, m (same length; optional).
     #[serde(default)]
     pub measured_rebound_heights_m: Vec<f64>,
+    /// Relative tolerance on |simulated / measured rebound height − 1| that the source states as
+    /// its acceptance (f-EDEM App. II: 3 %). Reported (how many heights meet it), not enforced.
+    /// Default 0.03.
+    #[serde(default = "default_rebound_tolerance")]
+    pub tolerance: f64,
 }
 
-/// Tilt friction test (f-EDEM Appendix III).
+fn default_rebound_tolerance() -> f64 {
+    0.03
+}
+
+/// Tilt friction test (f-EDEM Appendix III): a cuboid block at rest on a fixed plate tilted by
+/// each angle (gravity is tilted instead of the plate: the same thing in the plate's frame).
+/// The contact friction is `contacts.friction`; the threshold angle is bracketed by the angles
+/// given and refined by bisection.
 #[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct TiltSpec {
-    /// Block edge lengths (x, y, z), m.
+    /// Block edge lengths (x, y, z), m: x along the slope, z normal to the plate.
     pub block_size_m: Vec<f64>,
     /// Block density, kg/m³.
     pub block_density_kg_m3: f64,
-    /// Tilt angles to test, degrees.
+    /// Tilt angles to test, degrees (0 ≤ angle < 90).
     pub angles_deg: Vec<f64>,
     /// Simulated time at each angle, s.
     pub duration_s: f64,
+    /// Displacement along the slope after `duration_s` above which the block counts as sliding,
+    /// m. Default 1e-3.
+    #[serde(default = "default_slide_distance")]
+    pub slide_distance_m: f64,
+    /// The threshold angle is bisected until the bracket (largest sticking angle, smallest
+    /// sliding angle) is at most this wide, degrees. Default 0.1.
+    #[serde(default = "default_bisection_tolerance")]
+    pub bisection_tolerance_deg: f64,
+}
+
+fn default_slide_distance() -> f64 {
+    1e-3
+}
+
+fn default_bisection_tolerance() -> f64 {
+    0.1
 }
 
 /// Funnel pour (f-EDEM §4.2, Fig. 17): the funnel is not described in the source; see the
@@ -211,6 +242,49 @@ pub struct FunnelSpec {
     /// Heights above the cylinder bottom of the horizontal planes of the presence maps, m.
     #[serde(default)]
     pub planes_z_m: Vec<f64>,
+    /// Height of a vertical cylindrical section (inner diameter `top_diameter_m`) on top of the
+    /// cone, m: room for the random initial placement of the balls. Default 0.
+    #[serde(default)]
+    pub column_height_m: f64,
+    /// Time the balls, placed at random without overlap, fall and settle in the funnel on the
+    /// plug closing the outlet before it is removed at t = 0, s. Default 0.3.
+    #[serde(default = "default_fill_time")]
+    pub fill_time_s: f64,
+    /// Wall thickness of the funnel and the cylinder (boxes around the circles), m. Default 4e-3.
+    #[serde(default = "default_wall_thickness")]
+    pub wall_thickness_m: f64,
+    /// Number of flat faces approximating each circle of the funnel and the cylinder. Default 64.
+    #[serde(default = "default_facets")]
+    pub facets: usize,
+    /// The run of a repeat ends before `time.end_s` once t ≥ `count_time_s` and every ball has
+    /// been slower than this for 0.05 s, m/s. Default 1e-3.
+    #[serde(default = "default_rest_speed")]
+    pub rest_speed_m_s: f64,
+    /// Bin width of the vertical distribution (`z_distribution.csv`), m. Default 5e-3.
+    #[serde(default = "default_z_bin")]
+    pub z_bin_m: f64,
+    /// Cell size of the presence-probability grids (`presence.csv`), m. Default 2.5e-3.
+    #[serde(default = "default_grid_cell")]
+    pub grid_cell_m: f64,
+}
+
+fn default_fill_time() -> f64 {
+    0.3
+}
+fn default_wall_thickness() -> f64 {
+    4e-3
+}
+fn default_facets() -> usize {
+    64
+}
+fn default_rest_speed() -> f64 {
+    1e-3
+}
+fn default_z_bin() -> f64 {
+    5e-3
+}
+fn default_grid_cell() -> f64 {
+    2.5e-3
 }
 
 /// Repetitions with different seeds.

@@ -241,6 +241,60 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
                 "contacts",
                 "a [contacts] table (restitution, friction)",
             )?;
+            if s.dimension != 3 {
+                return Err(c.err(
+                    "dimension",
+                    "kind = \"restitution_drop\" is 3D-only (Rapier 3D contacts): allowed 3",
+                ));
+            }
+            if s.engine == EngineChoice::Free {
+                return Err(c.err(
+                    "engine",
+                    "kind = \"restitution_drop\" needs contacts: allowed `auto`, `rapier`",
+                ));
+            }
+            if s.spheres.len() != 1 || s.spheres_csv.is_some() {
+                return Err(c.err(
+                    "spheres",
+                    "kind = \"restitution_drop\" drops one ball: give exactly one [[spheres]] table (no [spheres_csv])",
+                ));
+            }
+            let rd = s.restitution_drop.as_ref().expect("checked above");
+            if rd.drop_heights_m.is_empty() {
+                return Err(c.err(
+                    "restitution_drop.drop_heights_m",
+                    "missing: give at least one drop height, 0 < h ≤ 100 m",
+                ));
+            }
+            for (i, h) in rd.drop_heights_m.iter().enumerate() {
+                c.in_open_closed(
+                    &format!("restitution_drop.drop_heights_m[{i}]"),
+                    *h,
+                    0.0,
+                    100.0,
+                    "m",
+                )?;
+            }
+            let n = rd.measured_rebound_heights_m.len();
+            if n != 0 && n != rd.drop_heights_m.len() {
+                return Err(c.err(
+                    "restitution_drop.measured_rebound_heights_m",
+                    format!(
+                        "{n} values for {} drop heights: give one per drop height or none",
+                        rd.drop_heights_m.len()
+                    ),
+                ));
+            }
+            for (i, h) in rd.measured_rebound_heights_m.iter().enumerate() {
+                c.in_closed(
+                    &format!("restitution_drop.measured_rebound_heights_m[{i}]"),
+                    *h,
+                    0.0,
+                    100.0,
+                    "m",
+                )?;
+            }
+            c.in_open_closed("restitution_drop.tolerance", rd.tolerance, 0.0, 1.0, "")?;
         }
         Kind::TiltFriction => {
             need(
@@ -252,6 +306,72 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
                 s.contacts.is_some(),
                 "contacts",
                 "a [contacts] table (restitution, friction)",
+            )?;
+            if s.dimension != 3 {
+                return Err(c.err(
+                    "dimension",
+                    "kind = \"tilt_friction\" is 3D-only (Rapier 3D contacts): allowed 3",
+                ));
+            }
+            if s.engine == EngineChoice::Free {
+                return Err(c.err(
+                    "engine",
+                    "kind = \"tilt_friction\" needs contacts: allowed `auto`, `rapier`",
+                ));
+            }
+            let t = s.tilt.as_ref().expect("checked above");
+            if t.block_size_m.len() != 3 {
+                return Err(c.err(
+                    "tilt.block_size_m",
+                    format!(
+                        "{} values: give the three edge lengths [x, y, z], each 0 < l ≤ 10 m",
+                        t.block_size_m.len()
+                    ),
+                ));
+            }
+            for (i, l) in t.block_size_m.iter().enumerate() {
+                c.in_open_closed(&format!("tilt.block_size_m[{i}]"), *l, 0.0, 10.0, "m")?;
+            }
+            c.in_open_closed(
+                "tilt.block_density_kg_m3",
+                t.block_density_kg_m3,
+                0.0,
+                25_000.0,
+                "kg/m³",
+            )?;
+            if t.angles_deg.is_empty() {
+                return Err(c.err(
+                    "tilt.angles_deg",
+                    "missing: give at least one angle, 0 ≤ angle < 90°",
+                ));
+            }
+            for (i, a) in t.angles_deg.iter().enumerate() {
+                if !(a.is_finite() && (0.0..90.0).contains(a)) {
+                    return Err(c.err(
+                        &format!("tilt.angles_deg[{i}]"),
+                        format!("{a} is out of range: allowed 0 ≤ angle < 90°"),
+                    ));
+                }
+            }
+            c.in_closed(
+                "tilt.duration_s",
+                t.duration_s,
+                s.time.dt_s,
+                1e4,
+                "s (at least time.dt_s)",
+            )?;
+            if t.duration_s / s.time.dt_s > MAX_STEPS {
+                return Err(c.err("time.dt_s", format!(
+                    "{:.3e} steps per angle (tilt.duration_s/dt_s) exceed the limit of {MAX_STEPS:.0e}: raise dt_s",
+                    t.duration_s / s.time.dt_s)));
+            }
+            c.in_open_closed("tilt.slide_distance_m", t.slide_distance_m, 0.0, 1e3, "m")?;
+            c.in_open_closed(
+                "tilt.bisection_tolerance_deg",
+                t.bisection_tolerance_deg,
+                0.0,
+                90.0,
+                "°",
             )?;
         }
         Kind::FunnelPour => {

@@ -331,6 +331,70 @@ pub fn simulate(
     st
 }
 
+/// Number of horizontal bands of the cylinder pictures.
+pub const PICTURE_BANDS: usize = 100;
+
+/// Mass fraction of the modelled sample in each of `bands` horizontal bands (top first), bed
+/// included, as in seed Fig. 11.
+pub fn band_mass_fractions(st: &State, setup: &Setup, bands: usize) -> Vec<f64> {
+    let mut f = vec![0.0; bands];
+    let mut total = 0.0;
+    for g in &st.grains {
+        let v = g.weight * sphere_volume_m3(g.diameter_m);
+        let k =
+            (((setup.height_m - g.y_m) / setup.height_m * bands as f64) as usize).min(bands - 1);
+        f[k] += v;
+        total += v;
+    }
+    f.iter_mut().for_each(|x| *x /= total);
+    f
+}
+
+/// Draws the cylinder at each snapshot time side by side: grey level = mass fraction per band
+/// (black = the largest band fraction in suspension; the bed saturates), like seed Fig. 11. PNG; panels in the
+/// order of `snapshot_times_s`, each topped by one tick per minute (up to 15).
+fn draw_cylinder(path: &Path, pictures: &[(f64, Vec<f64>)]) -> Result<(), String> {
+    use plotters::prelude::*;
+    let (pw, ph, gap) = (80u32, 640u32, 40u32);
+    let width = pictures.len() as u32 * (pw + gap) + gap;
+    let root = BitMapBackend::new(path, (width, ph + 60)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| e.to_string())?;
+    // Grey scale set by the suspension (the bottom band, with the bed, saturates to black).
+    let fmax = pictures
+        .iter()
+        .flat_map(|p| p.1[..p.1.len().saturating_sub(1)].iter().copied())
+        .fold(1e-300, f64::max);
+    for (i, (t, f)) in pictures.iter().enumerate() {
+        let t = *t;
+        let x0 = (gap + i as u32 * (pw + gap)) as i32;
+        let bands = f.len() as f64;
+        for (k, frac) in f.iter().enumerate() {
+            let grey = (255.0 * (1.0 - (frac / fmax).min(1.0))).round() as u8;
+            let y0 = 30 + (k as f64 / bands * ph as f64) as i32;
+            let y1 = 30 + ((k + 1) as f64 / bands * ph as f64).ceil() as i32;
+            root.draw(&Rectangle::new(
+                [(x0, y0), (x0 + pw as i32, y1)],
+                RGBColor(grey, grey, grey).filled(),
+            ))
+            .map_err(|e| e.to_string())?;
+        }
+        root.draw(&Rectangle::new(
+            [(x0, 30), (x0 + pw as i32, 30 + ph as i32)],
+            BLACK.stroke_width(1),
+        ))
+        .map_err(|e| e.to_string())?;
+        // Time marks as ticks above the panel, one per 60 s up to 15 (no fonts in the bitmap
+        // backend; the panel times are the snapshot times, in order).
+        let ticks = ((t / 60.0).round() as i32).clamp(1, 15);
+        for j in 0..ticks {
+            let x = x0 + 4 + j * 5;
+            root.draw(&Rectangle::new([(x, 10), (x + 2, 22)], BLACK.filled()))
+                .map_err(|e| e.to_string())?;
+        }
+    }
+    root.present().map_err(|e| e.to_string())
+}
+
 /// Concentration (solid volume fraction) of a profile layer, given the layer volume.
 fn concentration(solid_m3: f64, layer_volume_m3: f64) -> f64 {
     solid_m3 / layer_volume_m3
@@ -402,6 +466,7 @@ pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, RunError> {
     let mut profiles: Vec<Profile> = Vec::new();
     let snap_dir = stage.path("snapshots");
     let mut snap_err: Option<std::io::Error> = None;
+    let mut pictures: Vec<(f64, Vec<f64>)> = Vec::new();
     let t0 = std::time::Instant::now();
     let st = simulate(
         s,
@@ -411,11 +476,15 @@ pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, RunError> {
             if let Err(e) = write_snapshot(&snap_dir, st) {
                 snap_err.get_or_insert(e);
             }
+            pictures.push((st.time_s, band_mass_fractions(st, &setup, PICTURE_BANDS)));
         },
     );
     let wall = t0.elapsed().as_secs_f64();
     if let Some(e) = snap_err {
         return Err(io(e));
+    }
+    if !pictures.is_empty() {
+        draw_cylinder(&stage.path("cylinder.png"), &pictures).map_err(RunError::Other)?;
     }
     // profiles.csv
     let mut w = csv::Writer::from_path(stage.path("profiles.csv"))

@@ -1,0 +1,470 @@
+//! Output files of a funnel pour (`kind = "funnel_pour"`, f-EDEM §4.2):
+//!
+//! - `balls.csv`: every ball at the end of every repeat (`repeat, seed, ball, diameter_m, x_m,
+//!   y_m, z_m, speed_m_s, place`), z above the cylinder bottom, x and y from its axis;
+//! - `counts.csv`: per repeat, where the balls are at `funnel.count_time_s` and at the end, the
+//!   Z range in the paste, steps and wall time;
+//! - `timeseries.csv`: per repeat, the census of the balls and the largest speed every
+//!   `record.every_s` (default 0.01 s; negative times: settling in the closed funnel);
+//! - `z_distribution.csv` + `.svg`: ball centres in the paste per Z bin (`funnel.z_bin_m`), summed
+//!   over the repeats and per repeat (f-EDEM Fig. 21);
+//! - `presence.csv` + `.svg`: on each horizontal plane `funnel.planes_z_m`, the probability over
+//!   the repeats that a cell of the grid (`funnel.grid_cell_m`) lies inside a ball: its centre
+//!   point (x, y, Z) inside a ball's sphere, as a cut through the hardened paste shows it
+//!   (f-EDEM Fig. 22, 15 repeats).
+
+use super::num;
+use crate::run::{Prepared, RunError};
+use crate::scenes::funnel::{Geometry, Place, RepeatResult};
+use plotters::prelude::*;
+use std::io;
+use std::path::Path;
+
+/// One bin of the vertical distribution.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ZBin {
+    /// Lower edge, m above the bottom.
+    pub z_lo_m: f64,
+    /// Upper edge, m.
+    pub z_hi_m: f64,
+    /// Ball centres in the bin, over all repeats.
+    pub count: usize,
+}
+
+/// Histogram of the centre heights of the balls in the paste, bins of `bin_m` from 0 to
+/// `height_m` (the last bin may be shorter).
+pub fn z_histogram(results: &[RepeatResult], bin_m: f64, height_m: f64) -> Vec<ZBin> {
+    let n = ((height_m / bin_m).ceil() as usize).max(1);
+    let mut bins: Vec<ZBin> = (0..n)
+        .map(|i| ZBin {
+            z_lo_m: i as f64 * bin_m,
+            z_hi_m: ((i + 1) as f64 * bin_m).min(height_m),
+            count: 0,
+        })
+        .collect();
+    for b in results.iter().flat_map(|r| &r.balls) {
+        if b.place != Place::Paste {
+            continue;
+        }
+        let i = ((b.position_m[2] / bin_m).floor().max(0.0) as usize).min(n - 1);
+        bins[i].count += 1;
+    }
+    bins
+}
+
+/// One cell of a presence map.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PresenceCell {
+    /// Height of the plane, m above the bottom.
+    pub plane_z_m: f64,
+    /// Cell centre, m from the axis.
+    pub x_m: f64,
+    /// Cell centre, m from the axis.
+    pub y_m: f64,
+    /// Fraction of the repeats in which the point (x, y, Z) is inside a ball.
+    pub probability: f64,
+}
+
+/// Centres of the square grid of cell `cell_m` over the disc of radius `radius_m` (cells whose
+/// centre is inside the disc), symmetric about the axis.
+pub fn grid(radius_m: f64, cell_m: f64) -> Vec<(f64, f64)> {
+    let n = (2.0 * radius_m / cell_m).ceil() as i64;
+    let c = |i: i64| (i as f64 + 0.5 - 0.5 * n as f64) * cell_m;
+    let mut out = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let (x, y) = (c(i), c(j));
+            if x.hypot(y) <= radius_m {
+                out.push((x, y));
+            }
+        }
+    }
+    out
+}
+
+/// Presence probabilities on the planes `planes_z_m` over the grid of the cylinder's disc.
+pub fn presence(
+    results: &[RepeatResult],
+    planes_z_m: &[f64],
+    radius_m: f64,
+    cell_m: f64,
+) -> Vec<PresenceCell> {
+    let cells = grid(radius_m, cell_m);
+    let reps = results.len().max(1) as f64;
+    let mut out = Vec::with_capacity(cells.len() * planes_z_m.len());
+    for &z in planes_z_m {
+        for &(x, y) in &cells {
+            let hits = results
+                .iter()
+                .filter(|r| {
+                    r.balls.iter().any(|b| {
+                        let [bx, by, bz] = b.position_m;
+                        let r = 0.5 * b.diameter_m;
+                        (bx - x).powi(2) + (by - y).powi(2) + (bz - z).powi(2) <= r * r
+                    })
+                })
+                .count();
+            out.push(PresenceCell {
+                plane_z_m: z,
+                x_m: x,
+                y_m: y,
+                probability: hits as f64 / reps,
+            });
+        }
+    }
+    out
+}
+
+fn csv_writer(path: &Path) -> io::Result<csv::Writer<std::fs::File>> {
+    csv::Writer::from_path(path).map_err(io::Error::other)
+}
+
+/// Writes `balls.csv`.
+pub fn write_balls(path: &Path, results: &[RepeatResult]) -> io::Result<()> {
+    let mut w = csv_writer(path)?;
+    w.write_record([
+        "repeat",
+        "seed",
+        "ball",
+        "diameter_m",
+        "x_m",
+        "y_m",
+        "z_m",
+        "speed_m_s",
+        "place",
+    ])
+    .map_err(io::Error::other)?;
+    for r in results {
+        for (i, b) in r.balls.iter().enumerate() {
+            w.write_record([
+                r.index.to_string(),
+                r.seed.to_string(),
+                i.to_string(),
+                num(b.diameter_m),
+                num(b.position_m[0]),
+                num(b.position_m[1]),
+                num(b.position_m[2]),
+                num(b.speed_m_s),
+                b.place.label().to_string(),
+            ])
+            .map_err(io::Error::other)?;
+        }
+    }
+    w.flush()
+}
+
+/// Writes `counts.csv`.
+pub fn write_counts(
+    path: &Path,
+    results: &[RepeatResult],
+    count_time_s: Option<f64>,
+) -> io::Result<()> {
+    let mut w = csv_writer(path)?;
+    w.write_record([
+        "repeat",
+        "seed",
+        "count_time_s",
+        "in_paste_at_count_time",
+        "in_domain_at_count_time",
+        "in_paste",
+        "in_funnel",
+        "falling",
+        "outside",
+        "lost",
+        "z_min_m",
+        "z_max_m",
+        "max_speed_at_opening_m_s",
+        "end_time_s",
+        "steps",
+        "wall_time_s",
+    ])
+    .map_err(io::Error::other)?;
+    for r in results {
+        let c = r.census();
+        let at = r.census_at_count;
+        let z = r.z_range_m();
+        w.write_record([
+            r.index.to_string(),
+            r.seed.to_string(),
+            count_time_s.map(num).unwrap_or_default(),
+            at.map(|c| c.paste.to_string()).unwrap_or_default(),
+            at.map(|c| c.in_domain().to_string()).unwrap_or_default(),
+            c.paste.to_string(),
+            c.funnel.to_string(),
+            c.falling.to_string(),
+            c.outside.to_string(),
+            c.lost.to_string(),
+            z.map(|z| num(z.0)).unwrap_or_default(),
+            z.map(|z| num(z.1)).unwrap_or_default(),
+            num(r.max_speed_at_opening_m_s),
+            num(r.end_time_s),
+            r.steps.to_string(),
+            num(r.wall_time_s),
+        ])
+        .map_err(io::Error::other)?;
+    }
+    w.flush()
+}
+
+/// Writes `timeseries.csv`.
+pub fn write_timeseries(path: &Path, results: &[RepeatResult]) -> io::Result<()> {
+    let mut w = csv_writer(path)?;
+    w.write_record([
+        "repeat",
+        "time_s",
+        "in_paste",
+        "falling",
+        "in_funnel",
+        "outside",
+        "lost",
+        "max_speed_m_s",
+    ])
+    .map_err(io::Error::other)?;
+    for r in results {
+        for s in &r.samples {
+            let c = s.census;
+            w.write_record([
+                r.index.to_string(),
+                num(s.time_s),
+                c.paste.to_string(),
+                c.falling.to_string(),
+                c.funnel.to_string(),
+                c.outside.to_string(),
+                c.lost.to_string(),
+                num(s.max_speed_m_s),
+            ])
+            .map_err(io::Error::other)?;
+        }
+    }
+    w.flush()
+}
+
+/// Writes `z_distribution.csv`.
+pub fn write_z_distribution(path: &Path, bins: &[ZBin], repeats: usize) -> io::Result<()> {
+    let mut w = csv_writer(path)?;
+    w.write_record(["z_lo_m", "z_hi_m", "count", "per_repeat", "fraction"])
+        .map_err(io::Error::other)?;
+    let total: usize = bins.iter().map(|b| b.count).sum();
+    for b in bins {
+        w.write_record([
+            num(b.z_lo_m),
+            num(b.z_hi_m),
+            b.count.to_string(),
+            num(b.count as f64 / repeats.max(1) as f64),
+            num(if total > 0 {
+                b.count as f64 / total as f64
+            } else {
+                0.0
+            }),
+        ])
+        .map_err(io::Error::other)?;
+    }
+    w.flush()
+}
+
+/// Writes `presence.csv`.
+pub fn write_presence(path: &Path, cells: &[PresenceCell]) -> io::Result<()> {
+    let mut w = csv_writer(path)?;
+    w.write_record(["plane_z_m", "x_m", "y_m", "probability"])
+        .map_err(io::Error::other)?;
+    for c in cells {
+        w.write_record([num(c.plane_z_m), num(c.x_m), num(c.y_m), num(c.probability)])
+            .map_err(io::Error::other)?;
+    }
+    w.flush()
+}
+
+fn err(e: impl std::fmt::Display) -> String {
+    e.to_string()
+}
+
+/// The vertical distribution as horizontal bars (balls per repeat against Z, in cm), with
+/// f-EDEM's range 8.5–13.5 cm and the paste surface marked (f-EDEM Fig. 21).
+pub fn write_z_chart(
+    path: &Path,
+    title: &str,
+    bins: &[ZBin],
+    repeats: usize,
+    height_m: f64,
+) -> Result<(), String> {
+    let reps = repeats.max(1) as f64;
+    let x_max = bins
+        .iter()
+        .map(|b| b.count as f64 / reps)
+        .fold(1.0, f64::max)
+        * 1.1;
+    let y_max = height_m * 100.0 * 1.05;
+    let root = SVGBackend::new(path, (700, 800)).into_drawing_area();
+    root.fill(&WHITE).map_err(err)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 20))
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(60)
+        .build_cartesian_2d(0.0..x_max, 0.0..y_max)
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .x_desc("ball centres per repeat")
+        .y_desc("Z above the cylinder bottom (cm)")
+        .draw()
+        .map_err(err)?;
+    chart
+        .draw_series(bins.iter().map(|b| {
+            Rectangle::new(
+                [
+                    (0.0, b.z_lo_m * 100.0),
+                    (b.count as f64 / reps, b.z_hi_m * 100.0),
+                ],
+                BLUE.mix(0.6).filled(),
+            )
+        }))
+        .map_err(err)?
+        .label("simulation")
+        .legend(|(x, y)| Rectangle::new([(x, y - 5), (x + 15, y + 5)], BLUE.mix(0.6).filled()));
+    let red = RED.stroke_width(2);
+    chart
+        .draw_series([8.5, 13.5].map(|z| PathElement::new(vec![(0.0, z), (x_max, z)], red)))
+        .map_err(err)?
+        .label("f-EDEM range 8.5–13.5 cm")
+        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], red));
+    let surface = BLACK.stroke_width(1);
+    chart
+        .draw_series(std::iter::once(PathElement::new(
+            vec![(0.0, height_m * 100.0), (x_max, height_m * 100.0)],
+            surface,
+        )))
+        .map_err(err)?
+        .label("paste surface")
+        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], surface));
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()
+        .map_err(err)?;
+    root.present().map_err(err)?;
+    Ok(())
+}
+
+/// Colour of a probability: white (0) to dark red (1).
+fn heat(p: f64) -> RGBColor {
+    let p = p.clamp(0.0, 1.0);
+    let lerp = |a: f64, b: f64| (a + (b - a) * p).round() as u8;
+    RGBColor(lerp(255.0, 140.0), lerp(255.0, 0.0), lerp(255.0, 0.0))
+}
+
+/// The presence maps, one panel per plane (3 per row), cells coloured by probability, with the
+/// cylinder's circle (f-EDEM Fig. 22).
+pub fn write_presence_chart(
+    path: &Path,
+    title: &str,
+    cells: &[PresenceCell],
+    planes_z_m: &[f64],
+    radius_m: f64,
+    cell_m: f64,
+) -> Result<(), String> {
+    let cols = planes_z_m.len().clamp(1, 3);
+    let rows = planes_z_m.len().div_ceil(3).max(1);
+    let root =
+        SVGBackend::new(path, (320 * cols as u32, 340 * rows as u32 + 60)).into_drawing_area();
+    root.fill(&WHITE).map_err(err)?;
+    let (top, body) = root.split_vertically(60);
+    top.titled(title, ("sans-serif", 18)).map_err(err)?;
+    top.draw(&Text::new(
+        "probability: white 0 → dark red 1 (fraction of repeats in which the point lies inside a ball)",
+        (10, 40),
+        ("sans-serif", 12),
+    ))
+    .map_err(err)?;
+    let panels = body.split_evenly((rows, cols));
+    let r_mm = radius_m * 1e3;
+    let h = 0.5 * cell_m * 1e3;
+    for (area, &z) in panels.iter().zip(planes_z_m) {
+        let mut chart = ChartBuilder::on(area)
+            .caption(format!("Z = {:.1} cm", z * 100.0), ("sans-serif", 16))
+            .margin(8)
+            .x_label_area_size(25)
+            .y_label_area_size(35)
+            .build_cartesian_2d(-r_mm * 1.05..r_mm * 1.05, -r_mm * 1.05..r_mm * 1.05)
+            .map_err(err)?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_labels(5)
+            .y_labels(5)
+            .draw()
+            .map_err(err)?;
+        chart
+            .draw_series(
+                cells
+                    .iter()
+                    .filter(|c| c.plane_z_m == z && c.probability > 0.0)
+                    .map(|c| {
+                        let (x, y) = (c.x_m * 1e3, c.y_m * 1e3);
+                        Rectangle::new(
+                            [(x - h, y - h), (x + h, y + h)],
+                            heat(c.probability).filled(),
+                        )
+                    }),
+            )
+            .map_err(err)?;
+        let circle: Vec<(f64, f64)> = (0..=120)
+            .map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / 120.0;
+                (r_mm * a.cos(), r_mm * a.sin())
+            })
+            .collect();
+        chart
+            .draw_series(std::iter::once(PathElement::new(circle, BLACK)))
+            .map_err(err)?;
+    }
+    root.present().map_err(err)?;
+    Ok(())
+}
+
+/// Writes every output file of a funnel pour into the staging folder.
+pub fn write_all(
+    p: &Prepared,
+    results: &[RepeatResult],
+    stage: &crate::output::StagedDir,
+) -> Result<(), RunError> {
+    let s = &p.scenario;
+    let f = s
+        .funnel
+        .as_ref()
+        .expect("validated: funnel_pour has [funnel]");
+    let geo = Geometry::of(s);
+    let io = |e: io::Error| RunError::Io(p.path.clone(), e);
+    let reps = results.len();
+    write_balls(&stage.path("balls.csv"), results).map_err(io)?;
+    write_counts(&stage.path("counts.csv"), results, f.count_time_s).map_err(io)?;
+    write_timeseries(&stage.path("timeseries.csv"), results).map_err(io)?;
+    let bins = z_histogram(results, f.z_bin_m, geo.paste_height_m);
+    write_z_distribution(&stage.path("z_distribution.csv"), &bins, reps).map_err(io)?;
+    write_z_chart(
+        &stage.path("z_distribution.svg"),
+        &format!("{}: ball centres in the paste ({reps} repeat(s))", s.name),
+        &bins,
+        reps,
+        geo.paste_height_m,
+    )
+    .map_err(RunError::Other)?;
+    if !f.planes_z_m.is_empty() {
+        let cells = presence(results, &f.planes_z_m, geo.cylinder_radius_m, f.grid_cell_m);
+        write_presence(&stage.path("presence.csv"), &cells).map_err(io)?;
+        write_presence_chart(
+            &stage.path("presence.svg"),
+            &format!(
+                "{}: presence probability on horizontal planes ({reps} repeat(s))",
+                s.name
+            ),
+            &cells,
+            &f.planes_z_m,
+            geo.cylinder_radius_m,
+            f.grid_cell_m,
+        )
+        .map_err(RunError::Other)?;
+    }
+    Ok(())
+}
