@@ -29,7 +29,25 @@
 //!   contact solver seeing the real forces and the drag as extra inertia. The spin gets the same
 //!   treatment with the rotational Stokes drag `π η d³` (inertia `I + π η d³ dt`). At rest the
 //!   contact force equals the net weight at any dt. `F₀` is clamped so that it can at most stop the
-//!   body within the step, and dropped at rest, where its direction is undefined.
+//!   body within the step.
+//! - **Yield stress of a body in contact** (laws with a static resistance `F_s`, the Bingham law:
+//!   `F_s = (π²/4 + 3π) d² τ_y`): the drag is set-valued at rest (any force up to `F_s`), which no
+//!   explicit force can represent. When the yield stress can stop the body within the step
+//!   (`m |v| ≤ F_s dt`, rest included), `F₀` is not applied; instead the body gets a **hold**: a
+//!   Rapier joint to a fixed ground body with a rigid velocity motor (target 0, force limit `F_s`)
+//!   on each linear axis, anchored at the centre. The contact solver then treats the yield stress
+//!   like Coulomb friction: a body stays at rest (creep 0 to round-off, `tests/funnel.rs`) unless
+//!   the weight and contacts push it harder than `F_s`, and an impact passes on its whole impulse
+//!   less `F_s dt` (a struck ball leaves at (1 + e)/2 of the striker's speed, as without yield
+//!   stress). Holds are inserted and removed as bodies stop and start ([`dim3::World::set_yield_hold`]
+//!   turns them off).
+//! - **Rolling resistance** ([`dim3::World::set_rolling_resistance`], μ_r): a body in contact feels
+//!   the torque `−μ_r r Σ|F_n| ω̂` (normal forces of the previous step), clamped so that it at most
+//!   stops the spin in the step; a sphere rolling on a plate decelerates at (5/7) μ_r g.
+//! - **Free surface** ([`dim3::World::set_free_surface`]): the fluid may be restricted to the region
+//!   below a height (and within a cylinder); each body's drag and buoyancy are scaled by its
+//!   immersed fractions at the start of the step (full or partial submergence), and a body with no
+//!   fluid at all moves ballistically.
 //!   [`ContactDrag::Damping`] (Rapier's `linear_damping` = k/m) is kept for comparison: it gets
 //!   velocities and resting forces right, but Rapier damps only after integrating positions, so a
 //!   loaded grain moves ≈ (1 + k dt/m) too far per step: 20 grains of 2.5 µm (τ = 0.87 µs) piled with
@@ -58,8 +76,12 @@
 //!   top of the contact response.
 //! - The drag linearisation is explicit in the speed at which it is taken (the start of the step):
 //!   exact for Stokes drag, first order for non-linear laws.
-//! - The yield-stress (static) part of a Bingham drag is not applied to a body at rest in contact
-//!   (its direction is undefined there); the contact holds the body instead.
+//! - The yield-stress hold acts per axis (x, y, z): the force it can exert is the cube
+//!   `|F_i| ≤ F_s`, not the ball `|F| ≤ F_s`; a push along a diagonal can reach √2 F_s (√3 F_s) before
+//!   the body moves. The hold's switch uses the speed at the start of the step.
+//! - Rolling resistance uses each body's own spin (EDEM's type A), not the relative rolling of the
+//!   pair, and in 2D Rapier's disc inertia.
+//! - With a free surface, a body enters the fluid up to one step late (no event location).
 //! - Fluid torque is the rotational Stokes drag only; no hindered settling, lubrication or
 //!   fluid-mediated interaction between grains beyond what the drag law itself contains.
 //! - `World::contact_force_n` sums the normal contact impulses only (friction impulses are not

@@ -499,8 +499,7 @@ impl World {
                 unboost(rb, body);
                 holds.push((i, 0.0));
                 let w = g * m + body_force;
-                let target = if drag.slope_n_s_m(0.0) == 0.0 && drag.static_resistance_n() == 0.0
-                {
+                let target = if drag.slope_n_s_m(0.0) == 0.0 && drag.static_resistance_n() == 0.0 {
                     // No fluid (above a free surface): ballistic.
                     let a = w / m;
                     dynamics::Step {

@@ -4,8 +4,10 @@
 //!   y_m, z_m, speed_m_s, place`), z above the cylinder bottom, x and y from its axis;
 //! - `counts.csv`: per repeat, where the balls are at `funnel.count_time_s` and at the end, the
 //!   Z range in the paste, steps and wall time;
-//! - `timeseries.csv`: per repeat, the census of the balls and the largest speed every
-//!   `record.every_s` (default 0.01 s; negative times: settling in the closed funnel);
+//! - `timeseries.csv`: per repeat, the census of the balls (`in_paste, falling, in_funnel,
+//!   outside, away, lost`, see [`crate::scenes::funnel`]) and the largest speed of the balls in
+//!   play (paste, falling, funnel) every `record.every_s` (default 0.01 s; negative times: the
+//!   balls settling in the closed funnel);
 //! - `z_distribution.csv` + `.svg`: ball centres in the paste per Z bin (`funnel.z_bin_m`), summed
 //!   over the repeats and per repeat (f-EDEM Fig. 21);
 //! - `presence.csv` + `.svg`: on each horizontal plane `funnel.planes_z_m`, the probability over
@@ -170,6 +172,7 @@ pub fn write_counts(
         "in_funnel",
         "falling",
         "outside",
+        "away",
         "lost",
         "z_min_m",
         "z_max_m",
@@ -193,6 +196,7 @@ pub fn write_counts(
             c.funnel.to_string(),
             c.falling.to_string(),
             c.outside.to_string(),
+            c.away.to_string(),
             c.lost.to_string(),
             z.map(|z| num(z.0)).unwrap_or_default(),
             z.map(|z| num(z.1)).unwrap_or_default(),
@@ -216,6 +220,7 @@ pub fn write_timeseries(path: &Path, results: &[RepeatResult]) -> io::Result<()>
         "falling",
         "in_funnel",
         "outside",
+        "away",
         "lost",
         "max_speed_m_s",
     ])
@@ -230,6 +235,7 @@ pub fn write_timeseries(path: &Path, results: &[RepeatResult]) -> io::Result<()>
                 c.falling.to_string(),
                 c.funnel.to_string(),
                 c.outside.to_string(),
+                c.away.to_string(),
                 c.lost.to_string(),
                 num(s.max_speed_m_s),
             ])

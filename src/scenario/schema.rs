@@ -250,6 +250,10 @@ pub struct FunnelSpec {
     /// plug closing the outlet before it is removed at t = 0, s. Default 0.3.
     #[serde(default = "default_fill_time")]
     pub fill_time_s: f64,
+    /// Height of the cylinder wall above the paste surface, m. Default 0: the mould is filled to
+    /// the brim (f-EDEM: paste 150 mm deep in a cylinder 150 mm high).
+    #[serde(default)]
+    pub wall_above_surface_m: f64,
     /// Wall thickness of the funnel and the cylinder (boxes around the circles), m. Default 4e-3.
     #[serde(default = "default_wall_thickness")]
     pub wall_thickness_m: f64,

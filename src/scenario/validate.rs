@@ -396,6 +396,80 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
                     "kind = \"funnel_pour\" is 3D-only (a funnel over a cylinder): allowed 3",
                 ));
             }
+            let f = s.funnel.as_ref().expect("checked above");
+            let ct = s.container.as_ref().expect("checked above");
+            if !(1..=100_000).contains(&f.count) {
+                return Err(c.err(
+                    "funnel.count",
+                    format!("{} is out of range: allowed 1 ≤ count ≤ 100000", f.count),
+                ));
+            }
+            c.in_open_closed("funnel.top_diameter_m", f.top_diameter_m, 0.0, 10.0, "m")?;
+            let d_max = s.spheres.iter().map(|sp| sp.diameter_m).fold(0.0, f64::max);
+            c.in_open_closed(
+                "funnel.outlet_diameter_m",
+                f.outlet_diameter_m,
+                d_max,
+                f.top_diameter_m,
+                "m (wider than the largest ball, at most top_diameter_m)",
+            )?;
+            c.in_open_closed("funnel.cone_height_m", f.cone_height_m, 0.0, 10.0, "m")?;
+            c.in_closed(
+                "funnel.outlet_above_surface_m",
+                f.outlet_above_surface_m,
+                0.0,
+                100.0,
+                "m",
+            )?;
+            c.in_closed("funnel.column_height_m", f.column_height_m, 0.0, 10.0, "m")?;
+            c.in_closed("funnel.fill_time_s", f.fill_time_s, 0.0, 1e3, "s")?;
+            c.in_closed(
+                "funnel.wall_above_surface_m",
+                f.wall_above_surface_m,
+                0.0,
+                10.0,
+                "m",
+            )?;
+            c.in_open_closed("funnel.wall_thickness_m", f.wall_thickness_m, 0.0, 1.0, "m")?;
+            if !(8..=1024).contains(&f.facets) {
+                return Err(c.err(
+                    "funnel.facets",
+                    format!("{} is out of range: allowed 8 ≤ facets ≤ 1024", f.facets),
+                ));
+            }
+            c.in_open_closed("funnel.rest_speed_m_s", f.rest_speed_m_s, 0.0, 1e3, "m/s")?;
+            c.in_open_closed(
+                "funnel.z_bin_m",
+                f.z_bin_m,
+                0.0,
+                ct.height_m,
+                "m (at most container.height_m)",
+            )?;
+            c.in_open_closed(
+                "funnel.grid_cell_m",
+                f.grid_cell_m,
+                0.0,
+                ct.diameter_m.unwrap_or(f64::INFINITY),
+                "m (at most container.diameter_m)",
+            )?;
+            if let Some(tc) = f.count_time_s {
+                c.in_open_closed(
+                    "funnel.count_time_s",
+                    tc,
+                    0.0,
+                    s.time.end_s,
+                    "s (within time.end_s)",
+                )?;
+            }
+            for (i, z) in f.planes_z_m.iter().enumerate() {
+                c.in_closed(
+                    &format!("funnel.planes_z_m[{i}]"),
+                    *z,
+                    0.0,
+                    ct.height_m,
+                    "m (within the paste, above the cylinder bottom)",
+                )?;
+            }
         }
         Kind::Sedimentation => {
             need(

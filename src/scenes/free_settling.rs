@@ -151,6 +151,18 @@ pub fn immersion(depth_m: f64, d_m: f64, submergence: Submergence) -> (f64, f64)
     }
 }
 
+/// Depth of a sphere's centre below the free surface at release, m: above the surface by the
+/// fall height plus a radius for drops; `release.depth_m`, or one radius ("just submerged") when
+/// that is 0, otherwise.
+pub fn release_depth_m(scenario: &Scenario, case: &SphereCase) -> f64 {
+    let d = case.spec.diameter_m;
+    match case.fall_height_m {
+        Some(h) => -(h + 0.5 * d),
+        None if scenario.release.depth_m > 0.0 => scenario.release.depth_m,
+        None => 0.5 * d,
+    }
+}
+
 /// Stokes solution for a sphere started at speed v₀ (downward): returns (v(t), distance(t)).
 fn stokes_analytic(vt: f64, tau: f64, v0: f64, t: f64) -> (f64, f64) {
     let e = (-t / tau).exp();
@@ -214,11 +226,7 @@ pub fn run_sphere_with<const D: usize>(
         _ => None,
     };
 
-    let depth0 = match case.fall_height_m {
-        Some(h) => -(h + 0.5 * d),
-        None if scenario.release.depth_m > 0.0 => scenario.release.depth_m,
-        None => 0.5 * d,
-    };
+    let depth0 = release_depth_m(scenario, case);
     // Spheres released submerged stay submerged: constant forces. Drops cross the surface.
     let crossing = case.fall_height_m.is_some();
     let submergence = scenario.fluid.submergence;
@@ -517,11 +525,7 @@ macro_rules! rapier_sphere {
             let d = case.spec.diameter_m;
             let drag = sphere_drag(scenario, d);
             let g = scenario.gravity_m_s2;
-            let depth0 = if scenario.release.depth_m > 0.0 {
-                scenario.release.depth_m
-            } else {
-                0.5 * d
-            };
+            let depth0 = release_depth_m(scenario, case);
             let v_max = drag
                 .balance_speed(
                     (sphere_mass_kg(d, case.spec.density_kg_m3)

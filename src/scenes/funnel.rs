@@ -5,8 +5,9 @@
 //!
 //! # Scene (3D, z up, origin at the centre of the cylinder bottom)
 //! - The table and the cylinder bottom: one half-space z ≥ 0 (nothing can pass through it).
-//! - The cylinder wall, inner radius R = `container.diameter_m`/2, from z = 0 to the paste surface
-//!   z = H = `container.height_m` (f-EDEM's mould is as high as its paste): `funnel.facets` boxes
+//! - The cylinder wall, inner radius R = `container.diameter_m`/2, from z = 0 to
+//!   `funnel.wall_above_surface_m` (default 0) above the paste surface z = H =
+//!   `container.height_m` (f-EDEM's mould is as high as its paste): `funnel.facets` boxes
 //!   of thickness `funnel.wall_thickness_m` whose inner faces make a regular polygon circumscribing
 //!   the circle of radius R.
 //! - The funnel, coaxial, its outlet `funnel.outlet_above_surface_m` above the paste surface: a
@@ -35,8 +36,11 @@
 //! `paste`: within the cylinder radius, its lowest point below the paste surface (z − r ≤ H: the
 //! fluid forces act on it with full submergence). `funnel`: above the outlet minus one radius,
 //! within the funnel's top radius. `falling`: between the two, within the funnel's top radius.
-//! `outside`: anywhere else in the domain (fallen beside the cylinder). `lost`: out of the domain
-//! (the box around the scene, 0.1 m beyond it) or non-finite: through a wall.
+//! `outside`: anywhere else in the domain (escaped over the rim, beside the cylinder). `away`: out
+//! of the domain (the cylinder about the axis 0.1 m beyond the scene, z from −d to 0.1 m above
+//! the column) after escaping over the rim. `lost`: passed through a wall, the funnel or the
+//! floor (its centre crossed the cylinder's radius more than d/4 below the rim, or got beyond a
+//! funnel wall's outer face, or below z = 0), or non-finite. Checked every step.
 
 use crate::dynamics::Unstable;
 use crate::engine::{dim3, EngineSettings};
@@ -64,8 +68,10 @@ pub const DEFAULT_RECORD_EVERY_S: f64 = 0.01;
 pub struct Geometry {
     /// Inner radius of the cylinder R, m.
     pub cylinder_radius_m: f64,
-    /// Height of the paste surface above the bottom H, m (also the height of the wall).
+    /// Height of the paste surface above the bottom H, m.
     pub paste_height_m: f64,
+    /// Height of the top of the cylinder wall above the bottom, m.
+    pub wall_top_z_m: f64,
     /// Height of the outlet above the bottom, m.
     pub outlet_z_m: f64,
     /// Inner radius of the outlet, m.
@@ -98,6 +104,7 @@ impl Geometry {
         Self {
             cylinder_radius_m: 0.5 * c.diameter_m.expect("validated: cylinder"),
             paste_height_m: h,
+            wall_top_z_m: h + f.wall_above_surface_m,
             outlet_z_m: outlet_z,
             outlet_radius_m: r_out,
             top_radius_m: r_top,
@@ -126,7 +133,22 @@ impl Geometry {
         self.cylinder_radius_m.max(self.top_radius_m) + self.wall_thickness_m + DOMAIN_MARGIN_M
     }
 
-    /// Where a ball of diameter `d_m` centred at `x` is.
+    /// True if a ball of diameter `d_m` moving from `from` to `to` passed through a wall: its
+    /// centre crossed the cylinder's radius more than d/4 below the rim, or is beyond the outer
+    /// face of a funnel wall, or below the floor.
+    pub fn breached(&self, from: &[f64; 3], to: &[f64; 3], d_m: f64) -> bool {
+        let (r0, r1) = (from[0].hypot(from[1]), to[0].hypot(to[1]));
+        let r = self.cylinder_radius_m;
+        let below_rim = to[2].max(from[2]) < self.wall_top_z_m - 0.25 * d_m;
+        let crossed = (r0 <= r) != (r1 <= r);
+        let beyond_funnel = self
+            .funnel_radius_m(to[2])
+            .is_some_and(|rf| r1 > rf + self.wall_thickness_m + 0.5 * d_m);
+        (crossed && below_rim) || beyond_funnel || to[2] < 0.0
+    }
+
+    /// Where a ball of diameter `d_m` centred at `x` is (without the history: see
+    /// [`Geometry::breached`] for `lost`).
     pub fn place(&self, x: &[f64; 3], d_m: f64) -> Place {
         if !x.iter().all(|c| c.is_finite()) {
             return Place::Lost;
@@ -134,7 +156,7 @@ impl Geometry {
         let rho = x[0].hypot(x[1]);
         let z = x[2];
         if rho > self.domain_radius_m() || z < -d_m || z > self.column_top_z_m + DOMAIN_MARGIN_M {
-            Place::Lost
+            Place::Away
         } else if rho <= self.cylinder_radius_m && z - 0.5 * d_m <= self.paste_height_m {
             Place::Paste
         } else if rho <= self.top_radius_m + self.wall_thickness_m
@@ -158,9 +180,11 @@ pub enum Place {
     Falling,
     /// Still in the funnel.
     Funnel,
-    /// Beside the cylinder, in the domain.
+    /// Beside the cylinder, in the domain (escaped over the rim).
     Outside,
-    /// Out of the domain or non-finite.
+    /// Out of the domain, after escaping over the rim.
+    Away,
+    /// Through a wall, the funnel or the floor, or non-finite.
     Lost,
 }
 
@@ -172,6 +196,7 @@ impl Place {
             Self::Falling => "falling",
             Self::Funnel => "funnel",
             Self::Outside => "outside",
+            Self::Away => "away",
             Self::Lost => "lost",
         }
     }
@@ -188,7 +213,9 @@ pub struct Census {
     pub funnel: usize,
     /// Beside the cylinder.
     pub outside: usize,
-    /// Out of the domain.
+    /// Out of the domain (over the rim).
+    pub away: usize,
+    /// Through a wall or non-finite.
     pub lost: usize,
 }
 
@@ -202,13 +229,14 @@ impl Census {
                 Place::Falling => c.falling += 1,
                 Place::Funnel => c.funnel += 1,
                 Place::Outside => c.outside += 1,
+                Place::Away => c.away += 1,
                 Place::Lost => c.lost += 1,
             }
         }
         c
     }
 
-    /// Balls in the domain (all but the lost ones).
+    /// Balls in the domain (all but the away and lost ones).
     pub fn in_domain(&self) -> usize {
         self.paste + self.falling + self.funnel + self.outside
     }
@@ -428,7 +456,7 @@ pub fn run_repeat(p: &Prepared, index: usize, seed: u64) -> Result<RepeatResult,
     let mut world = dim3::World::new(settings, g);
     world.add_floor(0.0);
     let (e, mu) = (ct.restitution, ct.friction);
-    let mut faces = ring(&geo, geo.cylinder_radius_m, 0.0, geo.paste_height_m, e, mu);
+    let mut faces = ring(&geo, geo.cylinder_radius_m, 0.0, geo.wall_top_z_m, e, mu);
     faces.extend(cone(&geo, e, mu));
     if geo.column_top_z_m > geo.cone_top_z_m {
         faces.extend(ring(
@@ -477,15 +505,30 @@ pub fn run_repeat(p: &Prepared, index: usize, seed: u64) -> Result<RepeatResult,
     let count_step = f.count_time_s.map(|tc| n_fill + (tc / dt).round() as u64);
     let every = ((s.record.every_s.unwrap_or(DEFAULT_RECORD_EVERY_S) / dt).round() as u64).max(1);
     let rest_steps = (REST_WINDOW_S / dt).round() as u64;
-    let observe = |world: &dim3::World| -> (Vec<Place>, f64) {
+    let position = |world: &dim3::World, id| -> [f64; 3] {
+        let x = world.position_m(id);
+        [x[0], x[1], x[2]]
+    };
+    let mut prev: Vec<[f64; 3]> = ids.iter().map(|&id| position(&world, id)).collect();
+    let mut breached = vec![false; n];
+    // Places of the balls and the largest speed of those still in play (in the paste, falling or
+    // in the funnel: balls that escaped over the rim do not hold the run).
+    let observe = |world: &dim3::World, breached: &[bool]| -> (Vec<Place>, f64) {
         let mut vmax: f64 = 0.0;
         let places = ids
             .iter()
             .zip(&diameters)
-            .map(|(&id, &d)| {
-                vmax = vmax.max(world.velocity_m_s(id).norm());
-                let x = world.position_m(id);
-                geo.place(&[x[0], x[1], x[2]], d)
+            .zip(breached)
+            .map(|((&id, &d), &lost)| {
+                let place = if lost {
+                    Place::Lost
+                } else {
+                    geo.place(&position(world, id), d)
+                };
+                if matches!(place, Place::Paste | Place::Falling | Place::Funnel) {
+                    vmax = vmax.max(world.velocity_m_s(id).norm());
+                }
+                place
             })
             .collect();
         (places, vmax)
@@ -503,18 +546,27 @@ pub fn run_repeat(p: &Prepared, index: usize, seed: u64) -> Result<RepeatResult,
     };
     while k < n_fill + n_run {
         if k == n_fill {
-            max_speed_at_opening = observe(&world).1;
+            max_speed_at_opening = observe(&world, &breached).1;
             world.remove_fixed_collider(plug);
         }
         world.step(dt, s.time.integrator).map_err(tag)?;
         k += 1;
-        let sample_now = k % every == 0;
+        for ((&id, &d), (from, lost)) in ids
+            .iter()
+            .zip(&diameters)
+            .zip(prev.iter_mut().zip(breached.iter_mut()))
+        {
+            let to = position(&world, id);
+            *lost = *lost || geo.breached(from, &to, d) || !to.iter().all(|c| c.is_finite());
+            *from = to;
+        }
+        let sample_now = k.is_multiple_of(every);
         let count_now = count_step == Some(k);
         let after_count = count_step.is_none_or(|c| k >= c) && k > n_fill;
         if !(sample_now || count_now || after_count) {
             continue;
         }
-        let (places, vmax) = observe(&world);
+        let (places, vmax) = observe(&world, &breached);
         let census = Census::of(places.iter().copied());
         if sample_now {
             samples.push(Sample {
@@ -537,18 +589,16 @@ pub fn run_repeat(p: &Prepared, index: usize, seed: u64) -> Result<RepeatResult,
             }
         }
     }
+    let places = observe(&world, &breached).0;
     let balls = ids
         .iter()
         .zip(&diameters)
-        .map(|(&id, &d)| {
-            let x = world.position_m(id);
-            let pos = [x[0], x[1], x[2]];
-            Ball {
-                diameter_m: d,
-                position_m: pos,
-                speed_m_s: world.velocity_m_s(id).norm(),
-                place: geo.place(&pos, d),
-            }
+        .zip(places)
+        .map(|((&id, &d), place)| Ball {
+            diameter_m: d,
+            position_m: position(&world, id),
+            speed_m_s: world.velocity_m_s(id).norm(),
+            place,
         })
         .collect();
     Ok(RepeatResult {
@@ -630,12 +680,14 @@ pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, RunError> {
     let finals: Vec<Census> = results.iter().map(|r| r.census()).collect();
     let sum = |f: &dyn Fn(&Census) -> usize| finals.iter().map(f).sum::<usize>();
     lines.push(format!(
-        "at the end: {} of {} balls in the paste; {} still in the funnel, {} falling, {} beside the cylinder, {} lost (through a wall or out of the domain)",
+        "at the end: {} of {} balls in the paste; {} still in the funnel, {} falling, {} escaped over the rim ({} beside the cylinder, {} out of the domain), {} lost through a wall",
         sum(&|c| c.paste),
         n * reps,
         sum(&|c| c.funnel),
         sum(&|c| c.falling),
+        sum(&|c| c.outside + c.away),
         sum(&|c| c.outside),
+        sum(&|c| c.away),
         sum(&|c| c.lost)
     ));
     if let Some((lo, hi)) = z_range(results.iter().flat_map(|r| r.balls.iter())) {
