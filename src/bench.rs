@@ -163,7 +163,65 @@ pub fn run(root: &Path, quick: bool) -> Result<Vec<Figure>, String> {
         "-",
     ));
 
-    // 4. The full Valentik sweep: 6 scenarios × 10 dt (1e-5 … 3e-1 s) × 3 integrators.
+    // 4. Paste drops: 18 balls, dt = 1e-3 s (the recommended step) against f-EDEM's 5e-6 s.
+    let paste = prepare(&root.join("scenarios/paste_single_ball.toml"), None, &[])
+        .map_err(|e| e.to_string())?;
+    for dt in [1e-3, 5e-6] {
+        let t0 = Instant::now();
+        let opts = RunOptions {
+            dt_s: dt,
+            integrator: Integrator::Exponential,
+            timeseries: false,
+        };
+        let r =
+            free_settling::run(&paste.scenario, &paste.spheres, opts).map_err(|e| e.to_string())?;
+        let steps: u64 = r.iter().map(|x| x.steps).sum();
+        out.push(fig(
+            "paste_18_drops",
+            &format!("wall_time_dt_{dt:e}_s"),
+            t0.elapsed().as_secs_f64(),
+            "s",
+        ));
+        out.push(fig(
+            "paste_18_drops",
+            &format!("steps_dt_{dt:e}"),
+            steps as f64,
+            "steps",
+        ));
+    }
+
+    // 5. Sedimentation cylinder, sample 5, 1440 min.
+    let n = if quick { "20000" } else { "100000" };
+    for physics in ["ideal-stokes", "full"] {
+        if quick && physics == "full" {
+            continue;
+        }
+        let ov = [
+            format!("physics={physics}"),
+            format!("sample.particles={n}"),
+            "sample.snapshot_times_s=[]".to_string(),
+        ];
+        let p = prepare(
+            &root.join("scenarios/sedimentation_sample5.toml"),
+            None,
+            &ov,
+        )
+        .map_err(|e| e.to_string())?;
+        let su = crate::scenes::sedimentation::setup(&p.scenario, &p.path)?;
+        let t0 = Instant::now();
+        let st = crate::scenes::sedimentation::simulate(&p.scenario, &su, |_| {}, |_| {});
+        let name = format!("sedimentation_sample5_{physics}");
+        out.push(fig(&name, "grains", su.grains.len() as f64, "grains"));
+        out.push(fig(
+            &name,
+            "wall_time_1440min_s",
+            t0.elapsed().as_secs_f64(),
+            "s",
+        ));
+        out.push(fig(&name, "steps", st.steps as f64, "steps"));
+    }
+
+    // 6. The full Valentik sweep: 6 scenarios × 10 dt (1e-5 … 3e-1 s) × 3 integrators.
     if !quick {
         let t0 = Instant::now();
         let mut cases = 0;

@@ -141,6 +141,11 @@ fn quantities(r: &SphereResult) -> Vec<(String, f64, f64)> {
 
 /// Runs the cases (in parallel) and returns their rows, without `error_vs_finest`.
 pub fn run_cases(p: &Prepared, cases: &[Case]) -> Vec<Row> {
+    run_cases_with(p, cases, &|| {})
+}
+
+/// As [`run_cases`], calling `done` after each case (for a progress bar).
+pub fn run_cases_with(p: &Prepared, cases: &[Case], done: &(dyn Fn() + Sync)) -> Vec<Row> {
     use rayon::prelude::*;
     // Names of quantities and bodies for unstable rows, from the scenario.
     let probe_names: Vec<String> = p
@@ -165,6 +170,7 @@ pub fn run_cases(p: &Prepared, cases: &[Case]) -> Vec<Row> {
             let t0 = Instant::now();
             let res = free_settling::run(&p.scenario, &p.spheres, opts);
             let wall = t0.elapsed().as_secs_f64();
+            done();
             let base = |status: &str, reason: String| Row {
                 integrator: c.integrator.name().to_string(),
                 dt_s: c.dt_s,

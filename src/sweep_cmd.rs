@@ -146,11 +146,16 @@ pub fn sweep(args: &SweepArgs) -> Result<(), RunError> {
     let shard = args.shard.as_deref().map(parse_shard).transpose()?;
     for p in &prepared {
         let cases = sweep::grid(&integrators(&args.integrators, p)?, &dts(args, p)?);
+        let bar = progress_bar(cases.len(), &p.scenario.name, args.quiet);
+        let tick = || bar.inc(1);
         let name = format!("{}_sweep", p.scenario.name);
         let io = |e: std::io::Error| RunError::Io(p.path.clone(), e);
         match shard {
             Some((i, n)) => {
-                let rows = sweep::run_cases(p, &sweep::shard(&cases, i, n));
+                let part = sweep::shard(&cases, i, n);
+                bar.set_length(part.len() as u64);
+                let rows = sweep::run_cases_with(p, &part, &tick);
+                bar.finish_and_clear();
                 let dir = args.out.join(&name);
                 std::fs::create_dir_all(&dir).map_err(io)?;
                 let file = dir.join(format!("sweep_part_{i}_of_{n}.csv"));
@@ -167,7 +172,8 @@ pub fn sweep(args: &SweepArgs) -> Result<(), RunError> {
                 }
             }
             None => {
-                let mut rows = sweep::run_cases(p, &cases);
+                let mut rows = sweep::run_cases_with(p, &cases, &tick);
+                bar.finish_and_clear();
                 sweep::finish(&mut rows);
                 let stage = StagedDir::new(&args.out, &name).map_err(io)?;
                 write_results(
@@ -186,6 +192,25 @@ pub fn sweep(args: &SweepArgs) -> Result<(), RunError> {
         }
     }
     Ok(())
+}
+
+/// A progress bar on stderr (cases done, rate, ETA), hidden with `--quiet` or when stderr is not
+/// a terminal, so that piped output and logs stay clean.
+fn progress_bar(len: usize, name: &str, quiet: bool) -> indicatif::ProgressBar {
+    use std::io::IsTerminal;
+    if quiet || !std::io::stderr().is_terminal() {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new(len as u64);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template(
+            "{prefix} [{bar:30}] {pos}/{len} cases, {per_sec}, ETA {eta}",
+        )
+        .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar())
+        .progress_chars("=> "),
+    );
+    bar.set_prefix(name.to_string());
+    bar
 }
 
 fn tol(args: &SweepArgs, p: Option<&Prepared>) -> f64 {
