@@ -229,16 +229,19 @@ pub fn run_cases_with(p: &Prepared, cases: &[Case], done: &(dyn Fn() + Sync)) ->
         .collect()
 }
 
+/// Position of an integrator name in [`Integrator::ALL`] (unknown names last): the row order.
+fn integrator_rank(name: &str) -> usize {
+    Integrator::ALL
+        .iter()
+        .position(|i| i.name() == name)
+        .unwrap_or(Integrator::ALL.len())
+}
+
 /// Fills `error_vs_finest`: for each (integrator, body, quantity), relative to the value at the
 /// finest dt whose case is stable. Rows are sorted by integrator order, dt descending, body,
 /// quantity, so that merged shards equal an unsharded sweep row for row.
 pub fn finish(rows: &mut [Row]) {
-    let order = |name: &str| {
-        Integrator::ALL
-            .iter()
-            .position(|i| i.name() == name)
-            .unwrap_or(9)
-    };
+    let order = integrator_rank;
     rows.sort_by(|a, b| {
         order(&a.integrator)
             .cmp(&order(&b.integrator))
@@ -362,12 +365,7 @@ pub fn summarise(rows: &[Row]) -> Vec<CaseSummary> {
         }
     }
     let mut v: Vec<CaseSummary> = map.into_values().collect();
-    let order = |name: &str| {
-        Integrator::ALL
-            .iter()
-            .position(|i| i.name() == name)
-            .unwrap_or(9)
-    };
+    let order = integrator_rank;
     v.sort_by(|a, b| {
         order(&a.integrator)
             .cmp(&order(&b.integrator))

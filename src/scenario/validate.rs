@@ -241,18 +241,7 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
                 "contacts",
                 "a [contacts] table (restitution, friction)",
             )?;
-            if s.dimension != 3 {
-                return Err(c.err(
-                    "dimension",
-                    "kind = \"restitution_drop\" is 3D-only (Rapier 3D contacts): allowed 3",
-                ));
-            }
-            if s.engine == EngineChoice::Free {
-                return Err(c.err(
-                    "engine",
-                    "kind = \"restitution_drop\" needs contacts: allowed `auto`, `rapier`",
-                ));
-            }
+            contact_scene_3d(&c, s)?;
             if s.spheres.len() != 1 || s.spheres_csv.is_some() {
                 return Err(c.err(
                     "spheres",
@@ -307,18 +296,7 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
                 "contacts",
                 "a [contacts] table (restitution, friction)",
             )?;
-            if s.dimension != 3 {
-                return Err(c.err(
-                    "dimension",
-                    "kind = \"tilt_friction\" is 3D-only (Rapier 3D contacts): allowed 3",
-                ));
-            }
-            if s.engine == EngineChoice::Free {
-                return Err(c.err(
-                    "engine",
-                    "kind = \"tilt_friction\" needs contacts: allowed `auto`, `rapier`",
-                ));
-            }
+            contact_scene_3d(&c, s)?;
             let t = s.tilt.as_ref().expect("checked above");
             if t.block_size_m.len() != 3 {
                 return Err(c.err(
@@ -685,6 +663,24 @@ fn check_sphere_inner(
                 ),
             ));
         }
+    }
+    Ok(())
+}
+
+/// Kinds with contacts run in a Rapier 3D world: dimension 3, engine `auto` or `rapier`.
+fn contact_scene_3d(c: &Check, s: &Scenario) -> Result<(), ScenarioError> {
+    let kind = kind_name(s.kind);
+    if s.dimension != 3 {
+        return Err(c.err(
+            "dimension",
+            format!("kind = \"{kind}\" is 3D-only (Rapier 3D contacts): allowed 3"),
+        ));
+    }
+    if s.engine == EngineChoice::Free {
+        return Err(c.err(
+            "engine",
+            format!("kind = \"{kind}\" needs contacts: allowed `auto`, `rapier`"),
+        ));
     }
     Ok(())
 }

@@ -176,14 +176,19 @@ pub fn run(
     cases: &[SphereCase],
     opts: RunOptions,
 ) -> Result<Vec<SphereResult>, Unstable> {
+    run_all(cases, |c| match scenario.dimension {
+        2 => run_sphere::<2>(scenario, c, opts),
+        _ => run_sphere::<3>(scenario, c, opts),
+    })
+}
+
+/// Runs `one` on every case in parallel, results in input order, the first instability wins.
+fn run_all(
+    cases: &[SphereCase],
+    one: impl Fn(&SphereCase) -> Result<SphereResult, Unstable> + Sync + Send,
+) -> Result<Vec<SphereResult>, Unstable> {
     use rayon::prelude::*;
-    cases
-        .par_iter()
-        .map(|c| match scenario.dimension {
-            2 => run_sphere::<2>(scenario, c, opts),
-            _ => run_sphere::<3>(scenario, c, opts),
-        })
-        .collect()
+    cases.par_iter().map(one).collect()
 }
 
 /// Runs one sphere in `D` dimensions (vertical = last axis).
@@ -504,14 +509,10 @@ pub fn run_rapier(
     cases: &[SphereCase],
     opts: RunOptions,
 ) -> Result<Vec<SphereResult>, Unstable> {
-    use rayon::prelude::*;
-    cases
-        .par_iter()
-        .map(|c| match scenario.dimension {
-            2 => rapier_sphere_dim2(scenario, c, opts),
-            _ => rapier_sphere_dim3(scenario, c, opts),
-        })
-        .collect()
+    run_all(cases, |c| match scenario.dimension {
+        2 => rapier_sphere_dim2(scenario, c, opts),
+        _ => rapier_sphere_dim3(scenario, c, opts),
+    })
 }
 
 macro_rules! rapier_sphere {

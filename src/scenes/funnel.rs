@@ -690,11 +690,22 @@ pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, RunError> {
         sum(&|c| c.away),
         sum(&|c| c.lost)
     ));
-    if let Some((lo, hi)) = z_range(results.iter().flat_map(|r| r.balls.iter())) {
+    let mut zs: Vec<f64> = results
+        .iter()
+        .flat_map(|r| r.balls.iter())
+        .filter(|b| b.place == Place::Paste)
+        .map(|b| b.position_m[2])
+        .collect();
+    zs.sort_by(f64::total_cmp);
+    if !zs.is_empty() {
+        let q = |f: f64| zs[((zs.len() - 1) as f64 * f).round() as usize] * 100.0;
         lines.push(format!(
-            "ball centres in the paste at Z = {:.2}–{:.2} cm above the bottom (f-EDEM Fig. 21: 8.5–13.5 cm)",
-            lo * 100.0,
-            hi * 100.0
+            "ball centres in the paste at Z = {:.2}–{:.2} cm above the bottom (5–95 %: {:.2}–{:.2} cm, median {:.2} cm; f-EDEM Fig. 21: 8.5–13.5 cm)",
+            q(0.0),
+            q(1.0),
+            q(0.05),
+            q(0.95),
+            q(0.5)
         ));
     }
     let slowest_fill = results
