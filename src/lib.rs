@@ -10,6 +10,7 @@ pub mod contact;
 pub mod dynamics;
 pub mod engine;
 pub mod fluid;
+pub mod instruments;
 pub mod output;
 pub mod run;
 pub mod sample;

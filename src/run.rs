@@ -350,6 +350,16 @@ fn write_combined(out_dir: &Path, reports: &[FileReport]) -> Result<(), RunError
     if !stats.is_empty() {
         out_fs::write_metrics(&stage.path("metrics.csv"), &stats).map_err(io)?;
     }
+    // Sedimentation: one table of each instrument's error against the input curve per sample.
+    let sed: Vec<&Path> = reports
+        .iter()
+        .filter(|r| r.prepared.scenario.kind == Kind::Sedimentation)
+        .map(|r| r.out.as_path())
+        .collect();
+    if !sed.is_empty() {
+        output::granulometry::write_combined_errors(&stage.path("instrument_errors.csv"), &sed)
+            .map_err(io)?;
+    }
     stage.commit().map_err(io)?;
     Ok(())
 }

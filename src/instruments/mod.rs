@@ -158,9 +158,7 @@ impl Analysis {
     /// φ_o = √(18 μ y / ((ρ_p − ρ_f) g t)) (seed eq. 16), m.
     pub fn limiting_diameter_m(&self, depth_m: f64, time_s: f64) -> f64 {
         (18.0 * self.viscosity_pa_s * depth_m
-            / ((self.grain_density_kg_m3 - self.fluid_density_kg_m3)
-                * self.gravity_m_s2
-                * time_s))
+            / ((self.grain_density_kg_m3 - self.fluid_density_kg_m3) * self.gravity_m_s2 * time_s))
             .sqrt()
     }
 

@@ -8,8 +8,9 @@
 //!   outside, away, lost`, see [`crate::scenes::funnel`]) and the largest speed of the balls in
 //!   play (paste, falling, funnel) every `record.every_s` (default 0.01 s; negative times: the
 //!   balls settling in the closed funnel);
-//! - `z_distribution.csv` + `.svg`: ball centres in the paste per Z bin (`funnel.z_bin_m`), summed
-//!   over the repeats and per repeat (f-EDEM Fig. 21);
+//! - `z_distribution.csv` + `.svg`: ball centres in the paste per Z bin (`funnel.z_bin_m`, from 0 to
+//!   H + the largest radius: a ball counts as in the paste once its lowest point is below the
+//!   surface), summed over the repeats and per repeat (f-EDEM Fig. 21);
 //! - `presence.csv` + `.svg`: on each horizontal plane `funnel.planes_z_m`, the probability over
 //!   the repeats that a cell of the grid (`funnel.grid_cell_m`) lies inside a ball: its centre
 //!   point (x, y, Z) inside a ball's sphere, as a cut through the hardened paste shows it
@@ -299,7 +300,8 @@ pub fn write_z_chart(
         .map(|b| b.count as f64 / reps)
         .fold(1.0, f64::max)
         * 1.1;
-    let y_max = height_m * 100.0 * 1.05;
+    let top = bins.last().map_or(height_m, |b| b.z_hi_m.max(height_m));
+    let y_max = top * 100.0 * 1.05;
     let root = SVGBackend::new(path, (700, 800)).into_drawing_area();
     root.fill(&WHITE).map_err(err)?;
     let mut chart = ChartBuilder::on(&root)
@@ -446,7 +448,14 @@ pub fn write_all(
     write_balls(&stage.path("balls.csv"), results).map_err(io)?;
     write_counts(&stage.path("counts.csv"), results, f.count_time_s).map_err(io)?;
     write_timeseries(&stage.path("timeseries.csv"), results).map_err(io)?;
-    let bins = z_histogram(results, f.z_bin_m, geo.paste_height_m);
+    // Balls count as in the paste once their lowest point is below the surface: bins up to
+    // H + the largest radius.
+    let r_max = results
+        .iter()
+        .flat_map(|r| &r.balls)
+        .map(|b| 0.5 * b.diameter_m)
+        .fold(0.0, f64::max);
+    let bins = z_histogram(results, f.z_bin_m, geo.paste_height_m + r_max);
     write_z_distribution(&stage.path("z_distribution.csv"), &bins, reps).map_err(io)?;
     write_z_chart(
         &stage.path("z_distribution.svg"),

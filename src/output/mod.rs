@@ -5,6 +5,7 @@ pub mod chart;
 pub mod drop;
 pub mod free_settling;
 pub mod funnel;
+pub mod granulometry;
 pub mod metrics;
 
 use std::fs;

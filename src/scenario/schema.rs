@@ -75,6 +75,77 @@ pub struct Scenario {
     /// The soil sample (kind `sedimentation`).
     #[serde(default)]
     pub sample: Option<SampleSpec>,
+    /// The hydrometer, buoyancy sphere and pipette read during a sedimentation run (kind
+    /// `sedimentation`; absent: every default of [`InstrumentsSpec`]).
+    #[serde(default)]
+    pub instruments: Option<InstrumentsSpec>,
+}
+
+/// The laboratory instruments of a sedimentation run (seed 000 §4.5): the ASTM E100 152H
+/// hydrometer, the buoyancy sphere and the pipette. Every field has a default.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields, default)]
+pub struct InstrumentsSpec {
+    /// Hydrometer reading times, s. Default ASTM D422: 2, 5, 15, 30, 60, 250, 1440 min (those
+    /// within `time.end_s`).
+    pub hydrometer_times_s: Vec<f64>,
+    /// Buoyancy sphere reading times, s. Default 0.5, 1, 2, 4, 15, 30, 60, 120, 240, 480 min.
+    pub buoyancy_times_s: Vec<f64>,
+    /// Pipette draw times, s. Default: those of the buoyancy sphere.
+    pub pipette_times_s: Vec<f64>,
+    /// Hydrometer bulb volume V_B, m³. Default 67e-6 (152H).
+    pub hydrometer_bulb_volume_m3: f64,
+    /// Hydrometer bulb length L₂, m. Default 0.14 (152H).
+    pub hydrometer_bulb_length_m: f64,
+    /// Length of each conical end of the bulb, m. Default 0.025.
+    pub hydrometer_taper_m: f64,
+    /// Hydrometer stem length, m. Default 0.14.
+    pub hydrometer_stem_length_m: f64,
+    /// ASTM D422 Table 2 effective depth at R = 0, m. Default 0.1629.
+    pub hydrometer_effective_depth_zero_m: f64,
+    /// Decrease of the effective depth per g/L of reading, m. Default 0.00164.
+    pub hydrometer_effective_depth_slope_m: f64,
+    /// Full scale of the hydrometer, g/L. Default 60.
+    pub hydrometer_full_scale: f64,
+    /// Cylinder section A of ASTM D422's L = L₁ + ½(L₂ − V_B/A), m². Default 27.8e-4.
+    pub hydrometer_astm_cylinder_area_m2: f64,
+    /// Specific gravity of the soil the scale is calibrated for. Default 2.65.
+    pub hydrometer_calibration_specific_gravity: f64,
+    /// Buoyancy sphere diameter, m. Default 0.025 (Teflon).
+    pub sphere_diameter_m: f64,
+    /// Buoyancy sphere mass in air, kg. Default 0.020.
+    pub sphere_mass_kg: f64,
+    /// Depth of the sphere's centre y_bt as a fraction of H. Default 0.3.
+    pub sphere_depth_fraction: f64,
+    /// Pipette volume, m³ (real cylinder). Default 35e-6.
+    pub pipette_volume_m3: f64,
+    /// Depth of the pipette tip y_pt as a fraction of H. Default 0.3.
+    pub pipette_depth_fraction: f64,
+}
+
+impl Default for InstrumentsSpec {
+    fn default() -> Self {
+        let min = |m: &[f64]| m.iter().map(|x| x * 60.0).collect::<Vec<_>>();
+        Self {
+            hydrometer_times_s: min(&[2.0, 5.0, 15.0, 30.0, 60.0, 250.0, 1440.0]),
+            buoyancy_times_s: min(&[0.5, 1.0, 2.0, 4.0, 15.0, 30.0, 60.0, 120.0, 240.0, 480.0]),
+            pipette_times_s: min(&[0.5, 1.0, 2.0, 4.0, 15.0, 30.0, 60.0, 120.0, 240.0, 480.0]),
+            hydrometer_bulb_volume_m3: 67e-6,
+            hydrometer_bulb_length_m: 0.14,
+            hydrometer_taper_m: 0.025,
+            hydrometer_stem_length_m: 0.14,
+            hydrometer_effective_depth_zero_m: 0.1629,
+            hydrometer_effective_depth_slope_m: 0.00164,
+            hydrometer_full_scale: 60.0,
+            hydrometer_astm_cylinder_area_m2: 27.8e-4,
+            hydrometer_calibration_specific_gravity: 2.65,
+            sphere_diameter_m: 0.025,
+            sphere_mass_kg: 0.020,
+            sphere_depth_fraction: 0.3,
+            pipette_volume_m3: 35e-6,
+            pipette_depth_fraction: 0.3,
+        }
+    }
 }
 
 /// A soil sample for the sedimentation cylinder (seed 000 §4.4, §5.1).

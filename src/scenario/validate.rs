@@ -510,6 +510,133 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
                     "s (within time.end_s)",
                 )?;
             }
+            if let Some(ins) = &s.instruments {
+                // The instruments (seed 000 §4.5): times, hydrometer figures that give a floating
+                // body inside the cylinder, sphere and pipette disc inside the suspension.
+                let ct = s.container.as_ref().expect("checked above");
+                let (h, b) = (ct.height_m, ct.width_m.unwrap_or(0.0));
+                for (key, times) in [
+                    ("instruments.hydrometer_times_s", &ins.hydrometer_times_s),
+                    ("instruments.buoyancy_times_s", &ins.buoyancy_times_s),
+                    ("instruments.pipette_times_s", &ins.pipette_times_s),
+                ] {
+                    for (i, t) in times.iter().enumerate() {
+                        c.in_open_closed(
+                            &format!("{key}[{i}]"),
+                            *t,
+                            0.0,
+                            s.time.end_s,
+                            "s (within time.end_s)",
+                        )?;
+                    }
+                }
+                let positive = [
+                    (
+                        "hydrometer_bulb_volume_m3",
+                        ins.hydrometer_bulb_volume_m3,
+                        1e-2,
+                        "m³",
+                    ),
+                    (
+                        "hydrometer_bulb_length_m",
+                        ins.hydrometer_bulb_length_m,
+                        h,
+                        "m (within container.height_m)",
+                    ),
+                    (
+                        "hydrometer_taper_m",
+                        ins.hydrometer_taper_m,
+                        0.5 * ins.hydrometer_bulb_length_m,
+                        "m (at most half the bulb length)",
+                    ),
+                    (
+                        "hydrometer_stem_length_m",
+                        ins.hydrometer_stem_length_m,
+                        10.0,
+                        "m",
+                    ),
+                    (
+                        "hydrometer_effective_depth_zero_m",
+                        ins.hydrometer_effective_depth_zero_m,
+                        h,
+                        "m (within container.height_m)",
+                    ),
+                    (
+                        "hydrometer_effective_depth_slope_m",
+                        ins.hydrometer_effective_depth_slope_m,
+                        1.0,
+                        "m per g/L",
+                    ),
+                    (
+                        "hydrometer_full_scale",
+                        ins.hydrometer_full_scale,
+                        1e3,
+                        "g/L",
+                    ),
+                    (
+                        "hydrometer_astm_cylinder_area_m2",
+                        ins.hydrometer_astm_cylinder_area_m2,
+                        10.0,
+                        "m²",
+                    ),
+                    (
+                        "sphere_diameter_m",
+                        ins.sphere_diameter_m,
+                        b,
+                        "m (within container.width_m)",
+                    ),
+                    ("sphere_mass_kg", ins.sphere_mass_kg, 1e3, "kg"),
+                    ("pipette_volume_m3", ins.pipette_volume_m3, 1.0, "m³"),
+                ];
+                for (key, x, hi, unit) in positive {
+                    c.in_open_closed(&format!("instruments.{key}"), x, 0.0, hi, unit)?;
+                }
+                c.in_open_closed(
+                    "instruments.hydrometer_calibration_specific_gravity",
+                    ins.hydrometer_calibration_specific_gravity,
+                    1.0,
+                    30.0,
+                    "",
+                )?;
+                let hy = crate::instruments::hydrometer::Hydrometer::new(
+                    crate::scenes::sedimentation::hydrometer_spec(ins),
+                    s.fluid.density_kg_m3,
+                );
+                if !(hy.stem_radius_m > 0.0
+                    && hy.bulb_radius_m > hy.stem_radius_m
+                    && hy.zero_mark_m > 0.0
+                    && hy.zero_mark_m <= ins.hydrometer_stem_length_m
+                    && hy.mark_m(ins.hydrometer_full_scale) >= 0.0
+                    && hy.clear_tip_depth_m() < h)
+                {
+                    return Err(c.err("instruments", format!(
+                        "the hydrometer figures give no floating body that fits: stem radius {:.3e} m, bulb radius {:.3e} m (allowed 0 < stem < bulb), marks 0 and full scale at {:.3e} and {:.3e} m up the stem (allowed 0 ≤ marks ≤ stem length), clear-fluid tip depth {:.3e} m (allowed < container.height_m = {h} m)",
+                        hy.stem_radius_m, hy.bulb_radius_m, hy.zero_mark_m, hy.mark_m(ins.hydrometer_full_scale), hy.clear_tip_depth_m())));
+                }
+                let rs = 0.5 * ins.sphere_diameter_m / h;
+                c.in_open_closed(
+                    "instruments.sphere_depth_fraction",
+                    ins.sphere_depth_fraction,
+                    rs,
+                    1.0 - rs,
+                    "of H (the whole sphere in the suspension)",
+                )?;
+                let hz = crate::scenes::sedimentation::projection_thickness_m(b, sm.wedge_fraction);
+                let rp = (sm.wedge_fraction * ins.pipette_volume_m3 / (hz * std::f64::consts::PI))
+                    .sqrt();
+                if rp > 0.5 * b {
+                    return Err(c.err("instruments.pipette_volume_m3", format!(
+                        "{} m³ is a disc of radius {rp:.3e} m in the 2D projection, wider than the cylinder (allowed radius ≤ B/2 = {} m)",
+                        ins.pipette_volume_m3, 0.5 * b)));
+                }
+                c.in_open_closed(
+                    "instruments.pipette_depth_fraction",
+                    ins.pipette_depth_fraction,
+                    rp / h,
+                    1.0 - rp / h,
+                    "of H (the whole sampled disc in the suspension)",
+                )?;
+            }
         }
         Kind::FreeSettling | Kind::Drop => {}
     }

@@ -25,10 +25,14 @@
 
 use crate::dynamics::advance;
 use crate::fluid::{sphere_mass_kg, sphere_volume_m3, DragLaw, SphereDrag};
+use crate::instruments::buoyancy::{BuoyancyReading, BuoyancySphere};
+use crate::instruments::hydrometer::{Hydrometer, HydrometerReading, HydrometerSpec};
+use crate::instruments::pipette::{GrainSample, Pipette, PipetteReading};
+use crate::instruments::{Analysis, LayeredField, Point};
 use crate::output::{num, StagedDir};
 use crate::run::{Prepared, RunError, SceneReport};
 use crate::sample::{discretize, representative_grains, Distribution, Grain, SizeClass};
-use crate::scenario::{Physics, Rheology, SampleSpec, Scenario};
+use crate::scenario::{InstrumentsSpec, Physics, Rheology, SampleSpec, Scenario};
 use nalgebra::SVector;
 use rayon::prelude::*;
 use std::io::Write;
@@ -183,8 +187,21 @@ fn profile(st: &State, setup: &Setup, layers: usize, rho_p: f64) -> Profile {
 pub fn simulate(
     s: &Scenario,
     setup: &Setup,
+    record: impl FnMut(&State),
+    snapshot: impl FnMut(&State),
+) -> State {
+    simulate_with(s, setup, &[], record, snapshot, |_| {})
+}
+
+/// [`simulate`] that also lands on every time of `reading_times` (within `time.end_s`) and calls
+/// `reading` there (the instruments' readings, which need the grains themselves).
+pub fn simulate_with(
+    s: &Scenario,
+    setup: &Setup,
+    reading_times: &[f64],
     mut record: impl FnMut(&State),
     mut snapshot: impl FnMut(&State),
+    mut reading: impl FnMut(&State),
 ) -> State {
     let sm: &SampleSpec = s.sample.as_ref().expect("validated");
     let g = s.gravity_m_s2;
@@ -203,6 +220,10 @@ pub fn simulate(
     times.sort_by(f64::total_cmp);
     let mut snaps = sm.snapshot_times_s.clone();
     snaps.sort_by(f64::total_cmp);
+    let mut reads = reading_times.to_vec();
+    reads.sort_by(f64::total_cmp);
+    reads.dedup();
+    let mut ri = 0usize;
     let n = setup.grains.len();
     let mut st = State {
         grains: setup.grains.clone(),
@@ -236,6 +257,7 @@ pub fn simulate(
             .copied()
             .unwrap_or(f64::INFINITY)
             .min(snaps.get(si).copied().unwrap_or(f64::INFINITY))
+            .min(reads.get(ri).copied().unwrap_or(f64::INFINITY))
             .min(s.time.end_s);
         // Step size: up to the next event, at most max_step; full physics also keeps the fastest
         // suspended grain within half a voidage cell per step.
@@ -326,6 +348,10 @@ pub fn simulate(
         while si < snaps.len() && snaps[si] <= st.time_s * (1.0 + 1e-12) {
             snapshot(&st);
             si += 1;
+        }
+        while ri < reads.len() && reads[ri] <= st.time_s * (1.0 + 1e-12) {
+            reading(&st);
+            ri += 1;
         }
     }
     st
@@ -467,10 +493,14 @@ pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, RunError> {
     let snap_dir = stage.path("snapshots");
     let mut snap_err: Option<std::io::Error> = None;
     let mut pictures: Vec<(f64, Vec<f64>)> = Vec::new();
+    let instruments = InstrumentSet::new(s, &setup);
+    let mut readings: Vec<InstrumentReading> = Vec::new();
+    let mut bulb = initial_bulb_profile(&instruments, &setup);
     let t0 = std::time::Instant::now();
-    let st = simulate(
+    let st = simulate_with(
         s,
         &setup,
+        &instruments.all_times_s(),
         |st| profiles.push(profile(st, &setup, layers, rho_p)),
         |st| {
             if let Err(e) = write_snapshot(&snap_dir, st) {
@@ -478,8 +508,64 @@ pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, RunError> {
             }
             pictures.push((st.time_s, band_mass_fractions(st, &setup, PICTURE_BANDS)));
         },
+        |st| readings.extend(read_instruments(&instruments, st, &setup, &mut bulb)),
     );
     let wall = t0.elapsed().as_secs_f64();
+    // Instruments: granulometry.csv/.svg, instruments.csv/.svg, bulb_density.csv/.svg,
+    // instrument_errors.csv.
+    let instrument_errors = crate::output::granulometry::errors(&setup.distribution, &readings);
+    {
+        use crate::output::granulometry as gr;
+        let err = |e: std::io::Error| RunError::Io(p.path.clone(), e);
+        gr::write_granulometry(
+            &stage.path("granulometry.csv"),
+            sm.sample,
+            &setup.distribution,
+            &readings,
+        )
+        .map_err(err)?;
+        gr::write_instruments(&stage.path("instruments.csv"), &readings).map_err(err)?;
+        gr::write_bulb_density(&stage.path("bulb_density.csv"), &bulb).map_err(err)?;
+        gr::write_chart(
+            &stage.path("granulometry.svg"),
+            &format!(
+                "{}: percent finer, input and instruments ({})",
+                s.name,
+                match s.physics {
+                    Physics::IdealStokes => "ideal-stokes",
+                    _ => "full physics",
+                }
+            ),
+            &setup.distribution,
+            &readings,
+        )
+        .map_err(RunError::Other)?;
+        gr::write_time_chart(
+            &stage.path("instruments.svg"),
+            &format!("{}: percent finer read against time", s.name),
+            &readings,
+        )
+        .map_err(RunError::Other)?;
+        gr::write_bulb_chart(
+            &stage.path("bulb_density.svg"),
+            &format!("{}: suspension density along the hydrometer bulb", s.name),
+            &bulb,
+            instruments.hydrometer.spec.bulb_length_m,
+        )
+        .map_err(RunError::Other)?;
+        gr::write_errors(
+            &stage.path("instrument_errors.csv"),
+            &s.name,
+            sm.sample,
+            match s.physics {
+                Physics::IdealStokes => "ideal-stokes",
+                _ => "full",
+            },
+            setup.grains.len(),
+            &instrument_errors,
+        )
+        .map_err(err)?;
+    }
     if let Some(e) = snap_err {
         return Err(io(e));
     }
@@ -635,6 +721,305 @@ pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, RunError> {
                 "{} steps (dt {:.3e}–{:.3e} s) to t = {} s in {:.2} s wall; {} grains settled, bed {:.3e} m",
                 st.steps, st.dt_range_s.0, st.dt_range_s.1, st.time_s, wall, settled, st.bed_height_m
             ),
+            format!(
+                "instruments against the input curve (largest / mean |Δ percent finer|): {}",
+                instrument_errors
+                    .iter()
+                    .map(|e| format!(
+                        "{} {:.1} / {:.1} %",
+                        e.instrument, e.max_abs_error, e.mean_abs_error
+                    ))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
         ],
     })
+}
+
+// ---------------------------------------------------------------------------------------------
+// Instruments (seed 000 §4.5): hydrometer, buoyancy sphere and pipette read on the simulation.
+
+/// The hydrometer figures of an `[instruments]` table.
+pub fn hydrometer_spec(ins: &InstrumentsSpec) -> HydrometerSpec {
+    HydrometerSpec {
+        bulb_volume_m3: ins.hydrometer_bulb_volume_m3,
+        bulb_length_m: ins.hydrometer_bulb_length_m,
+        taper_m: ins.hydrometer_taper_m,
+        stem_length_m: ins.hydrometer_stem_length_m,
+        effective_depth_zero_m: ins.hydrometer_effective_depth_zero_m,
+        effective_depth_slope_m: ins.hydrometer_effective_depth_slope_m,
+        full_scale: ins.hydrometer_full_scale,
+        astm_cylinder_area_m2: ins.hydrometer_astm_cylinder_area_m2,
+        calibration_specific_gravity: ins.hydrometer_calibration_specific_gravity,
+    }
+}
+
+/// The instruments of a run and their reading times (those within `time.end_s`).
+pub struct InstrumentSet {
+    /// Conversions of the analysis (μ, ρ_p, ρ_f, g, c_0).
+    pub analysis: Analysis,
+    /// The hydrometer.
+    pub hydrometer: Hydrometer,
+    /// The buoyancy sphere.
+    pub sphere: BuoyancySphere,
+    /// The pipette.
+    pub pipette: Pipette,
+    /// Hydrometer reading times, s.
+    pub hydrometer_times_s: Vec<f64>,
+    /// Sphere reading times, s.
+    pub buoyancy_times_s: Vec<f64>,
+    /// Pipette draw times, s.
+    pub pipette_times_s: Vec<f64>,
+    /// Layers of the density field the hydrometer and the sphere read (`sample.layers`).
+    pub layers: usize,
+}
+
+impl InstrumentSet {
+    /// The instruments of scenario `s` (defaults of [`InstrumentsSpec`] without `[instruments]`).
+    pub fn new(s: &Scenario, setup: &Setup) -> Self {
+        let sm = s.sample.as_ref().expect("validated");
+        let ins = s.instruments.clone().unwrap_or_default();
+        let rho_f = s.fluid.density_kg_m3;
+        let mu = match s.fluid.rheology {
+            Rheology::Newtonian => s.fluid.viscosity_pa_s.unwrap_or(1e-3),
+            Rheology::Bingham => s.fluid.plastic_viscosity_pa_s.unwrap_or(1e-3),
+        };
+        let within = |t: &[f64]| -> Vec<f64> {
+            let mut t: Vec<f64> = t
+                .iter()
+                .copied()
+                .filter(|&x| x > 0.0 && x <= s.time.end_s * (1.0 + 1e-12))
+                .collect();
+            t.sort_by(f64::total_cmp);
+            t.dedup();
+            t
+        };
+        Self {
+            analysis: Analysis {
+                viscosity_pa_s: mu,
+                grain_density_kg_m3: sm.density_kg_m3,
+                fluid_density_kg_m3: rho_f,
+                gravity_m_s2: s.gravity_m_s2,
+                c0_kg_m3: setup.model_mass_kg
+                    / (setup.width_m * setup.height_m * setup.thickness_m),
+            },
+            hydrometer: Hydrometer::new(hydrometer_spec(&ins), rho_f),
+            sphere: BuoyancySphere {
+                diameter_m: ins.sphere_diameter_m,
+                mass_kg: ins.sphere_mass_kg,
+                depth_m: ins.sphere_depth_fraction * setup.height_m,
+            },
+            pipette: Pipette {
+                volume_m3: ins.pipette_volume_m3,
+                depth_m: ins.pipette_depth_fraction * setup.height_m,
+                wedge_fraction: sm.wedge_fraction,
+                thickness_m: setup.thickness_m,
+                axis_x_m: 0.5 * setup.width_m,
+            },
+            hydrometer_times_s: within(&ins.hydrometer_times_s),
+            buoyancy_times_s: within(&ins.buoyancy_times_s),
+            pipette_times_s: within(&ins.pipette_times_s),
+            layers: sm.layers,
+        }
+    }
+
+    /// Every reading time, sorted, without repeats.
+    pub fn all_times_s(&self) -> Vec<f64> {
+        let mut t: Vec<f64> = self
+            .hydrometer_times_s
+            .iter()
+            .chain(&self.buoyancy_times_s)
+            .chain(&self.pipette_times_s)
+            .copied()
+            .collect();
+        t.sort_by(f64::total_cmp);
+        t.dedup();
+        t
+    }
+}
+
+/// The layered suspension density of a profile (real units: `suspension_density_kg_m3` of
+/// `profiles.csv`), with the grain count of each layer.
+pub fn layered_field(pr: &Profile, setup: &Setup, rho_p: f64, rho_f: f64) -> LayeredField {
+    let layers = pr.solid_m3.len();
+    let h = setup.height_m / layers as f64;
+    let vol = setup.width_m * h * setup.thickness_m;
+    LayeredField {
+        layer_m: h,
+        density_kg_m3: pr
+            .solid_m3
+            .iter()
+            .map(|v| rho_f + concentration(*v, vol) * (rho_p - rho_f))
+            .collect(),
+        fluid_density_kg_m3: rho_f,
+        grains: Some(pr.count.iter().map(|&n| n as f64).collect()),
+    }
+}
+
+/// Which instrument a reading comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum InstrumentKind {
+    /// ASTM 152H hydrometer.
+    Hydrometer,
+    /// Buoyancy sphere.
+    Buoyancy,
+    /// Pipette.
+    Pipette,
+}
+
+impl InstrumentKind {
+    /// Name in the CSV files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Hydrometer => "hydrometer",
+            Self::Buoyancy => "buoyancy",
+            Self::Pipette => "pipette",
+        }
+    }
+}
+
+/// One reading of an instrument on the simulation, with what the same instrument reads on the
+/// ideal Stokes suspension of the input curve at the same time (its own approximation).
+#[derive(Clone, Debug)]
+pub struct InstrumentReading {
+    /// Instrument.
+    pub kind: InstrumentKind,
+    /// The (φ_o, w_o) pair on the simulation.
+    pub point: Point,
+    /// The pair on the ideal suspension of the input curve (None if the hydrometer does not
+    /// float in it).
+    pub ideal: Option<Point>,
+    /// Hydrometer details.
+    pub hydrometer: Option<HydrometerReading>,
+    /// Sphere details.
+    pub buoyancy: Option<BuoyancyReading>,
+    /// Pipette details.
+    pub pipette: Option<PipetteReading>,
+    /// Suspension density the instrument measured, kg/m³.
+    pub density_kg_m3: f64,
+}
+
+/// Suspension density along the hydrometer bulb at one time (seed Fig. 13): (time, distance
+/// below the top of the bulb, depth, density) per layer.
+pub type BulbRow = (f64, f64, f64, f64);
+
+/// Reads every instrument due at `st.time_s` (within a relative 1e-9 of the time).
+pub fn read_instruments(
+    set: &InstrumentSet,
+    st: &State,
+    setup: &Setup,
+    bulb: &mut Vec<BulbRow>,
+) -> Vec<InstrumentReading> {
+    let t = st.time_s;
+    let (layers, input) = (set.layers, &setup.distribution);
+    let (rho_p, rho_f) = (
+        set.analysis.grain_density_kg_m3,
+        set.analysis.fluid_density_kg_m3,
+    );
+    let due = |times: &[f64]| times.iter().any(|x| (x - t).abs() <= 1e-9 * t.max(1.0));
+    let an = &set.analysis;
+    let mut out = Vec::new();
+    let (hyd, buo, pip) = (
+        due(&set.hydrometer_times_s),
+        due(&set.buoyancy_times_s),
+        due(&set.pipette_times_s),
+    );
+    if !(hyd || buo || pip) {
+        return out;
+    }
+    let finer = |d: f64| input.percent_finer(d) / 100.0;
+    let ideal = crate::instruments::ideal_field(an, setup.height_m, layers, t, finer);
+    if hyd || buo {
+        let field = layered_field(&profile(st, setup, layers, rho_p), setup, rho_p, rho_f);
+        if hyd {
+            if let Some(r) = set.hydrometer.read(&field) {
+                bulb.extend(
+                    set.hydrometer
+                        .bulb_profile(&field, r.tip_depth_m)
+                        .into_iter()
+                        .map(|(a, b, c)| (t, a, b, c)),
+                );
+                out.push(InstrumentReading {
+                    kind: InstrumentKind::Hydrometer,
+                    point: set.hydrometer.point(an, &r, t),
+                    ideal: set
+                        .hydrometer
+                        .read(&ideal)
+                        .map(|ri| set.hydrometer.point(an, &ri, t)),
+                    hydrometer: Some(r),
+                    buoyancy: None,
+                    pipette: None,
+                    density_kg_m3: r.density_kg_m3,
+                });
+            }
+        }
+        if buo {
+            let r = set.sphere.read(&field);
+            let ri = set.sphere.read(&ideal);
+            out.push(InstrumentReading {
+                kind: InstrumentKind::Buoyancy,
+                point: set.sphere.point(an, &r, t),
+                ideal: Some(set.sphere.point(an, &ri, t)),
+                hydrometer: None,
+                buoyancy: Some(r),
+                pipette: None,
+                density_kg_m3: r.density_kg_m3,
+            });
+        }
+    }
+    if pip {
+        let grains = st
+            .grains
+            .iter()
+            .zip(&st.settled)
+            .filter(|(_, s)| !**s)
+            .map(|(g, _)| GrainSample {
+                x_m: g.x_m,
+                depth_m: setup.height_m - g.y_m,
+                mass_kg: g.weight * sphere_mass_kg(g.diameter_m, rho_p),
+            });
+        let r = set.pipette.read(grains);
+        let ci = set.pipette.field_concentration(an, &ideal);
+        let mut ideal_pt = set.pipette.point(an, &r, t);
+        ideal_pt.percent_finer = an.percent_finer_from_concentration(ci);
+        ideal_pt.sd_percent = 0.0;
+        out.push(InstrumentReading {
+            kind: InstrumentKind::Pipette,
+            point: set.pipette.point(an, &r, t),
+            ideal: Some(ideal_pt),
+            hydrometer: None,
+            buoyancy: None,
+            pipette: Some(r),
+            density_kg_m3: an.density_of_concentration(r.concentration_kg_m3),
+        });
+    }
+    out
+}
+
+/// The hydrometer's bulb density in the initial (homogeneous) suspension, for `bulb_density.csv`.
+pub fn initial_bulb_profile(set: &InstrumentSet, setup: &Setup) -> Vec<BulbRow> {
+    let n = setup.grains.len();
+    let st = State {
+        grains: setup.grains.clone(),
+        velocity_m_s: vec![0.0; n],
+        settled: vec![false; n],
+        bed_height_m: 0.0,
+        time_s: 0.0,
+        steps: 0,
+        dt_range_s: (0.0, 0.0),
+    };
+    let (rho_p, rho_f) = (
+        set.analysis.grain_density_kg_m3,
+        set.analysis.fluid_density_kg_m3,
+    );
+    let field = layered_field(&profile(&st, setup, set.layers, rho_p), setup, rho_p, rho_f);
+    match set.hydrometer.float_tip_depth_m(&field) {
+        Some(tip) => set
+            .hydrometer
+            .bulb_profile(&field, tip)
+            .into_iter()
+            .map(|(a, b, c)| (0.0, a, b, c))
+            .collect(),
+        None => Vec::new(),
+    }
 }

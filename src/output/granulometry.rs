@@ -1,0 +1,415 @@
+//! Outputs of the instruments of a sedimentation run (seed 000 §4.5, §5.4–5.5):
+//! `granulometry.csv` (the (φ_o, w_o) pairs of each instrument and the input curve),
+//! `granulometry.svg` (seed Fig. 18), `instruments.csv` (raw readings over time, seed
+//! Figs. 15–17), `bulb_density.csv` (seed Fig. 13), `instrument_errors.csv` (each instrument
+//! against the input curve) and the combined `instrument_errors.csv` of several runs.
+
+use super::chart::{scatter_svg, Scale, Series};
+use super::{num, opt};
+use crate::sample::Distribution;
+use crate::scenes::sedimentation::{BulbRow, InstrumentKind, InstrumentReading};
+use std::io;
+use std::path::Path;
+
+fn csv_err(e: csv::Error) -> io::Error {
+    io::Error::other(e)
+}
+
+/// Diameters at which the input curve is written: its points and 60 log-spaced ones.
+pub fn input_diameters(input: &Distribution) -> Vec<f64> {
+    let (d0, d1) = input.range_m();
+    let mut d: Vec<f64> = (0..=60)
+        .map(|i| d0 * (d1 / d0).powf(i as f64 / 60.0))
+        .chain(input.points.iter().map(|p| p.0))
+        .collect();
+    d.sort_by(f64::total_cmp);
+    d.dedup_by(|a, b| (*a / *b - 1.0).abs() < 1e-9);
+    d
+}
+
+/// `granulometry.csv`: `sample, instrument, time_s, depth_m, diameter_m, percent_finer`, then
+/// `input_percent_finer` (the input curve at that diameter), `sd_percent` (1σ of w_o from the
+/// grain count) and `ideal_percent_finer` (the same instrument on the ideal Stokes suspension of
+/// the input curve: its own approximation). Instrument `input` rows are the input curve.
+pub fn write_granulometry(
+    path: &Path,
+    sample: u32,
+    input: &Distribution,
+    readings: &[InstrumentReading],
+) -> io::Result<()> {
+    let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
+    w.write_record([
+        "sample",
+        "instrument",
+        "time_s",
+        "depth_m",
+        "diameter_m",
+        "percent_finer",
+        "input_percent_finer",
+        "sd_percent",
+        "ideal_percent_finer",
+    ])
+    .map_err(csv_err)?;
+    for d in input_diameters(input) {
+        let f = num(input.percent_finer(d));
+        w.write_record([
+            sample.to_string(),
+            "input".into(),
+            String::new(),
+            String::new(),
+            num(d),
+            f.clone(),
+            f,
+            String::new(),
+            String::new(),
+        ])
+        .map_err(csv_err)?;
+    }
+    for r in readings {
+        let p = &r.point;
+        w.write_record([
+            sample.to_string(),
+            r.kind.name().into(),
+            num(p.time_s),
+            num(p.depth_m),
+            num(p.diameter_m),
+            num(p.percent_finer),
+            num(input.percent_finer(p.diameter_m)),
+            num(p.sd_percent),
+            opt(r.ideal.map(|x| x.percent_finer)),
+        ])
+        .map_err(csv_err)?;
+    }
+    w.flush()
+}
+
+/// `instruments.csv`: the raw readings over time (seed Figs. 15–17), one row per instrument and
+/// time. Hydrometer: tip depth, stem immersed, reading R (g/L, G_s = 2.65), ASTM effective depth
+/// and the mean density over the bulb; sphere: apparent mass; pipette: dry mass drawn (real
+/// cylinder) and grains in the sampled disc. All: the suspension density measured, φ_o and w_o.
+pub fn write_instruments(path: &Path, readings: &[InstrumentReading]) -> io::Result<()> {
+    let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
+    w.write_record([
+        "time_s",
+        "instrument",
+        "depth_m",
+        "tip_depth_m",
+        "stem_immersed_m",
+        "reading_g_per_l",
+        "astm_effective_depth_m",
+        "bulb_mean_density_kg_m3",
+        "apparent_mass_g",
+        "pipette_mass_g",
+        "pipette_grains",
+        "density_kg_m3",
+        "diameter_m",
+        "percent_finer",
+        "sd_percent",
+        "ideal_diameter_m",
+        "ideal_percent_finer",
+    ])
+    .map_err(csv_err)?;
+    for r in readings {
+        let h = r.hydrometer;
+        w.write_record([
+            num(r.point.time_s),
+            r.kind.name().into(),
+            num(r.point.depth_m),
+            opt(h.map(|h| h.tip_depth_m)),
+            opt(h.map(|h| h.stem_immersed_m)),
+            opt(h.map(|h| h.reading)),
+            opt(h.map(|h| h.astm_effective_depth_m)),
+            opt(h.map(|h| h.bulb_mean_density_kg_m3)),
+            opt(r.buoyancy.map(|b| b.apparent_mass_kg * 1e3)),
+            opt(r.pipette.map(|p| p.mass_kg * 1e3)),
+            r.pipette.map(|p| p.grains.to_string()).unwrap_or_default(),
+            num(r.density_kg_m3),
+            num(r.point.diameter_m),
+            num(r.point.percent_finer),
+            num(r.point.sd_percent),
+            opt(r.ideal.map(|x| x.diameter_m)),
+            opt(r.ideal.map(|x| x.percent_finer)),
+        ])
+        .map_err(csv_err)?;
+    }
+    w.flush()
+}
+
+/// `bulb_density.csv`: `time_s, position_m` (below the top of the bulb, seed Fig. 13's h_hd),
+/// `depth_m, density_kg_m3`, per layer crossed by the bulb at each hydrometer reading (and at
+/// t = 0).
+pub fn write_bulb_density(path: &Path, rows: &[BulbRow]) -> io::Result<()> {
+    let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
+    w.write_record(["time_s", "position_m", "depth_m", "density_kg_m3"])
+        .map_err(csv_err)?;
+    for (t, p, y, rho) in rows {
+        w.write_record([num(*t), num(*p), num(*y), num(*rho)])
+            .map_err(csv_err)?;
+    }
+    w.flush()
+}
+
+/// Chart of percent finer against log diameter: the input curve and the three instruments
+/// (seed Fig. 18).
+pub fn write_chart(
+    path: &Path,
+    title: &str,
+    input: &Distribution,
+    readings: &[InstrumentReading],
+) -> Result<(), String> {
+    let mut series = vec![Series {
+        label: "input".into(),
+        points: input_diameters(input)
+            .into_iter()
+            .map(|d| (d * 1e6, input.percent_finer(d)))
+            .collect(),
+        colour: 0,
+        filled: false,
+        line: true,
+    }];
+    for (i, k) in [
+        InstrumentKind::Hydrometer,
+        InstrumentKind::Buoyancy,
+        InstrumentKind::Pipette,
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        series.push(Series {
+            label: k.name().into(),
+            points: readings
+                .iter()
+                .filter(|r| r.kind == k)
+                .map(|r| (r.point.diameter_m * 1e6, r.point.percent_finer))
+                .collect(),
+            colour: [1, 4, 3][i],
+            filled: true,
+            line: true,
+        });
+    }
+    scatter_svg(
+        path,
+        title,
+        "diameter (µm, log)",
+        "percent finer (%)",
+        Scale::Log,
+        Scale::Linear,
+        &series,
+    )
+}
+
+/// Errors of one instrument against the input curve over its readings.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ErrorRow {
+    /// Instrument name.
+    pub instrument: String,
+    /// Readings.
+    pub readings: usize,
+    /// Largest |w_o − F(φ_o)|, %.
+    pub max_abs_error: f64,
+    /// Mean |w_o − F(φ_o)|, %.
+    pub mean_abs_error: f64,
+    /// Largest |w_ideal − F(φ_ideal)|: the instrument's own approximation, %.
+    pub max_abs_ideal_error: f64,
+    /// Mean |w_ideal − F(φ_ideal)|, %.
+    pub mean_abs_ideal_error: f64,
+    /// Largest |w_o − w_ideal|: the simulation against the ideal suspension, %.
+    pub max_abs_dev_from_ideal: f64,
+    /// Mean 1σ of w_o from the grain count, %.
+    pub mean_sd: f64,
+}
+
+/// Error of each instrument against the input curve.
+pub fn errors(input: &Distribution, readings: &[InstrumentReading]) -> Vec<ErrorRow> {
+    let mut out = Vec::new();
+    for k in [
+        InstrumentKind::Hydrometer,
+        InstrumentKind::Buoyancy,
+        InstrumentKind::Pipette,
+    ] {
+        let rs: Vec<&InstrumentReading> = readings.iter().filter(|r| r.kind == k).collect();
+        if rs.is_empty() {
+            continue;
+        }
+        let n = rs.len() as f64;
+        let err = |p: &crate::instruments::Point| {
+            (p.percent_finer - input.percent_finer(p.diameter_m)).abs()
+        };
+        let e: Vec<f64> = rs.iter().map(|r| err(&r.point)).collect();
+        let ei: Vec<f64> = rs.iter().filter_map(|r| r.ideal.map(|p| err(&p))).collect();
+        let dev = rs
+            .iter()
+            .filter_map(|r| {
+                r.ideal
+                    .map(|p| (r.point.percent_finer - p.percent_finer).abs())
+            })
+            .fold(0.0, f64::max);
+        out.push(ErrorRow {
+            instrument: k.name().into(),
+            readings: rs.len(),
+            max_abs_error: e.iter().copied().fold(0.0, f64::max),
+            mean_abs_error: e.iter().sum::<f64>() / n,
+            max_abs_ideal_error: ei.iter().copied().fold(0.0, f64::max),
+            mean_abs_ideal_error: ei.iter().sum::<f64>() / (ei.len().max(1) as f64),
+            max_abs_dev_from_ideal: dev,
+            mean_sd: rs.iter().map(|r| r.point.sd_percent).sum::<f64>() / n,
+        });
+    }
+    out
+}
+
+const ERROR_HEADER: [&str; 12] = [
+    "scenario",
+    "sample",
+    "physics",
+    "particles",
+    "instrument",
+    "readings",
+    "max_abs_error_percent",
+    "mean_abs_error_percent",
+    "max_abs_ideal_error_percent",
+    "mean_abs_ideal_error_percent",
+    "max_abs_dev_from_ideal_percent",
+    "mean_sd_percent",
+];
+
+/// `instrument_errors.csv` of one run: per instrument, the largest and mean difference between
+/// its percent finer and the input curve at its diameters; the same for the instrument on the
+/// ideal suspension (its own approximation); the largest difference between the two; the mean
+/// statistical 1σ.
+pub fn write_errors(
+    path: &Path,
+    scenario: &str,
+    sample: u32,
+    physics: &str,
+    particles: usize,
+    rows: &[ErrorRow],
+) -> io::Result<()> {
+    let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
+    w.write_record(ERROR_HEADER).map_err(csv_err)?;
+    for r in rows {
+        w.write_record([
+            scenario.to_string(),
+            sample.to_string(),
+            physics.to_string(),
+            particles.to_string(),
+            r.instrument.clone(),
+            r.readings.to_string(),
+            num(r.max_abs_error),
+            num(r.mean_abs_error),
+            num(r.max_abs_ideal_error),
+            num(r.mean_abs_ideal_error),
+            num(r.max_abs_dev_from_ideal),
+            num(r.mean_sd),
+        ])
+        .map_err(csv_err)?;
+    }
+    w.flush()
+}
+
+/// The combined `instrument_errors.csv` of several runs: the rows of each run folder's
+/// `instrument_errors.csv`, in order.
+pub fn write_combined_errors(path: &Path, run_dirs: &[&Path]) -> io::Result<()> {
+    let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
+    w.write_record(ERROR_HEADER).map_err(csv_err)?;
+    for d in run_dirs {
+        let f = d.join("instrument_errors.csv");
+        if !f.exists() {
+            continue;
+        }
+        let mut r = csv::Reader::from_path(&f).map_err(csv_err)?;
+        for rec in r.records() {
+            w.write_record(&rec.map_err(csv_err)?).map_err(csv_err)?;
+        }
+    }
+    w.flush()
+}
+
+/// Chart of the percent finer of each instrument against time (log), seed Figs. 15–17 bottom.
+pub fn write_time_chart(
+    path: &Path,
+    title: &str,
+    readings: &[InstrumentReading],
+) -> Result<(), String> {
+    let series: Vec<Series> = [
+        InstrumentKind::Hydrometer,
+        InstrumentKind::Buoyancy,
+        InstrumentKind::Pipette,
+    ]
+    .into_iter()
+    .enumerate()
+    .map(|(i, k)| Series {
+        label: k.name().into(),
+        points: readings
+            .iter()
+            .filter(|r| r.kind == k)
+            .map(|r| (r.point.time_s, r.point.percent_finer))
+            .collect(),
+        colour: [1, 4, 3][i],
+        filled: true,
+        line: true,
+    })
+    .collect();
+    scatter_svg(
+        path,
+        title,
+        "time (s, log)",
+        "percent finer (%)",
+        Scale::Log,
+        Scale::Linear,
+        &series,
+    )
+}
+
+/// Chart of the suspension density along the bulb at each hydrometer reading (seed Fig. 13),
+/// averaged over 2 mm of bulb: density against the height above the tip (the top of the chart
+/// is the top of the bulb).
+pub fn write_bulb_chart(
+    path: &Path,
+    title: &str,
+    rows: &[BulbRow],
+    bulb_length_m: f64,
+) -> Result<(), String> {
+    let mut times: Vec<f64> = rows.iter().map(|r| r.0).collect();
+    times.dedup();
+    let bin = 2e-3;
+    let series: Vec<Series> = times
+        .iter()
+        .enumerate()
+        .map(|(i, &t)| {
+            let mut acc: Vec<(f64, usize)> = Vec::new();
+            for r in rows.iter().filter(|r| r.0 == t) {
+                let k = (r.1 / bin) as usize;
+                if acc.len() <= k {
+                    acc.resize(k + 1, (0.0, 0));
+                }
+                acc[k].0 += r.3;
+                acc[k].1 += 1;
+            }
+            Series {
+                label: format!("{t} s"),
+                points: acc
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, a)| a.1 > 0)
+                    .map(|(k, a)| {
+                        let mid = ((k as f64 + 0.5) * bin).min(bulb_length_m);
+                        (a.0 / a.1 as f64, (bulb_length_m - mid) * 100.0)
+                    })
+                    .collect(),
+                colour: i,
+                filled: true,
+                line: true,
+            }
+        })
+        .collect();
+    scatter_svg(
+        path,
+        title,
+        "suspension density (kg/m³)",
+        "height above the bulb tip (cm)",
+        Scale::Linear,
+        Scale::Linear,
+        &series,
+    )
+}
