@@ -176,8 +176,11 @@ pub fn representative_grains(
     grains.shuffle(&mut rng);
     let m = (grains.len() as f64).sqrt().ceil() as usize;
     let (cw, ch) = (width_m / m as f64, height_m / m as f64);
+    let (cells, n_grains) = (m * m, grains.len());
     for (i, g) in grains.iter_mut().enumerate() {
-        let (cx, cy) = ((i % m) as f64, (i / m) as f64);
+        // Spread the grains evenly over all m² cells (the last cells are not left empty).
+        let cell = i * cells / n_grains;
+        let (cx, cy) = ((cell % m) as f64, (cell / m) as f64);
         let r = 0.5 * g.diameter_m;
         g.x_m = ((cx + rng.random::<f64>()) * cw).clamp(r, width_m - r);
         g.y_m = ((cy + rng.random::<f64>()) * ch).clamp(r, height_m - r);
@@ -241,7 +244,12 @@ mod tests {
             .map(|x| x.weight * rho * PI * x.diameter_m.powi(3) / 6.0)
             .sum();
         assert!((mass / m - 1.0).abs() < 1e-12);
-        assert!(g.len() >= 20_000 && g.len() < 20_300);
+        // Rounding per class: within half a grain per class of N.
+        assert!(
+            (g.len() as f64 - 20_000.0).abs() <= 0.5 * c.len() as f64,
+            "{}",
+            g.len()
+        );
         // Stratified: each horizontal tenth of the height holds 10 % of the grains (±1 %).
         for k in 0..10 {
             let n = g

@@ -19,6 +19,12 @@
 //!   grows with the deposited volume at packing fraction `bed_packing` (full physics; the
 //!   `ideal-stokes` reference stops grains at the floor). Nothing reads the bed's inner structure,
 //!   so it costs nothing per step.
+//! - **Instruments** ([`crate::instruments`], seed §4.5): the 152H hydrometer and the buoyancy
+//!   sphere read the layered suspension density of the profile at their reading times (real
+//!   densities, applied to the full axisymmetric bodies); the pipette weighs the grains in its
+//!   disc. The run lands on every reading time ([`simulate_with`]) and writes
+//!   `granulometry.csv`/`.svg`, `instruments.csv`/`.svg`, `bulb_density.csv`/`.svg` and
+//!   `instrument_errors.csv`.
 //! - **Not modelled (yet)**: contacts between suspended grains (the suspension holds ≈ 1.7 % of
 //!   solids by volume) and squeeze-film lubrication: both belong to the bed and to close pairs,
 //!   which the profiles and instruments do not resolve.
@@ -472,7 +478,7 @@ fn write_snapshot(dir: &Path, st: &State) -> std::io::Result<()> {
 }
 
 /// Runs a sedimentation scenario and writes `profiles.csv`, `bed.csv`, `max_diameter.csv`,
-/// `snapshots/`, `summary.csv`.
+/// `snapshots/`, `summary.csv` and the instruments' files (see the module doc).
 pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, RunError> {
     let s = &p.scenario;
     let sm = s.sample.as_ref().expect("validated");
