@@ -119,3 +119,28 @@ fn valentik_accuracy_at_large_steps() {
     let v01 = at(1e-3).errors["velocity_at_0.01s_m_s"].0;
     assert!(v01 < 0.01, "v(0.01 s) at dt = 1e-3 s: {v01}");
 }
+
+/// The 68-ball pour in a sweep (f-EDEM Fig. 20: balls counted at t = 0.5 s; f-EDEM lost balls
+/// for dt > 1.04e-5 s). A reduced pour (10 balls) at two large steps: every case stable, no
+/// ball lost, all balls in the domain.
+#[test]
+fn funnel_pour_sweep_counts_balls_and_loses_none() {
+    let p = prepare(
+        Path::new("scenarios/paste_68_balls.toml"),
+        None,
+        &["funnel.count=10".into()],
+    )
+    .unwrap();
+    let cases = grid(&[Integrator::Exponential], &[1e-3, 5e-4]);
+    let mut rows = run_cases(&p, &cases);
+    finish(&mut rows);
+    assert_eq!(rows.len(), 2 * 5);
+    for r in &rows {
+        assert_eq!(r.status, "stable", "{}: {}", r.dt_s, r.reason);
+        match r.quantity.as_str() {
+            "balls_lost" => assert_eq!(r.value, 0.0),
+            "balls_in_domain_at_count" => assert_eq!(r.value, 10.0),
+            _ => assert!(r.value.is_finite()),
+        }
+    }
+}
