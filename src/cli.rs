@@ -95,6 +95,7 @@ enum Command {
 /// Parses the arguments, runs, and returns the process exit code.
 pub fn main() -> i32 {
     let cli = Cli::parse();
+    crate::interrupt::install();
     match cli.command {
         Command::Run {
             scenarios,

@@ -11,6 +11,7 @@ pub mod dynamics;
 pub mod engine;
 pub mod fluid;
 pub mod instruments;
+pub mod interrupt;
 pub mod output;
 pub mod run;
 pub mod sample;

@@ -31,6 +31,8 @@ pub enum RunError {
     Unstable(PathBuf, Unstable),
     /// Could not write outputs (exit 1).
     Io(PathBuf, std::io::Error),
+    /// Stopped by Ctrl-C/SIGTERM; what was done is in the folder (exit 130).
+    Interrupted(PathBuf),
     /// Anything else (exit 1).
     Other(String),
 }
@@ -41,6 +43,7 @@ impl RunError {
         match self {
             Self::Scenario(_) => 2,
             Self::Unstable(..) => 3,
+            Self::Interrupted(_) => 130,
             _ => 1,
         }
     }
@@ -52,6 +55,11 @@ impl std::fmt::Display for RunError {
             Self::Scenario(e) => write!(f, "{e}"),
             Self::Unstable(p, u) => write!(f, "{}: {u}; nothing was written", p.display()),
             Self::Io(p, e) => write!(f, "{}: cannot write outputs: {e}", p.display()),
+            Self::Interrupted(p) => write!(
+                f,
+                "interrupted: what was simulated so far is in {} (run.toml status = \"interrupted\")",
+                p.display()
+            ),
             Self::Other(m) => write!(f, "{m}"),
         }
     }
@@ -154,6 +162,8 @@ pub struct SceneReport {
     pub engine_settings: Option<crate::engine::EngineSettings>,
     /// Lines printed after the run (a short human-readable summary).
     pub lines: Vec<String>,
+    /// The run stopped early on Ctrl-C/SIGTERM (outputs hold what was done).
+    pub interrupted: bool,
 }
 
 /// Runs one prepared scenario and writes its outputs under `out_dir`.
@@ -181,7 +191,11 @@ pub fn run_one(p: &Prepared, out_dir: &Path) -> Result<FileReport, RunError> {
         run: RunMeta {
             settle_version: env!("CARGO_PKG_VERSION"),
             scenario_file: p.path.display().to_string(),
-            status: "complete",
+            status: if report.interrupted {
+                "interrupted"
+            } else {
+                "complete"
+            },
             engine: engine_name(s),
             integrator: s.time.integrator.name(),
             dt_s: s.time.dt_s,
@@ -195,6 +209,9 @@ pub fn run_one(p: &Prepared, out_dir: &Path) -> Result<FileReport, RunError> {
     let text = toml::to_string(&meta).map_err(|e| RunError::Other(e.to_string()))?;
     output::write_atomic(&stage.path("run.toml"), text.as_bytes()).map_err(io)?;
     let out = stage.commit().map_err(io)?;
+    if report.interrupted {
+        return Err(RunError::Interrupted(out));
+    }
     Ok(FileReport {
         prepared: p.clone(),
         results,
@@ -293,6 +310,7 @@ fn write_sphere_outputs(
         bodies: results.len(),
         engine_settings,
         lines: Vec::new(),
+        interrupted: false,
     })
 }
 
@@ -320,6 +338,9 @@ pub fn run_files(req: &RunRequest) -> Result<Vec<FileReport>, RunError> {
     }
     let mut reports = Vec::new();
     for p in &prepared {
+        if crate::interrupt::requested() {
+            return Err(RunError::Interrupted(req.out_dir.clone()));
+        }
         reports.push(run_one(p, &req.out_dir)?);
     }
     if reports.len() > 1 {

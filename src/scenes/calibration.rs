@@ -418,6 +418,7 @@ pub fn run_restitution(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, R
         bodies: outcomes.len(),
         engine_settings: Some(settings),
         lines,
+        interrupted: false,
     })
 }
 
@@ -724,5 +725,6 @@ pub fn run_tilt(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, RunError
         bodies: runs.len(),
         engine_settings: Some(setup.settings),
         lines,
+        interrupted: false,
     })
 }

@@ -722,5 +722,6 @@ pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, RunError> {
         bodies: n * reps,
         engine_settings: Some(settings),
         lines,
+        interrupted: false,
     })
 }

@@ -159,6 +159,8 @@ pub struct State {
     pub steps: u64,
     /// Step sizes taken: (min, max), s.
     pub dt_range_s: (f64, f64),
+    /// The run stopped early on Ctrl-C/SIGTERM.
+    pub interrupted: bool,
 }
 
 fn profile(st: &State, setup: &Setup, layers: usize, rho_p: f64) -> Profile {
@@ -239,6 +241,7 @@ pub fn simulate_with(
         time_s: 0.0,
         steps: 0,
         dt_range_s: (f64::INFINITY, 0.0),
+        interrupted: false,
     };
     // Voidage grid.
     let cell = sm.voidage_cell_m;
@@ -258,6 +261,10 @@ pub fn simulate_with(
     let bed_area = setup.width_m * setup.thickness_m * sm.bed_packing;
     let mass = |d: f64| sphere_mass_kg(d, sm.density_kg_m3);
     while st.time_s < s.time.end_s * (1.0 - 1e-12) {
+        if crate::interrupt::requested() {
+            st.interrupted = true;
+            break;
+        }
         let next_event = times
             .get(ti)
             .copied()
@@ -739,6 +746,7 @@ pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, RunError> {
                     .join(", ")
             ),
         ],
+        interrupted: st.interrupted,
     })
 }
 
@@ -1013,6 +1021,7 @@ pub fn initial_bulb_profile(set: &InstrumentSet, setup: &Setup) -> Vec<BulbRow> 
         time_s: 0.0,
         steps: 0,
         dt_range_s: (0.0, 0.0),
+        interrupted: false,
     };
     let (rho_p, rho_f) = (
         set.analysis.grain_density_kg_m3,
