@@ -478,16 +478,7 @@ pub fn charts(dir: &Path, title: &str, summaries: &[CaseSummary]) -> Result<(), 
     let series: Vec<Series> = by_q
         .into_iter()
         .enumerate()
-        .map(|(i, ((integ, q), mut pts))| {
-            pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-            Series {
-                label: format!("{integ}: {q}"),
-                points: pts,
-                colour: i,
-                filled: true,
-                line: true,
-            }
-        })
+        .map(|(i, ((integ, q), pts))| Series::sorted_line(format!("{integ}: {q}"), pts, i))
         .collect();
     scatter_svg(
         &dir.join("quantity_vs_dt.svg"),
@@ -501,16 +492,7 @@ pub fn charts(dir: &Path, title: &str, summaries: &[CaseSummary]) -> Result<(), 
     let series: Vec<Series> = speed
         .into_iter()
         .enumerate()
-        .map(|(i, (integ, mut pts))| {
-            pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-            Series {
-                label: integ,
-                points: pts,
-                colour: i,
-                filled: true,
-                line: true,
-            }
-        })
+        .map(|(i, (integ, pts))| Series::sorted_line(integ, pts, i))
         .collect();
     scatter_svg(
         &dir.join("speed_accuracy.svg"),

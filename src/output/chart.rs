@@ -17,6 +17,20 @@ pub struct Series {
     pub line: bool,
 }
 
+impl Series {
+    /// A line through `points` sorted by x, with filled markers.
+    pub fn sorted_line(label: String, mut points: Vec<(f64, f64)>, colour: usize) -> Self {
+        points.sort_by(|a, b| a.0.total_cmp(&b.0));
+        Self {
+            label,
+            points,
+            colour,
+            filled: true,
+            line: true,
+        }
+    }
+}
+
 /// Axis scale.
 #[derive(Clone, Copy, PartialEq, Eq)]
 pub enum Scale {

@@ -71,15 +71,8 @@ pub fn write_chart(path: &Path, title: &str, results: &[SphereResult]) -> Result
     let series: Vec<Series> = by_d
         .into_iter()
         .enumerate()
-        .map(|(i, (d_um, mut pts))| {
-            pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-            Series {
-                label: format!("d = {} mm", d_um as f64 / 1000.0),
-                points: pts,
-                colour: i,
-                filled: true,
-                line: true,
-            }
+        .map(|(i, (d_um, pts))| {
+            Series::sorted_line(format!("d = {} mm", d_um as f64 / 1000.0), pts, i)
         })
         .collect();
     scatter_svg(
