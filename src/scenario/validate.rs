@@ -60,6 +60,20 @@ impl Check<'_> {
     }
 }
 
+impl Check<'_> {
+    /// A count with `lo ≤ n ≤ hi`.
+    fn count_in(&self, key: &str, n: usize, lo: usize, hi: usize) -> Result<(), ScenarioError> {
+        if (lo..=hi).contains(&n) {
+            Ok(())
+        } else {
+            Err(self.err(
+                key,
+                format!("{n} is out of range: allowed {lo} ≤ {} ≤ {hi}", short(key)),
+            ))
+        }
+    }
+}
+
 fn short(key: &str) -> &str {
     key.rsplit('.').next().unwrap_or(key)
 }
@@ -376,12 +390,7 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
             }
             let f = s.funnel.as_ref().expect("checked above");
             let ct = s.container.as_ref().expect("checked above");
-            if !(1..=100_000).contains(&f.count) {
-                return Err(c.err(
-                    "funnel.count",
-                    format!("{} is out of range: allowed 1 ≤ count ≤ 100000", f.count),
-                ));
-            }
+            c.count_in("funnel.count", f.count, 1, 100_000)?;
             c.in_open_closed("funnel.top_diameter_m", f.top_diameter_m, 0.0, 10.0, "m")?;
             let d_max = s.spheres.iter().map(|sp| sp.diameter_m).fold(0.0, f64::max);
             c.in_open_closed(
@@ -409,12 +418,7 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
                 "m",
             )?;
             c.in_open_closed("funnel.wall_thickness_m", f.wall_thickness_m, 0.0, 1.0, "m")?;
-            if !(8..=1024).contains(&f.facets) {
-                return Err(c.err(
-                    "funnel.facets",
-                    format!("{} is out of range: allowed 8 ≤ facets ≤ 1024", f.facets),
-                ));
-            }
+            c.count_in("funnel.facets", f.facets, 8, 1024)?;
             c.in_open_closed("funnel.rest_speed_m_s", f.rest_speed_m_s, 0.0, 1e3, "m/s")?;
             c.in_open_closed(
                 "funnel.z_bin_m",
@@ -472,26 +476,13 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
                 25_000.0,
                 "kg/m³ (denser than the fluid)",
             )?;
-            if !(2..=100_000).contains(&sm.n_diameters) {
-                return Err(c.err(
-                    "sample.n_diameters",
-                    format!(
-                        "{} is out of range: allowed 2 ≤ n_diameters ≤ 100000",
-                        sm.n_diameters
-                    ),
-                ));
-            }
+            c.count_in("sample.n_diameters", sm.n_diameters, 2, 100_000)?;
             if !(1..=20_000_000).contains(&sm.particles) {
                 return Err(c.err("sample.particles", format!(
                     "{} is out of range: allowed 1 ≤ particles ≤ 2e7 (about {:.1} GB of state at 64 B per grain)",
                     sm.particles, sm.particles as f64 * 64.0 / 1e9)));
             }
-            if !(1..=1_000_000).contains(&sm.layers) {
-                return Err(c.err(
-                    "sample.layers",
-                    format!("{} is out of range: allowed 1 ≤ layers ≤ 1e6", sm.layers),
-                ));
-            }
+            c.count_in("sample.layers", sm.layers, 1, 1_000_000)?;
             c.in_open_closed("sample.wedge_fraction", sm.wedge_fraction, 0.0, 1.0, "")?;
             c.in_open_closed("sample.voidage_cell_m", sm.voidage_cell_m, 0.0, 1.0, "m")?;
             c.in_open_closed("sample.bed_packing", sm.bed_packing, 0.0, 0.75, "")?;
@@ -652,12 +643,7 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
         )?;
     }
     if let Some(r) = &s.repeats {
-        if !(1..=10_000).contains(&r.count) {
-            return Err(c.err(
-                "repeats.count",
-                format!("{} is out of range: allowed 1 ≤ count ≤ 10000", r.count),
-            ));
-        }
+        c.count_in("repeats.count", r.count, 1, 10_000)?;
     }
     if !matches!(s.kind, Kind::TiltFriction | Kind::Sedimentation)
         && s.spheres.is_empty()
