@@ -116,6 +116,9 @@ pub fn main() -> i32 {
                         for r in &reports {
                             print_report(r);
                         }
+                        if reports.len() > 1 {
+                            print_overall(&reports);
+                        }
                     }
                     0
                 }
@@ -183,6 +186,26 @@ pub fn main() -> i32 {
                 }
             }
         }
+    }
+}
+
+/// The error statistics over every file of the run (the `all` row of combined/metrics.csv).
+fn print_overall(reports: &[FileReport]) {
+    let all: Vec<_> = reports
+        .iter()
+        .flat_map(|r| r.results.iter().cloned())
+        .collect();
+    if let Some(s) = crate::output::free_settling::metrics(&all).last() {
+        println!(
+            "all files vs measured: N = {}, mean |err| = {:.1}%, median = {:.1}%, max = {:.1}%, bias = {:+.1}%, within 10%: {:.0}%, within 25%: {:.0}%",
+            s.n,
+            100.0 * s.mean_abs,
+            100.0 * s.median_abs,
+            100.0 * s.max_abs,
+            100.0 * s.bias,
+            100.0 * s.within_10pct,
+            100.0 * s.within_25pct
+        );
     }
 }
 
