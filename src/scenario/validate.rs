@@ -250,11 +250,6 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
                 "restitution_drop",
                 "a [restitution_drop] table with drop_heights_m",
             )?;
-            need(
-                s.contacts.is_some(),
-                "contacts",
-                "a [contacts] table (restitution, friction)",
-            )?;
             contact_scene_3d(&c, s)?;
             if s.spheres.len() != 1 || s.spheres_csv.is_some() {
                 return Err(c.err(
@@ -304,11 +299,6 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
                 s.tilt.is_some(),
                 "tilt",
                 "a [tilt] table (block_size_m, block_density_kg_m3, angles_deg, duration_s)",
-            )?;
-            need(
-                s.contacts.is_some(),
-                "contacts",
-                "a [contacts] table (restitution, friction)",
             )?;
             contact_scene_3d(&c, s)?;
             let t = s.tilt.as_ref().expect("checked above");
@@ -373,21 +363,11 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
                 "a [funnel] table (count, geometry)",
             )?;
             need(
-                s.contacts.is_some(),
-                "contacts",
-                "a [contacts] table (restitution, friction, rolling_resistance)",
-            )?;
-            need(
                 s.container.as_ref().is_some_and(|c| c.diameter_m.is_some()),
                 "container.diameter_m",
                 "a cylindrical [container] with diameter_m",
             )?;
-            if s.dimension != 3 {
-                return Err(c.err(
-                    "dimension",
-                    "kind = \"funnel_pour\" is 3D-only (a funnel over a cylinder): allowed 3",
-                ));
-            }
+            contact_scene_3d(&c, s)?;
             let f = s.funnel.as_ref().expect("checked above");
             let ct = s.container.as_ref().expect("checked above");
             c.count_in("funnel.count", f.count, 1, 100_000)?;
@@ -780,9 +760,16 @@ fn check_sphere_inner(
     Ok(())
 }
 
-/// Kinds with contacts run in a Rapier 3D world: dimension 3, engine `auto` or `rapier`.
+/// Kinds with contacts run in a Rapier 3D world: a [contacts] table, dimension 3, engine `auto`
+/// or `rapier`.
 fn contact_scene_3d(c: &Check, s: &Scenario) -> Result<(), ScenarioError> {
     let kind = kind_name(s.kind);
+    if s.contacts.is_none() {
+        return Err(c.err(
+            "contacts",
+            format!("missing: kind = \"{kind}\" needs a [contacts] table (restitution, friction, rolling_resistance)"),
+        ));
+    }
     if s.dimension != 3 {
         return Err(c.err(
             "dimension",
