@@ -333,6 +333,21 @@ fn set_negative_dt() {
     );
 }
 
+/// A restitution exponent outside [0, 1] is refused with its key and range.
+#[test]
+fn set_restitution_exponent_out_of_range() {
+    let o = settle_run(
+        &[good("restitution_drop.toml")],
+        &["--set", "contacts.restitution_exponent=1.5"],
+    );
+    assert_refused(
+        &o,
+        "restitution_drop.toml",
+        Some("contacts.restitution_exponent"),
+        &["1.5", "allowed"],
+    );
+}
+
 /// `--set` naming an unknown key is refused like a typo in the file.
 #[test]
 fn set_unknown_key() {

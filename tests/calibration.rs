@@ -1,21 +1,24 @@
 //! Contact calibration of f-EDEM (Zhang & Li 2024), Appendices II and III.
 //!
 //! - `scenarios/restitution_drop.toml`: an 8 mm steel ball (8135 kg/m³) dropped in air on a steel
-//!   plate from 95–398 mm, rebound heights of Table A2, e = 0.612.
+//!   plate from 95–398 mm, rebound heights of Table A2, with the speed-dependent restitution
+//!   e(v) = 0.6318 (v / 1 m/s)^(−0.0492) calibrated on them (f-EDEM: constant e = 0.612).
 //! - `scenarios/tilt_friction.toml`: a steel block on a tilted steel plate, μ_s = 0.341 of
 //!   Table A3: sticks below atan(0.341) = 18.83°, slides above.
 //!
 //! f-EDEM states that its simulated rebounds "match the test results perfectly" and the issue asks
 //! for 3 %; no constant e can do that for Table A2 (see
-//! `no_constant_restitution_matches_table_a2_within_3_percent`), so the drop is checked against
-//! what is physically right: Rapier's contact restitution equals the scenario's e, the rebound
-//! equals an independent integration of the same fall and rise in air, and each height is within
-//! the data's own scatter of the measurement.
+//! `no_constant_restitution_matches_table_a2_within_3_percent`). The scenario therefore uses a
+//! speed-dependent law, and the drop is checked three ways: Rapier's contact restitution equals
+//! the law at the impact speed, the rebound equals an independent integration of the same fall and
+//! rise in air, and each height is within 3 % of the measurement. Because the law is calibrated
+//! on those five heights, its predictive error is stated too (leave-one-out, 4.4 %).
 
+use settle::contact::RestitutionLaw;
 use settle::fluid::{buoyancy_n, sphere_mass_kg, DragLaw, SphereDrag};
 use settle::run::{prepare, run_one};
 use settle::scenes::calibration::{
-    constant_fit, drop_settings, simulate_drop, tilt_threshold, TiltSetup,
+    constant_fit, drop_settings, restitution_fits, simulate_drop, tilt_threshold, TiltSetup,
 };
 use std::path::Path;
 
@@ -52,9 +55,10 @@ fn col(header: &[String], row: &[String], name: &str) -> f64 {
 }
 
 /// Rebound apex of the ball's lowest point after a drop from `h` in air (Dallavalle drag,
-/// buoyancy), the plate reversing the velocity with factor `e`: RK4 with a 1 µs step, impact and
-/// apex located within the step. Independent of Rapier and of the engine's integrators.
-fn reference_rebound(h: f64, e: f64) -> f64 {
+/// buoyancy), the plate reversing the velocity with factor `e(impact speed)`: RK4 with a 1 µs
+/// step, impact and apex located within the step. Independent of Rapier and of the engine's
+/// integrators.
+fn reference_rebound(h: f64, e: impl Fn(f64) -> f64) -> f64 {
     let (d, rho) = (0.008, 8135.0);
     let drag = SphereDrag::new(
         DragLaw::Dallavalle {
@@ -89,7 +93,7 @@ fn reference_rebound(h: f64, e: f64) -> f64 {
         }
         (z, v) = (z1, v1);
     }
-    let (mut z, mut v) = (0.0, -e * v);
+    let (mut z, mut v) = (0.0, -e(v.abs()) * v);
     loop {
         let (z1, v1) = rk4(z, v, dt);
         if v1 <= 0.0 {
@@ -137,19 +141,19 @@ fn no_constant_restitution_matches_table_a2_within_3_percent() {
 }
 
 /// `settle run scenarios/restitution_drop.toml` (dt = 1e-5 s), checked per drop height:
-/// - Rapier's contact restitution (lift-off / impact speed at the plate) is the scenario's 0.612
-///   within 0.1 % (the ball and the plate both carry e; Rapier averages them).
-/// - The rebound is within 0.1 % of `reference_rebound` (same fall and rise in air, integrated
-///   independently) and within 0.5 % of the vacuum rebound e²H: air drag (Re ≈ 1500 at impact)
-///   lowers it by 0.13 % (95 mm) to 0.46 % (398 mm).
-/// - Each rebound is within 4 % of Table A2: the 3.83 % that no constant e can beat (see above)
-///   plus the 0.13 % of air drag at 95 mm, where the simulation sits at −3.96 %.
+/// - Rapier's contact restitution (lift-off / impact speed at the plate) is the law's e(v) at the
+///   impact speed within 0.1 % (the contact-modification hook sets it per manifold);
+/// - the rebound is within 0.1 % of `reference_rebound` (same fall and rise in air, integrated
+///   independently) and within 0.5 % of the vacuum rebound e(v)²H: air drag (Re ≈ 1500 at impact)
+///   lowers it by 0.13 % (95 mm) to 0.46 % (398 mm);
+/// - each rebound is within 3 % of Table A2 (the acceptance of issue 5, item 4);
+/// - `fit.csv` reports the scenario's law as the minimax power fit, and the constant e's 3.83 %.
 #[test]
-fn restitution_drop_reproduces_rapier_restitution_and_table_a2() {
+fn restitution_drop_reproduces_the_law_and_table_a2_within_3_percent() {
     let path = Path::new("scenarios/restitution_drop.toml");
     let p = prepare(path, None, &[]).unwrap();
-    let e = p.scenario.contacts.as_ref().unwrap().restitution;
-    assert_eq!(e, 0.612);
+    let law = p.scenario.contacts.as_ref().unwrap().restitution_law();
+    assert!(law.is_speed_dependent());
     let dir = tempfile::tempdir().unwrap();
     let report = run_one(&p, dir.path()).unwrap();
     assert!(report.out.join("rebound_height.svg").is_file());
@@ -171,37 +175,106 @@ fn restitution_drop_reproduces_rapier_restitution_and_table_a2() {
         let hr = col(&header, row, "rebound_height_m");
         let measured = col(&header, row, "measured_rebound_height_m");
         let e_eff = col(&header, row, "restitution_effective");
+        let impact = col(&header, row, "impact_speed_m_s");
         assert_eq!(h, DROP_M[i]);
         assert_eq!(measured, REBOUND_M[i]);
-        assert!((e_eff / e - 1.0).abs() < 1e-3, "H = {h}: contact e {e_eff}");
-        let reference = reference_rebound(h, e);
+        let e = law.at(impact);
+        assert!(
+            (e_eff / e - 1.0).abs() < 1e-3,
+            "H = {h}: contact e {e_eff} vs law {e}"
+        );
+        let reference = reference_rebound(h, |v| law.at(v));
         assert!(
             (hr / reference - 1.0).abs() < 1e-3,
             "H = {h}: rebound {hr} vs reference {reference}"
         );
-        let vacuum = e * e * h;
+        let vacuum = law.at((2.0 * G * h).sqrt()).powi(2) * h;
         assert!(
             hr < vacuum && hr / vacuum - 1.0 > -5e-3,
             "H = {h}: rebound {hr} vs e²H {vacuum}"
         );
         let err = hr / measured - 1.0;
         assert!((err - col(&header, row, "rel_error")).abs() < 1e-12);
-        assert!(err.abs() < 0.04, "H = {h}: {err:+.4} against Table A2");
+        assert!(err.abs() < 0.03, "H = {h}: {err:+.4} against Table A2");
     }
     let (fh, fit) = read_csv(&report.out.join("fit.csv"));
-    assert_eq!(col(&fh, &fit[0], "heights_within_tolerance"), 3.0);
-    assert!(col(&fh, &fit[0], "minimax_rel_error") > 0.03);
+    let row = |model: &str| {
+        fit.iter()
+            .find(|r| r[0] == model)
+            .unwrap_or_else(|| panic!("no {model} row in fit.csv"))
+            .clone()
+    };
+    let sim = row("scenario_simulated");
+    assert_eq!(col(&fh, &sim, "heights_within_tolerance"), 5.0);
+    assert!(col(&fh, &sim, "max_rel_error") < 0.03);
+    assert!(col(&fh, &row("constant_minimax"), "max_rel_error") > 0.038);
+    let power = row("power_minimax");
+    assert!((col(&fh, &power, "restitution") - law.coefficient).abs() < 1e-4);
+    assert!((col(&fh, &power, "restitution_exponent") - law.exponent).abs() < 1e-4);
 }
 
-/// The contact restitution follows `contacts.restitution` (not halved by a plate left at e = 0,
-/// as Rapier's average combine rule would do): 0.3 and 0.9 within 0.1 %, from 188 mm.
+/// The power law is a calibration on five points: what it predicts at a height it was not fitted
+/// on (leave-one-out) is worse than what it fits. Both figures against an independent
+/// brute-force minimax (grid over k, midrange of ln e): fitted 2.30 %, predicted 4.38 %; a
+/// constant e fits 3.83 % and predicts 5.07 %.
+#[test]
+fn restitution_fits_state_fitted_and_predicted_errors() {
+    let fits = restitution_fits(&DROP_M, &REBOUND_M, G, 1.0);
+    let get = |m: &str| *fits.iter().find(|f| f.model == m).unwrap();
+    // Brute force: k on a 1e-5 grid.
+    let brute = |idx: &[usize]| {
+        let mut best = (f64::INFINITY, 0.0, 0.0);
+        for i in 0..=20_000 {
+            let k = i as f64 * 1e-5;
+            let r: Vec<f64> = idx
+                .iter()
+                .map(|&j| {
+                    0.5 * (REBOUND_M[j] / DROP_M[j]).ln() + k * (2.0 * G * DROP_M[j]).sqrt().ln()
+                })
+                .collect();
+            let lo = r.iter().copied().fold(f64::INFINITY, f64::min);
+            let hi = r.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            if hi - lo < best.0 {
+                best = (hi - lo, k, (0.5 * (hi + lo)).exp());
+            }
+        }
+        best
+    };
+    let (range, k, e_ref) = brute(&[0, 1, 2, 3, 4]);
+    let power = get("power_minimax");
+    assert!((power.law.exponent - k).abs() < 2e-5, "{power:?} vs k {k}");
+    assert!((power.law.coefficient - e_ref).abs() < 1e-5);
+    assert!((power.max_rel_error - (range.exp() - 1.0)).abs() < 1e-6);
+    assert!((power.max_rel_error - 0.0230).abs() < 5e-4);
+    let mut loo: f64 = 0.0;
+    for out in 0..5 {
+        let idx: Vec<usize> = (0..5).filter(|&j| j != out).collect();
+        let (_, k, e_ref) = brute(&idx);
+        let e = e_ref * (2.0 * G * DROP_M[out]).sqrt().powf(-k);
+        loo = loo.max((e * e * DROP_M[out] / REBOUND_M[out] - 1.0).abs());
+    }
+    let predicted = power.leave_one_out_max_rel_error.unwrap();
+    assert!((predicted - loo).abs() < 1e-3, "{predicted} vs {loo}");
+    assert!((predicted - 0.0438).abs() < 1e-3);
+    let constant = get("constant_minimax");
+    assert!((constant.max_rel_error - 0.0383).abs() < 5e-4);
+    assert!((constant.leave_one_out_max_rel_error.unwrap() - 0.0507).abs() < 1e-3);
+    assert!(predicted > power.max_rel_error && constant.max_rel_error > power.max_rel_error);
+}
+
+/// The contact restitution follows a constant `contacts.restitution` (not halved by a plate left
+/// at e = 0, as Rapier's average combine rule would do): 0.3, 0.612 (f-EDEM) and 0.9 within 0.1 %,
+/// from 188 mm.
 #[test]
 fn restitution_follows_the_scenario_value() {
-    for e in [0.3, 0.9] {
+    for e in [0.3, 0.612, 0.9] {
         let p = prepare(
             Path::new("scenarios/restitution_drop.toml"),
             None,
-            &[format!("contacts.restitution={e}")],
+            &[
+                format!("contacts.restitution={e}"),
+                "contacts.restitution_exponent=0".into(),
+            ],
         )
         .unwrap();
         let ball = &p.spheres[0].spec;
@@ -212,11 +285,44 @@ fn restitution_follows_the_scenario_value() {
             "e = {e}: contact e {}",
             o.restitution_effective
         );
-        let reference = reference_rebound(0.188, e);
+        let reference = reference_rebound(0.188, |_| e);
         assert!(
             (o.rebound_height_m / reference - 1.0).abs() < 1e-3,
             "e = {e}: rebound {} vs {reference}",
             o.rebound_height_m
+        );
+    }
+}
+
+/// A speed-dependent law reaches Rapier through the contact-modification hook: with a steep
+/// k = 0.5 about 2 m/s, the contact e from 95 mm (1.37 m/s) and 398 mm (2.79 m/s) follows
+/// e(v) = 0.5 (v/2)^(−1/2) within 0.1 % (0.605 and 0.423), far from any constant.
+#[test]
+fn speed_dependent_restitution_reaches_the_contact() {
+    let law = RestitutionLaw {
+        coefficient: 0.5,
+        exponent: 0.5,
+        reference_speed_m_s: 2.0,
+    };
+    let p = prepare(
+        Path::new("scenarios/restitution_drop.toml"),
+        None,
+        &[
+            "contacts.restitution=0.5".into(),
+            "contacts.restitution_exponent=0.5".into(),
+            "contacts.restitution_reference_speed_m_s=2".into(),
+        ],
+    )
+    .unwrap();
+    let ball = &p.spheres[0].spec;
+    let settings = drop_settings(&p.scenario, ball, 0.398);
+    for h in [0.095, 0.398] {
+        let o = simulate_drop(&p.scenario, ball, h, settings).unwrap();
+        let e = law.at(o.impact_speed_m_s);
+        assert!(
+            (o.restitution_effective / e - 1.0).abs() < 1e-3,
+            "H = {h}: contact e {} vs law {e}",
+            o.restitution_effective
         );
     }
 }

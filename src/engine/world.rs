@@ -6,11 +6,13 @@ use super::{
     rotational_drag_n_m_s, sphere_inertia_kg_m2, unstable, BodyId, ContactDrag, EngineSettings,
     Unstable,
 };
+use crate::contact::RestitutionLaw;
 use crate::dynamics::{self, Integrator};
 use crate::fluid::{buoyancy_n, sphere_mass_kg, SphereDrag};
 use rapier::prelude::{
-    nalgebra::Unit, ColliderBuilder, ColliderHandle, MassProperties, PhysicsWorld,
-    RigidBodyBuilder, RigidBodyHandle, SpringCoefficients,
+    nalgebra::Unit, ActiveHooks, ColliderBuilder, ColliderHandle, ContactModificationContext,
+    MassProperties, ModifiableContacts, PhysicsHooks, PhysicsWorld, RigidBodyBuilder,
+    RigidBodyHandle, SpringCoefficients,
 };
 
 /// Number of space dimensions of this world.
@@ -134,6 +136,33 @@ pub struct World {
     ground: Option<RigidBodyHandle>,
     /// Whether the yield-stress holds act (default true); see [`World::set_yield_hold`].
     yield_hold: bool,
+    /// Restitution of every contact; see [`World::set_restitution_law`].
+    restitution: RestitutionLaw,
+}
+
+/// Rapier hook that sets each contact manifold's restitution from its impact speed (see
+/// [`World::set_restitution_law`]).
+struct RestitutionHook(RestitutionLaw);
+
+impl PhysicsHooks for RestitutionHook {
+    fn modify_solver_contacts(&self, context: &mut ContactModificationContext) {
+        let (bodies, rb1, rb2) = (context.bodies, context.rigid_body1, context.rigid_body2);
+        let ModifiableContacts::Rigid(manifold) = &mut context.contacts else {
+            return;
+        };
+        let velocity = |handle: Option<RigidBodyHandle>, point: RVector| {
+            handle.map_or(RVector::ZERO, |h| bodies[h].velocity_at_point(point))
+        };
+        // Approach speed: the largest normal relative speed over the manifold's contact points
+        // (start-of-step velocities, within g·dt of the impact speed).
+        let n = *manifold.normal;
+        let speed = manifold
+            .solver_contacts
+            .iter()
+            .map(|c| (velocity(rb1, c.anchor1) - velocity(rb2, c.anchor2)).dot(n).abs())
+            .fold(0.0, f64::max);
+        *manifold.restitution = self.0.at(speed);
+    }
 }
 
 /// The fluid's extent, for scenes where bodies travel through air before they enter the fluid
@@ -178,6 +207,7 @@ impl World {
             rolling_resistance: 0.0,
             ground: None,
             yield_hold: true,
+            restitution: RestitutionLaw::constant(0.0),
         }
     }
 
@@ -382,8 +412,24 @@ impl World {
     /// restitution is exactly e (a ball with e against a floor with 0 would get e/2). Call it once
     /// the scene is built: colliders added afterwards still get 0.
     pub fn set_restitution(&mut self, restitution: f64) {
+        self.set_restitution_law(RestitutionLaw::constant(restitution));
+    }
+
+    /// Sets the restitution of every contact between colliders already in the world to the law
+    /// `law`. A constant law is [`World::set_restitution`]. A speed-dependent one also sets the
+    /// colliders' coefficient to `law.coefficient` and makes Rapier call a contact-modification
+    /// hook, which sets each manifold's restitution to e(v), v the largest normal approach speed
+    /// over its contact points at the start of the step. Call it once the scene is built.
+    pub fn set_restitution_law(&mut self, law: RestitutionLaw) {
+        self.restitution = law;
+        let hooks = if law.is_speed_dependent() {
+            ActiveHooks::MODIFY_SOLVER_CONTACTS
+        } else {
+            ActiveHooks::empty()
+        };
         for (_, collider) in self.physics.colliders.iter_mut() {
-            collider.set_restitution(restitution);
+            collider.set_restitution(law.coefficient);
+            collider.set_active_hooks(hooks);
         }
     }
 
@@ -546,7 +592,12 @@ impl World {
         self.physics
             .integration_parameters
             .normalized_prediction_distance = DEFAULT_PREDICTION.max(2.0 * max_speed * dt_s / lu);
-        self.physics.step_with_events(&(), &());
+        if self.restitution.is_speed_dependent() {
+            self.physics
+                .step_with_events(&RestitutionHook(self.restitution), &());
+        } else {
+            self.physics.step_with_events(&(), &());
+        }
         self.time_s += dt_s;
         self.last_dt_s = dt_s;
 

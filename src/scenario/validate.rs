@@ -613,6 +613,20 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
     }
     if let Some(ct) = &s.contacts {
         c.in_closed("contacts.restitution", ct.restitution, 0.0, 1.0, "")?;
+        c.in_closed(
+            "contacts.restitution_exponent",
+            ct.restitution_exponent,
+            0.0,
+            1.0,
+            "",
+        )?;
+        c.in_closed(
+            "contacts.restitution_reference_speed_m_s",
+            ct.restitution_reference_speed_m_s,
+            1e-3,
+            100.0,
+            "m/s",
+        )?;
         c.in_closed("contacts.friction", ct.friction, 0.0, 10.0, "")?;
         c.in_closed(
             "contacts.rolling_resistance",

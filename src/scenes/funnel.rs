@@ -492,7 +492,7 @@ pub fn run_repeat(p: &Prepared, index: usize, seed: u64) -> Result<RepeatResult,
             ))
         })
         .collect();
-    world.set_restitution(e);
+    world.set_restitution_law(ct.restitution_law());
     world.set_rolling_resistance(ct.rolling_resistance);
     world.set_free_surface(dim3::FreeSurface {
         height_m: geo.paste_height_m,
