@@ -282,6 +282,9 @@ pub struct LawFit {
     pub leave_one_out_max_rel_error: Option<f64>,
 }
 
+/// A calibration of a restitution law on (drop heights, measured rebounds).
+type Calibration<'a> = &'a dyn Fn(&[f64], &[f64]) -> Option<RestitutionLaw>;
+
 /// Largest relative rebound error of `law` against drop tests (no air).
 fn law_max_error(law: &RestitutionLaw, drop_m: &[f64], measured_m: &[f64], g: f64) -> f64 {
     drop_m
@@ -308,7 +311,7 @@ pub fn restitution_fits(
     let power = |d: &[f64], m: &[f64]| {
         RestitutionLaw::minimax_fit(d, m, g, reference_speed_m_s).map(|(law, _)| law)
     };
-    let leave_one_out = |fit: &dyn Fn(&[f64], &[f64]) -> Option<RestitutionLaw>| {
+    let leave_one_out = |fit: Calibration| {
         if drop_m.len() < 3 {
             return None;
         }
