@@ -179,7 +179,7 @@ mod tests {
             exponent: 0.05,
             reference_speed_m_s: 1.0,
         };
-        let drops = [0.1, 0.2, 0.3, 0.4];
+        let drops: [f64; 4] = [0.1, 0.2, 0.3, 0.4];
         let rebounds: Vec<f64> = drops
             .iter()
             .map(|h| law.at((2.0 * 9.81 * h).sqrt()).powi(2) * h)
