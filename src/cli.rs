@@ -22,9 +22,13 @@ enum Command {
     /// measured velocities exist), and run.toml (effective parameters, version, dt, steps, wall
     /// time). With several files, OUT/combined/ holds the joint summary and metrics.
     /// Exit codes: 0 success, 2 bad input (nothing written), 3 unstable run (nothing written).
+    ///
+    /// Long runs: --checkpoint-every SECONDS saves the state of the sedimentation cylinder and of
+    /// each funnel-pour repeat to OUT/checkpoint/ (also on Ctrl-C/SIGTERM, exit 130), and
+    /// `settle run --resume OUT` continues with the same outputs as an uninterrupted run.
     Run {
         /// Scenario files (TOML).
-        #[arg(required = true)]
+        #[arg(required_unless_present = "resume")]
         scenarios: Vec<PathBuf>,
         /// Output folder.
         #[arg(long, default_value = "out")]
@@ -36,9 +40,19 @@ enum Command {
         /// or --set 'spheres[0].diameter_m=2e-4'. Repeatable.
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
-        /// Print nothing but errors.
+        /// Print nothing but errors (no progress bar).
         #[arg(long, short)]
         quiet: bool,
+        /// Write a checkpoint every SECONDS of wall time (and always when interrupted).
+        #[arg(long, value_name = "SECONDS")]
+        checkpoint_every: Option<f64>,
+        /// Continue the interrupted or killed run whose output folder is DIR (its scenario files
+        /// and options come from DIR/checkpoint/request.toml).
+        #[arg(long, value_name = "DIR", conflicts_with_all = ["scenarios", "out", "dt", "set"])]
+        resume: Option<PathBuf>,
+        /// Run even if the cost estimate exceeds 24 h of wall time or 8 GB of memory.
+        #[arg(long)]
+        force: bool,
     },
     /// Benchmarks (wall times and ratios) written to OUT/bench.csv.
     Bench {
@@ -103,12 +117,25 @@ pub fn main() -> i32 {
             dt,
             set,
             quiet,
+            checkpoint_every,
+            resume,
+            force,
         } => {
+            if let Some(every) = checkpoint_every.filter(|s| !(s.is_finite() && *s > 0.0)) {
+                eprintln!(
+                    "error: --checkpoint-every {every} is out of range: allowed > 0 s of wall time"
+                );
+                return 2;
+            }
             let req = RunRequest {
                 files: scenarios,
-                out_dir: out,
+                out_dir: resume.clone().unwrap_or(out),
                 dt_s: dt,
                 overrides: set,
+                checkpoint_every_s: checkpoint_every,
+                resume: resume.is_some(),
+                force,
+                quiet,
             };
             match run_files(&req) {
                 Ok(reports) => {

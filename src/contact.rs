@@ -16,7 +16,7 @@ pub const MAX_RESTITUTION: f64 = 0.999;
 /// viscoelastic losses). The power law with a small k is an empirical form of both, calibrated on
 /// drop tests (see [`RestitutionLaw::minimax_fit`]); for f-EDEM's Appendix II data it gives
 /// k ≈ 0.049 (a 5 % drop in e from 1.4 to 2.8 m/s).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct RestitutionLaw {
     /// e_ref: the restitution at the reference speed, 0 ≤ e_ref ≤ 1.
     pub coefficient: f64,

@@ -5,6 +5,7 @@
 //! (Zhang & Li 2024) and the one-way coupled hydrometer DEM of seed 000.
 
 pub mod bench;
+pub mod checkpoint;
 pub mod cli;
 pub mod contact;
 pub mod dynamics;
@@ -13,6 +14,7 @@ pub mod fluid;
 pub mod instruments;
 pub mod interrupt;
 pub mod output;
+pub mod progress;
 pub mod run;
 pub mod sample;
 pub mod scenario;

@@ -20,6 +20,26 @@ pub struct RunRequest {
     pub dt_s: Option<f64>,
     /// `KEY=VALUE` overrides applied to every file.
     pub overrides: Vec<String>,
+    /// Checkpoint period, s of wall time (`--checkpoint-every`; None: only on interruption).
+    pub checkpoint_every_s: Option<f64>,
+    /// Continue the checkpointed run in `out_dir` (`--resume`); files, overrides, dt and period
+    /// then come from its `checkpoint/request.toml`.
+    pub resume: bool,
+    /// Run even if the cost estimate exceeds the time or soft memory limit (`--force`).
+    pub force: bool,
+    /// No progress bars.
+    pub quiet: bool,
+}
+
+/// How a run is carried out beyond its scenario: checkpoints, resumption, progress display.
+#[derive(Clone, Debug, Default)]
+pub struct RunContext {
+    /// Where and how often to write checkpoints (None: never, not even on interruption).
+    pub checkpoints: Option<crate::checkpoint::Checkpoints>,
+    /// Continue from the checkpoints found there (`--resume`).
+    pub resume: bool,
+    /// No progress bar.
+    pub quiet: bool,
 }
 
 /// Why a run failed; [`RunError::exit_code`] maps it to the process exit code.
@@ -128,7 +148,10 @@ struct RunMeta<'a> {
     dt_s: f64,
     steps: u64,
     bodies: usize,
+    /// Wall time of this process's part of the run, s (a resumed run counts from the resume).
     wall_time_s: f64,
+    /// Continued from a checkpoint (`--resume`).
+    resumed: bool,
 }
 
 #[derive(Serialize)]
@@ -166,8 +189,25 @@ pub struct SceneReport {
     pub interrupted: bool,
 }
 
-/// Runs one prepared scenario and writes its outputs under `out_dir`.
+/// Runs one prepared scenario and writes its outputs under `out_dir` (no checkpoints, no
+/// progress bar).
 pub fn run_one(p: &Prepared, out_dir: &Path) -> Result<FileReport, RunError> {
+    run_one_with(
+        p,
+        out_dir,
+        &RunContext {
+            quiet: true,
+            ..RunContext::default()
+        },
+    )
+}
+
+/// [`run_one`] with checkpoints, resumption and progress as `ctx` says.
+pub fn run_one_with(
+    p: &Prepared,
+    out_dir: &Path,
+    ctx: &RunContext,
+) -> Result<FileReport, RunError> {
     let s = &p.scenario;
     let io = |e: std::io::Error| RunError::Io(p.path.clone(), e);
     let t0 = Instant::now();
@@ -183,8 +223,11 @@ pub fn run_one(p: &Prepared, out_dir: &Path) -> Result<FileReport, RunError> {
             crate::scenes::calibration::run_restitution(p, &stage)?,
         ),
         Kind::TiltFriction => (Vec::new(), crate::scenes::calibration::run_tilt(p, &stage)?),
-        Kind::FunnelPour => (Vec::new(), crate::scenes::funnel::run(p, &stage)?),
-        Kind::Sedimentation => (Vec::new(), crate::scenes::sedimentation::run(p, &stage)?),
+        Kind::FunnelPour => (Vec::new(), crate::scenes::funnel::run(p, &stage, ctx)?),
+        Kind::Sedimentation => (
+            Vec::new(),
+            crate::scenes::sedimentation::run(p, &stage, ctx)?,
+        ),
     };
     let wall = t0.elapsed().as_secs_f64();
     let meta = RunToml {
@@ -202,6 +245,7 @@ pub fn run_one(p: &Prepared, out_dir: &Path) -> Result<FileReport, RunError> {
             steps: report.steps,
             bodies: report.bodies,
             wall_time_s: wall,
+            resumed: ctx.resume,
         },
         engine_settings: report.engine_settings,
         scenario: s,
@@ -314,9 +358,24 @@ fn write_sphere_outputs(
     })
 }
 
-/// Runs every file of a request. All files are validated before any runs; with several files a
-/// combined `summary.csv` and `metrics.csv` go to `out_dir/combined/`.
+/// Runs every file of a request. All files are validated, and their cost estimated
+/// ([`crate::scenario::cost`]), before any runs; with several files a combined `summary.csv` and
+/// `metrics.csv` go to `out_dir/combined/`. Checkpoints go to `out_dir/checkpoint/` (every
+/// `checkpoint_every_s`, and when interrupted) and are removed once every file has completed.
 pub fn run_files(req: &RunRequest) -> Result<Vec<FileReport>, RunError> {
+    use crate::checkpoint::{Checkpoints, SavedRequest};
+    let mut req = req.clone();
+    let saved = if req.resume {
+        let saved = Checkpoints::load_request(&req.out_dir).map_err(RunError::Other)?;
+        req.files = saved.files.clone();
+        req.overrides = saved.overrides.clone();
+        req.dt_s = saved.dt_s;
+        req.checkpoint_every_s = req.checkpoint_every_s.or(saved.checkpoint_every_s);
+        req.force |= saved.force;
+        Some(saved)
+    } else {
+        None
+    };
     let prepared: Vec<Prepared> = req
         .files
         .iter()
@@ -335,17 +394,61 @@ pub fn run_files(req: &RunRequest) -> Result<Vec<FileReport>, RunError> {
                 ),
             )));
         }
+        scenario::cost::check(&p.scenario, &p.path, req.force).map_err(RunError::Scenario)?;
     }
+    let fingerprints: Vec<String> = prepared
+        .iter()
+        .map(|p| toml::to_string(&p.scenario).unwrap_or_default())
+        .collect();
+    let mut checkpoints = Checkpoints::new(&req.out_dir, req.checkpoint_every_s);
+    let ck_dir = checkpoints.dir().to_path_buf();
+    let io_ck = |e: std::io::Error| RunError::Io(ck_dir.clone(), e);
+    match &saved {
+        Some(saved) => {
+            if saved.scenarios != fingerprints {
+                return Err(RunError::Other(format!(
+                    "{}: cannot resume: the scenario files changed since the checkpoint (run them \
+                     afresh, without --resume)",
+                    ck_dir.join("request.toml").display()
+                )));
+            }
+        }
+        None => {
+            checkpoints.clear().map_err(io_ck)?;
+            checkpoints = checkpoints.with_request(SavedRequest {
+                files: req.files.clone(),
+                overrides: req.overrides.clone(),
+                dt_s: req.dt_s,
+                checkpoint_every_s: req.checkpoint_every_s,
+                force: req.force,
+                scenarios: fingerprints,
+            });
+        }
+    }
+    let ctx = RunContext {
+        checkpoints: Some(checkpoints.clone()),
+        resume: req.resume,
+        quiet: req.quiet,
+    };
     let mut reports = Vec::new();
     for p in &prepared {
         if crate::interrupt::requested() {
             return Err(RunError::Interrupted(req.out_dir.clone()));
         }
-        reports.push(run_one(p, &req.out_dir)?);
+        match run_one_with(p, &req.out_dir, &ctx) {
+            Ok(r) => reports.push(r),
+            Err(e @ RunError::Interrupted(_)) => return Err(e),
+            Err(e) => {
+                // Nothing to resume from a run that failed: leave no checkpoint behind.
+                let _ = checkpoints.clear();
+                return Err(e);
+            }
+        }
     }
     if reports.len() > 1 {
         write_combined(&req.out_dir, &reports)?;
     }
+    checkpoints.clear().map_err(io_ck)?;
     Ok(reports)
 }
 

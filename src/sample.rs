@@ -128,7 +128,7 @@ pub fn real_count(class: &SizeClass, mass_kg: f64, density_kg_m3: f64) -> f64 {
 }
 
 /// A representative grain: one simulated body standing for `weight` real grains of its class.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Grain {
     /// Horizontal position in the B × H rectangle, m (0 at the left wall).
     pub x_m: f64,

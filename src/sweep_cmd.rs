@@ -194,23 +194,9 @@ pub fn sweep(args: &SweepArgs) -> Result<(), RunError> {
     Ok(())
 }
 
-/// A progress bar on stderr (cases done, rate, ETA), hidden with `--quiet` or when stderr is not
-/// a terminal, so that piped output and logs stay clean.
+/// A progress bar on stderr (cases done, rate, ETA): see [`crate::progress::bar`].
 fn progress_bar(len: usize, name: &str, quiet: bool) -> indicatif::ProgressBar {
-    use std::io::IsTerminal;
-    if quiet || !std::io::stderr().is_terminal() {
-        return indicatif::ProgressBar::hidden();
-    }
-    let bar = indicatif::ProgressBar::new(len as u64);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template(
-            "{prefix} [{bar:30}] {pos}/{len} cases, {per_sec}, ETA {eta}",
-        )
-        .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar())
-        .progress_chars("=> "),
-    );
-    bar.set_prefix(name.to_string());
-    bar
+    crate::progress::bar(len as u64, name, "cases, {per_sec},", quiet)
 }
 
 fn tol(args: &SweepArgs, p: Option<&Prepared>) -> f64 {

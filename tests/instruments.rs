@@ -420,6 +420,7 @@ fn several_samples_write_one_error_summary() {
             "sample.snapshot_times_s=[]".into(),
             "instruments.hydrometer_times_s=[120.0, 900.0]".into(),
         ],
+        ..Default::default()
     };
     settle::run::run_files(&req).unwrap();
     let rows = read_csv(&dir.path().join("combined/instrument_errors.csv"));

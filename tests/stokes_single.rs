@@ -137,6 +137,7 @@ fn run_writes_summary_timeseries_probes_and_run_toml() {
         out_dir: dir.path().to_path_buf(),
         dt_s: None,
         overrides: vec![],
+        ..RunRequest::default()
     };
     run_files(&req).unwrap();
     let d = dir.path().join("stokes_single");

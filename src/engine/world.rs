@@ -87,7 +87,7 @@ impl FluidBody {
 }
 
 /// Our per-body state beside Rapier's.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 struct Body {
     handle: RigidBodyHandle,
     collider: ColliderHandle,
@@ -121,6 +121,11 @@ impl Body {
 
 /// A Rapier world of fluid-immersed spheres, fixed floors and walls. See the module doc of
 /// [`crate::engine`] for how the fluid forces are coupled.
+///
+/// Serializable (serde) with everything it holds, Rapier's world included, for checkpoints: a
+/// world restored from its bytes continues bit for bit as the original would have (Rapier's
+/// pipeline is a workspace only; measured in `tests/checkpoint.rs`).
+#[derive(serde::Serialize, serde::Deserialize)]
 pub struct World {
     physics: PhysicsWorld,
     settings: EngineSettings,
@@ -167,7 +172,7 @@ impl PhysicsHooks for RestitutionHook {
 
 /// The fluid's extent, for scenes where bodies travel through air before they enter the fluid
 /// (see [`World::set_free_surface`]). SI units.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct FreeSurface {
     /// Height of the free surface on the last axis, m: the fluid lies below it.
     pub height_m: f64,

@@ -14,7 +14,7 @@ use super::newtonian::{cd_dallavalle, di_felice_factor, drag_from_cd_n, reynolds
 use std::f64::consts::PI;
 
 /// Which drag law acts on a sphere, with the fluid properties it needs.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum DragLaw {
     /// Stokes' law F = 3π η d v (f-EDEM eq. 7). Linear: exact under the exponential integrator.
     Stokes {
@@ -64,7 +64,7 @@ impl DragRegime {
 }
 
 /// A drag law evaluated for one sphere (diameter) in one fluid (density).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct SphereDrag {
     /// The law and its fluid properties.
     pub law: DragLaw,

@@ -26,7 +26,7 @@ pub struct BuoyancySphere {
 }
 
 /// One reading of the dynamometer.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct BuoyancyReading {
     /// Apparent mass m_sp, kg.
     pub apparent_mass_kg: f64,

@@ -96,7 +96,7 @@ pub struct Hydrometer {
 }
 
 /// One hydrometer reading.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct HydrometerReading {
     /// Depth of the tip below the free surface, m.
     pub tip_depth_m: f64,

@@ -213,7 +213,7 @@ pub const HYDROMETER_TIMES_MIN: [f64; 7] = [2.0, 5.0, 15.0, 30.0, 60.0, 250.0, 1
 pub const SPHERE_TIMES_MIN: [f64; 10] = [0.5, 1.0, 2.0, 4.0, 15.0, 30.0, 60.0, 120.0, 240.0, 480.0];
 
 /// One reading of an instrument, reduced to the pair of the granulometric curve.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Point {
     /// Time of the reading, s.
     pub time_s: f64,

@@ -36,7 +36,7 @@ pub struct GrainSample {
 }
 
 /// What one draw weighs.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct PipetteReading {
     /// Dry mass drawn in the real cylinder (the simulated mass over f), kg.
     pub mass_kg: f64,

@@ -180,7 +180,6 @@ pub fn write_counts(
         "max_speed_at_opening_m_s",
         "end_time_s",
         "steps",
-        "wall_time_s",
     ])
     .map_err(io::Error::other)?;
     for r in results {
@@ -204,7 +203,6 @@ pub fn write_counts(
             num(r.max_speed_at_opening_m_s),
             num(r.end_time_s),
             r.steps.to_string(),
-            num(r.wall_time_s),
         ])
         .map_err(io::Error::other)?;
     }

@@ -21,10 +21,24 @@ pub struct StagedDir {
 }
 
 impl StagedDir {
-    /// Stages `out_dir/name` as `out_dir/.name.partial-<pid>`.
+    /// Stages `out_dir/name` as `out_dir/.name.partial-<pid>`. Staging folders of the same
+    /// name left by processes that no longer run (killed with SIGKILL, or the machine stopped)
+    /// are removed (Linux: a process runs if `/proc/<pid>` exists).
     pub fn new(out_dir: &Path, name: &str) -> io::Result<Self> {
         fs::create_dir_all(out_dir)?;
-        let tmp = out_dir.join(format!(".{name}.partial-{}", std::process::id()));
+        let prefix = format!(".{name}.partial-");
+        if Path::new("/proc/self").exists() {
+            for entry in fs::read_dir(out_dir)?.flatten() {
+                let file = entry.file_name();
+                let Some(pid) = file.to_str().and_then(|f| f.strip_prefix(&prefix)) else {
+                    continue;
+                };
+                if pid.parse::<u32>().is_ok() && !Path::new("/proc").join(pid).exists() {
+                    let _ = fs::remove_dir_all(entry.path());
+                }
+            }
+        }
+        let tmp = out_dir.join(format!("{prefix}{}", std::process::id()));
         if tmp.exists() {
             fs::remove_dir_all(&tmp)?;
         }

@@ -4,6 +4,7 @@
 //! record. Every quantity is in SI units with the unit in the key name. Unknown keys are errors.
 //! See `README.md` ("Scenario format") for a commented example of every table.
 
+pub mod cost;
 mod load;
 mod schema;
 mod validate;

@@ -45,13 +45,13 @@
 use crate::dynamics::Unstable;
 use crate::engine::{dim3, EngineSettings};
 use crate::output::StagedDir;
-use crate::run::{Prepared, RunError, SceneReport};
+use crate::run::{Prepared, RunContext, RunError, SceneReport};
 use crate::scenario::{Contacts, FunnelSpec, Repeats, Scenario};
 use crate::scenes::sphere_drag;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rapier3d_f64::math::{Pose, Rotation, Vector as RVector};
-use rapier3d_f64::prelude::ColliderBuilder;
+use rapier3d_f64::prelude::{ColliderBuilder, ColliderHandle};
 use std::time::Instant;
 
 /// Time over which every ball must stay slower than `rest_speed_m_s` before a run stops early, s.
@@ -172,7 +172,9 @@ impl Geometry {
 }
 
 /// Where a ball is (see the module doc).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize, serde::Deserialize,
+)]
 pub enum Place {
     /// In the paste (centre in the cylinder, below the surface).
     Paste,
@@ -203,7 +205,7 @@ impl Place {
 }
 
 /// Numbers of balls in each place.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Census {
     /// In the paste.
     pub paste: usize,
@@ -243,7 +245,7 @@ impl Census {
 }
 
 /// One row of a repeat's time series.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Sample {
     /// Time since the outlet opened, s (negative while the balls settle in the funnel).
     pub time_s: f64,
@@ -254,7 +256,7 @@ pub struct Sample {
 }
 
 /// One ball at the end of a repeat.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Ball {
     /// Diameter, m.
     pub diameter_m: f64,
@@ -267,7 +269,7 @@ pub struct Ball {
 }
 
 /// Result of one repeat.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct RepeatResult {
     /// Repeat index (0-based).
     pub index: usize,
@@ -431,15 +433,52 @@ pub fn place_balls(geo: &Geometry, diameters: &[f64], seed: u64) -> Result<Vec<[
     Ok(placed.into_iter().map(|(x, _)| x).collect())
 }
 
-/// Runs repeat `index` (seed `seed`) of a funnel pour.
+/// Everything a repeat needs to continue from where it is: saved in its checkpoint (part
+/// `repeat<i>`, see [`crate::checkpoint`]).
+#[derive(serde::Serialize, serde::Deserialize)]
+struct RepeatState {
+    world: dim3::World,
+    ids: Vec<crate::engine::BodyId>,
+    diameters: Vec<f64>,
+    plug: ColliderHandle,
+    /// Positions at the end of the last step (for the wall-breach test).
+    prev: Vec<[f64; 3]>,
+    /// Balls that went through a wall.
+    breached: Vec<bool>,
+    samples: Vec<Sample>,
+    census_at_count: Option<Census>,
+    max_speed_at_opening: f64,
+    /// Step since which every ball in play is slower than the rest speed.
+    rest_since: Option<u64>,
+    /// Steps taken.
+    k: u64,
+    /// Wall time spent before the last resumption, s.
+    wall_before_s: f64,
+}
+
+/// How a repeat ended.
+pub enum RepeatOutcome {
+    /// It ran to its end.
+    Done(RepeatResult),
+    /// Ctrl-C/SIGTERM stopped it (its state is in the checkpoint, if checkpoints are on).
+    Interrupted,
+}
+
+/// Runs repeat `index` (seed `seed`) of a funnel pour from its start.
 pub fn run_repeat(p: &Prepared, index: usize, seed: u64) -> Result<RepeatResult, RunError> {
-    let wall = Instant::now();
+    match run_repeat_with(p, index, seed, &RunContext::default())? {
+        RepeatOutcome::Done(r) => Ok(r),
+        RepeatOutcome::Interrupted => Err(RunError::Interrupted(p.path.clone())),
+    }
+}
+
+/// The state of repeat `index` (seed `seed`) at t = 0: the world built, the balls placed.
+fn initial_repeat(p: &Prepared, seed: u64) -> Result<RepeatState, RunError> {
     let s = &p.scenario;
     let f = funnel(s);
     let ct = contacts(s);
     let geo = Geometry::of(s);
     let g = s.gravity_m_s2;
-    let dt = s.time.dt_s;
     let n = f.count;
     let specs: Vec<_> = (0..n)
         .map(|i| &p.spheres[i % p.spheres.len()].spec)
@@ -500,6 +539,72 @@ pub fn run_repeat(p: &Prepared, index: usize, seed: u64) -> Result<RepeatResult,
         submergence: s.fluid.submergence,
     });
 
+    let position = |id| -> [f64; 3] {
+        let x = world.position_m(id);
+        [x[0], x[1], x[2]]
+    };
+    let prev: Vec<[f64; 3]> = ids.iter().map(|&id| position(id)).collect();
+    Ok(RepeatState {
+        breached: vec![false; n],
+        prev,
+        world,
+        ids,
+        diameters,
+        plug,
+        samples: Vec::new(),
+        census_at_count: None,
+        max_speed_at_opening: 0.0,
+        rest_since: None,
+        k: 0,
+        wall_before_s: 0.0,
+    })
+}
+
+/// [`run_repeat`] with checkpoints and resumption as `ctx` says: continues from the repeat's
+/// checkpoint when resuming, saves its state every checkpoint period and when interrupted, and
+/// saves its result (part `repeat<i>.done`) once finished, so that a resumed run does not redo
+/// it.
+pub fn run_repeat_with(
+    p: &Prepared,
+    index: usize,
+    seed: u64,
+    ctx: &RunContext,
+) -> Result<RepeatOutcome, RunError> {
+    let wall = Instant::now();
+    let s = &p.scenario;
+    let part = format!("repeat{index}");
+    let done_part = format!("repeat{index}.done");
+    let saved = match (&ctx.checkpoints, ctx.resume) {
+        (Some(c), true) => {
+            if let Some(r) = c
+                .load::<RepeatResult>(&s.name, &done_part)
+                .map_err(RunError::Other)?
+            {
+                return Ok(RepeatOutcome::Done(r));
+            }
+            c.load::<RepeatState>(&s.name, &part)
+                .map_err(RunError::Other)?
+        }
+        _ => None,
+    };
+    let mut state = match saved {
+        Some(st) => st,
+        None => initial_repeat(p, seed)?,
+    };
+    let save = |state: &mut RepeatState| -> Result<(), RunError> {
+        if let Some(c) = &ctx.checkpoints {
+            let before = state.wall_before_s;
+            state.wall_before_s += wall.elapsed().as_secs_f64();
+            let r = c.save(&s.name, &part, &*state);
+            state.wall_before_s = before;
+            r.map_err(|e| RunError::Io(p.path.clone(), e))?;
+        }
+        Ok(())
+    };
+    let mut timer = ctx.checkpoints.as_ref().map(|c| c.timer());
+    let f = funnel(s);
+    let geo = Geometry::of(s);
+    let dt = s.time.dt_s;
     let n_fill = (f.fill_time_s / dt).round() as u64;
     let n_run = (s.time.end_s / dt).round().max(1.0) as u64;
     let count_step = f.count_time_s.map(|tc| n_fill + (tc / dt).round() as u64);
@@ -509,8 +614,8 @@ pub fn run_repeat(p: &Prepared, index: usize, seed: u64) -> Result<RepeatResult,
         let x = world.position_m(id);
         [x[0], x[1], x[2]]
     };
-    let mut prev: Vec<[f64; 3]> = ids.iter().map(|&id| position(&world, id)).collect();
-    let mut breached = vec![false; n];
+    let ids = state.ids.clone();
+    let diameters = state.diameters.clone();
     // Places of the balls and the largest speed of those still in play (in the paste, falling or
     // in the funnel: balls that escaped over the rim do not hold the run).
     let observe = |world: &dim3::World, breached: &[bool]| -> (Vec<Place>, f64) {
@@ -534,29 +639,44 @@ pub fn run_repeat(p: &Prepared, index: usize, seed: u64) -> Result<RepeatResult,
         (places, vmax)
     };
     let time_of = |k: u64| (k as f64 - n_fill as f64) * dt;
-    let mut samples = Vec::new();
-    let mut census_at_count = None;
-    let mut max_speed_at_opening = 0.0;
-    let mut rest_since: Option<u64> = None;
-    let mut k: u64 = 0; // steps taken
     let tag = |u: Unstable| {
         let mut u = u;
         u.body = format!("repeat {index} (seed {seed}) {}", u.body);
         RunError::Unstable(p.path.clone(), u)
     };
-    while k < n_fill + n_run {
-        if k == n_fill {
-            max_speed_at_opening = observe(&world, &breached).1;
-            world.remove_fixed_collider(plug);
+    while state.k < n_fill + n_run {
+        if crate::interrupt::requested() {
+            save(&mut state)?;
+            return Ok(RepeatOutcome::Interrupted);
+        }
+        if timer.as_mut().is_some_and(|t| t.due()) {
+            save(&mut state)?;
+        }
+        let RepeatState {
+            world,
+            breached,
+            prev,
+            k,
+            max_speed_at_opening,
+            plug,
+            samples,
+            census_at_count,
+            rest_since,
+            ..
+        } = &mut state;
+        if *k == n_fill {
+            *max_speed_at_opening = observe(world, breached).1;
+            world.remove_fixed_collider(*plug);
         }
         world.step(dt, s.time.integrator).map_err(tag)?;
-        k += 1;
+        *k += 1;
+        let k = *k;
         for ((&id, &d), (from, lost)) in ids
             .iter()
             .zip(&diameters)
             .zip(prev.iter_mut().zip(breached.iter_mut()))
         {
-            let to = position(&world, id);
+            let to = position(world, id);
             *lost = *lost || geo.breached(from, &to, d) || !to.iter().all(|c| c.is_finite());
             *from = to;
         }
@@ -566,7 +686,7 @@ pub fn run_repeat(p: &Prepared, index: usize, seed: u64) -> Result<RepeatResult,
         if !(sample_now || count_now || after_count) {
             continue;
         }
-        let (places, vmax) = observe(&world, &breached);
+        let (places, vmax) = observe(world, breached);
         let census = Census::of(places.iter().copied());
         if sample_now {
             samples.push(Sample {
@@ -576,7 +696,7 @@ pub fn run_repeat(p: &Prepared, index: usize, seed: u64) -> Result<RepeatResult,
             });
         }
         if count_now {
-            census_at_count = Some(census);
+            *census_at_count = Some(census);
         }
         if after_count {
             if vmax < f.rest_speed_m_s {
@@ -585,52 +705,93 @@ pub fn run_repeat(p: &Prepared, index: usize, seed: u64) -> Result<RepeatResult,
                     break;
                 }
             } else {
-                rest_since = None;
+                *rest_since = None;
             }
         }
     }
-    let places = observe(&world, &breached).0;
+    let world = &state.world;
+    let places = observe(world, &state.breached).0;
     let balls = ids
         .iter()
         .zip(&diameters)
         .zip(places)
         .map(|((&id, &d), place)| Ball {
             diameter_m: d,
-            position_m: position(&world, id),
+            position_m: position(world, id),
             speed_m_s: world.velocity_m_s(id).norm(),
             place,
         })
         .collect();
-    Ok(RepeatResult {
+    let result = RepeatResult {
         index,
         seed,
         balls,
-        census_at_count,
-        max_speed_at_opening_m_s: max_speed_at_opening,
-        end_time_s: time_of(k),
-        steps: k,
-        wall_time_s: wall.elapsed().as_secs_f64(),
-        samples,
-    })
+        census_at_count: state.census_at_count,
+        max_speed_at_opening_m_s: state.max_speed_at_opening,
+        end_time_s: time_of(state.k),
+        steps: state.k,
+        wall_time_s: state.wall_before_s + wall.elapsed().as_secs_f64(),
+        samples: std::mem::take(&mut state.samples),
+    };
+    if let Some(c) = &ctx.checkpoints {
+        c.save(&s.name, &done_part, &result)
+            .map_err(|e| RunError::Io(p.path.clone(), e))?;
+    }
+    Ok(RepeatOutcome::Done(result))
 }
 
 /// Runs every repeat of a funnel pour in parallel (rayon); results in repeat order.
 pub fn simulate(p: &Prepared) -> Result<Vec<RepeatResult>, RunError> {
+    let (results, interrupted) = simulate_with(p, &RunContext::default())?;
+    if interrupted {
+        return Err(RunError::Interrupted(p.path.clone()));
+    }
+    Ok(results)
+}
+
+/// [`simulate`] with checkpoints, resumption and progress as `ctx` says. Returns the finished
+/// repeats in repeat order, and whether Ctrl-C/SIGTERM stopped some (they are then missing).
+pub fn simulate_with(
+    p: &Prepared,
+    ctx: &RunContext,
+) -> Result<(Vec<RepeatResult>, bool), RunError> {
     use rayon::prelude::*;
     let r = repeats(&p.scenario);
-    (0..r.count)
+    let bar = crate::progress::bar(r.count as u64, &p.scenario.name, "repeats,", ctx.quiet);
+    let outcomes: Vec<RepeatOutcome> = (0..r.count)
         .into_par_iter()
-        .map(|i| run_repeat(p, i, r.seed.wrapping_add(i as u64)))
-        .collect()
+        .map(|i| {
+            let o = run_repeat_with(p, i, r.seed.wrapping_add(i as u64), ctx);
+            bar.inc(1);
+            o
+        })
+        .collect::<Result<_, _>>()?;
+    bar.finish_and_clear();
+    let mut interrupted = false;
+    let mut results = Vec::new();
+    for o in outcomes {
+        match o {
+            RepeatOutcome::Done(r) => results.push(r),
+            RepeatOutcome::Interrupted => interrupted = true,
+        }
+    }
+    Ok((results, interrupted))
 }
 
 /// Funnel pour (kind `funnel_pour`): runs the repeats, writes `balls.csv`, `counts.csv`,
 /// `timeseries.csv`, `z_distribution.csv` + `.svg` and `presence.csv` + `.svg` (see
-/// [`crate::output::funnel`]).
-pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, RunError> {
+/// [`crate::output::funnel`]). Interrupted, it writes the repeats that finished.
+pub fn run(p: &Prepared, stage: &StagedDir, ctx: &RunContext) -> Result<SceneReport, RunError> {
     let s = &p.scenario;
     let t0 = Instant::now();
-    let results = simulate(p)?;
+    let (results, interrupted) = simulate_with(p, ctx)?;
+    if results.is_empty() {
+        return Ok(SceneReport {
+            interrupted,
+            lines: vec!["interrupted before any repeat finished".into()],
+            ..SceneReport::default()
+        });
+    }
     let wall = t0.elapsed().as_secs_f64();
     crate::output::funnel::write_all(p, &results, stage)?;
     let geo = Geometry::of(s);
@@ -722,6 +883,6 @@ pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, RunError> {
         bodies: n * reps,
         engine_settings: Some(settings),
         lines,
-        interrupted: false,
+        interrupted,
     })
 }

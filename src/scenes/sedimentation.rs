@@ -36,7 +36,7 @@ use crate::instruments::hydrometer::{Hydrometer, HydrometerReading, HydrometerSp
 use crate::instruments::pipette::{GrainSample, Pipette, PipetteReading};
 use crate::instruments::{Analysis, LayeredField, Point};
 use crate::output::{num, StagedDir};
-use crate::run::{Prepared, RunError, SceneReport};
+use crate::run::{Prepared, RunContext, RunError, SceneReport};
 use crate::sample::{discretize, representative_grains, Distribution, Grain, SizeClass};
 use crate::scenario::{InstrumentsSpec, Physics, Rheology, SampleSpec, Scenario};
 use nalgebra::SVector;
@@ -125,7 +125,7 @@ pub fn default_record_times(end_s: f64) -> Vec<f64> {
 
 /// One profile: per layer (top first) the solid volume of suspended grains (real units), their
 /// count, and the largest and smallest diameter present.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct Profile {
     /// Time, s.
     pub time_s: f64,
@@ -143,7 +143,8 @@ pub struct Profile {
     pub bed_mass_kg: f64,
 }
 
-/// State of the simulation.
+/// State of the simulation: everything a resumed run needs (see [`crate::checkpoint`]).
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct State {
     /// Grains (positions updated in place).
     pub grains: Vec<Grain>,
@@ -161,6 +162,26 @@ pub struct State {
     pub dt_range_s: (f64, f64),
     /// The run stopped early on Ctrl-C/SIGTERM.
     pub interrupted: bool,
+    /// Next record, snapshot and reading time to land on (indices into the sorted times).
+    pub cursor: [usize; 3],
+}
+
+impl State {
+    /// The state at t = 0: every grain of `setup` at rest in suspension.
+    pub fn initial(setup: &Setup) -> Self {
+        let n = setup.grains.len();
+        Self {
+            grains: setup.grains.clone(),
+            velocity_m_s: vec![0.0; n],
+            settled: vec![false; n],
+            bed_height_m: 0.0,
+            time_s: 0.0,
+            steps: 0,
+            dt_range_s: (f64::INFINITY, 0.0),
+            interrupted: false,
+            cursor: [0; 3],
+        }
+    }
 }
 
 fn profile(st: &State, setup: &Setup, layers: usize, rho_p: f64) -> Profile {
@@ -207,9 +228,36 @@ pub fn simulate_with(
     s: &Scenario,
     setup: &Setup,
     reading_times: &[f64],
+    record: impl FnMut(&State),
+    snapshot: impl FnMut(&State),
+    reading: impl FnMut(&State),
+) -> State {
+    simulate_from(
+        s,
+        setup,
+        reading_times,
+        State::initial(setup),
+        record,
+        snapshot,
+        reading,
+        |_| {},
+    )
+}
+
+/// [`simulate_with`] from a given state (the initial one, or one saved by a checkpoint), calling
+/// `checkpoint` after every step (it decides whether to save). The same state gives the same
+/// continuation, bit for bit: every step depends on the state only (the per-grain updates are
+/// independent, the sums serial).
+#[allow(clippy::too_many_arguments)]
+pub fn simulate_from(
+    s: &Scenario,
+    setup: &Setup,
+    reading_times: &[f64],
+    state: State,
     mut record: impl FnMut(&State),
     mut snapshot: impl FnMut(&State),
     mut reading: impl FnMut(&State),
+    mut checkpoint: impl FnMut(&State),
 ) -> State {
     let sm: &SampleSpec = s.sample.as_ref().expect("validated");
     let g = s.gravity_m_s2;
@@ -231,18 +279,9 @@ pub fn simulate_with(
     let mut reads = reading_times.to_vec();
     reads.sort_by(f64::total_cmp);
     reads.dedup();
-    let mut ri = 0usize;
-    let n = setup.grains.len();
-    let mut st = State {
-        grains: setup.grains.clone(),
-        velocity_m_s: vec![0.0; n],
-        settled: vec![false; n],
-        bed_height_m: 0.0,
-        time_s: 0.0,
-        steps: 0,
-        dt_range_s: (f64::INFINITY, 0.0),
-        interrupted: false,
-    };
+    let mut st = state;
+    st.interrupted = false;
+    let [mut ti, mut si, mut ri] = st.cursor;
     // Voidage grid.
     let cell = sm.voidage_cell_m;
     let (ncx, ncy) = (
@@ -257,7 +296,6 @@ pub fn simulate_with(
         let j = ((y / setup.height_m * ncy as f64) as usize).min(ncy - 1);
         j * ncx + i
     };
-    let (mut ti, mut si) = (0usize, 0usize);
     let bed_area = setup.width_m * setup.thickness_m * sm.bed_packing;
     let mass = |d: f64| sphere_mass_kg(d, sm.density_kg_m3);
     while st.time_s < s.time.end_s * (1.0 - 1e-12) {
@@ -366,6 +404,8 @@ pub fn simulate_with(
             reading(&st);
             ri += 1;
         }
+        st.cursor = [ti, si, ri];
+        checkpoint(&st);
     }
     st
 }
@@ -484,9 +524,24 @@ fn write_snapshot(dir: &Path, st: &State) -> std::io::Result<()> {
     f.flush()
 }
 
+/// What a run has recorded so far: saved with the state in a checkpoint.
+#[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
+struct Recorded {
+    profiles: Vec<Profile>,
+    /// (time, band mass fractions) of each snapshot, for `cylinder.png`.
+    pictures: Vec<(f64, Vec<f64>)>,
+    /// The states at the snapshot times (written to `snapshots/` at the end).
+    snapshots: Vec<State>,
+    readings: Vec<InstrumentReading>,
+    bulb: Vec<BulbRow>,
+}
+
 /// Runs a sedimentation scenario and writes `profiles.csv`, `bed.csv`, `max_diameter.csv`,
-/// `snapshots/`, `summary.csv` and the instruments' files (see the module doc).
-pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, RunError> {
+/// `snapshots/`, `summary.csv` and the instruments' files (see the module doc). With
+/// checkpoints in `ctx` it saves its state and what it recorded every period and when
+/// interrupted (part `state`, see [`crate::checkpoint`]); with `ctx.resume` it continues from
+/// the saved state.
+pub fn run(p: &Prepared, stage: &StagedDir, ctx: &RunContext) -> Result<SceneReport, RunError> {
     let s = &p.scenario;
     let sm = s.sample.as_ref().expect("validated");
     let setup = setup(s, &p.path)
@@ -502,27 +557,86 @@ pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, RunError> {
         .viscosity_pa_s
         .or(s.fluid.plastic_viscosity_pa_s)
         .unwrap_or(1e-3);
-    let mut profiles: Vec<Profile> = Vec::new();
-    let snap_dir = stage.path("snapshots");
-    let mut snap_err: Option<std::io::Error> = None;
-    let mut pictures: Vec<(f64, Vec<f64>)> = Vec::new();
     let instruments = InstrumentSet::new(s, &setup);
-    let mut readings: Vec<InstrumentReading> = Vec::new();
-    let mut bulb = initial_bulb_profile(&instruments, &setup);
+    let (start, recorded) = match (&ctx.checkpoints, ctx.resume) {
+        (Some(c), true) => c
+            .load::<(State, Recorded)>(&s.name, "state")
+            .map_err(RunError::Other)?,
+        _ => None,
+    }
+    .unwrap_or_else(|| {
+        let recorded = Recorded {
+            bulb: initial_bulb_profile(&instruments, &setup),
+            ..Recorded::default()
+        };
+        (State::initial(&setup), recorded)
+    });
+    let rec = std::cell::RefCell::new(recorded);
+    let save_err: std::cell::RefCell<Option<std::io::Error>> = Default::default();
+    let save = |st: &State| {
+        if let Some(c) = &ctx.checkpoints {
+            if let Err(e) = c.save(&s.name, "state", &(st, &*rec.borrow())) {
+                save_err.borrow_mut().get_or_insert(e);
+            }
+        }
+    };
+    let mut timer = ctx.checkpoints.as_ref().map(|c| c.timer());
+    let bar = crate::progress::bar(
+        s.time.end_s.ceil() as u64,
+        &s.name,
+        "s simulated,",
+        ctx.quiet,
+    );
     let t0 = std::time::Instant::now();
-    let st = simulate_with(
+    let st = simulate_from(
         s,
         &setup,
         &instruments.all_times_s(),
-        |st| profiles.push(profile(st, &setup, layers, rho_p)),
+        start,
         |st| {
-            if let Err(e) = write_snapshot(&snap_dir, st) {
-                snap_err.get_or_insert(e);
-            }
-            pictures.push((st.time_s, band_mass_fractions(st, &setup, PICTURE_BANDS)));
+            rec.borrow_mut()
+                .profiles
+                .push(profile(st, &setup, layers, rho_p))
         },
-        |st| readings.extend(read_instruments(&instruments, st, &setup, &mut bulb)),
+        |st| {
+            let mut r = rec.borrow_mut();
+            r.pictures
+                .push((st.time_s, band_mass_fractions(st, &setup, PICTURE_BANDS)));
+            r.snapshots.push(st.clone());
+        },
+        |st| {
+            let r = &mut *rec.borrow_mut();
+            r.readings
+                .extend(read_instruments(&instruments, st, &setup, &mut r.bulb))
+        },
+        |st| {
+            if st.steps % 256 == 0 {
+                bar.set_position(st.time_s as u64);
+                bar.set_message(crate::progress::step_message(st.steps, t0));
+            }
+            if timer.as_mut().is_some_and(|t| t.due()) {
+                save(st);
+            }
+        },
     );
+    bar.finish_and_clear();
+    if st.interrupted {
+        save(&st);
+    }
+    if let Some(e) = save_err.into_inner() {
+        return Err(RunError::Io(p.path.clone(), e));
+    }
+    let Recorded {
+        profiles,
+        pictures,
+        snapshots,
+        readings,
+        bulb,
+    } = rec.into_inner();
+    let snap_dir = stage.path("snapshots");
+    for snap in &snapshots {
+        write_snapshot(&snap_dir, snap).map_err(io)?;
+    }
     let wall = t0.elapsed().as_secs_f64();
     // Instruments: granulometry.csv/.svg, instruments.csv/.svg, bulb_density.csv/.svg,
     // instrument_errors.csv.
@@ -578,9 +692,6 @@ pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, RunError> {
             &instrument_errors,
         )
         .map_err(err)?;
-    }
-    if let Some(e) = snap_err {
-        return Err(io(e));
     }
     if !pictures.is_empty() {
         draw_cylinder(&stage.path("cylinder.png"), &pictures).map_err(RunError::Other)?;
@@ -694,7 +805,7 @@ pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, RunError> {
     let settled = st.settled.iter().filter(|x| **x).count();
     let mut w = csv::Writer::from_path(stage.path("summary.csv"))
         .map_err(|e| io(std::io::Error::other(e)))?;
-    let rows: [(&str, String); 13] = [
+    let rows: [(&str, String); 12] = [
         ("sample", sm.sample.to_string()),
         ("representative_grains", st.grains.len().to_string()),
         ("real_grains_modelled", num(real)),
@@ -707,7 +818,6 @@ pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, RunError> {
         ("dt_max_s", num(st.dt_range_s.1)),
         ("grains_settled_at_end", settled.to_string()),
         ("bed_height_m", num(st.bed_height_m)),
-        ("wall_time_s", num(wall)),
     ];
     w.write_record(["quantity", "value"])
         .map_err(|e| io(std::io::Error::other(e)))?;
@@ -871,7 +981,7 @@ pub fn layered_field(pr: &Profile, setup: &Setup, rho_p: f64, rho_f: f64) -> Lay
 }
 
 /// Which instrument a reading comes from.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum InstrumentKind {
     /// ASTM 152H hydrometer.
     Hydrometer,
@@ -894,7 +1004,7 @@ impl InstrumentKind {
 
 /// One reading of an instrument on the simulation, with what the same instrument reads on the
 /// ideal Stokes suspension of the input curve at the same time (its own approximation).
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct InstrumentReading {
     /// Instrument.
     pub kind: InstrumentKind,
@@ -1012,17 +1122,7 @@ pub fn read_instruments(
 
 /// The hydrometer's bulb density in the initial (homogeneous) suspension, for `bulb_density.csv`.
 pub fn initial_bulb_profile(set: &InstrumentSet, setup: &Setup) -> Vec<BulbRow> {
-    let n = setup.grains.len();
-    let st = State {
-        grains: setup.grains.clone(),
-        velocity_m_s: vec![0.0; n],
-        settled: vec![false; n],
-        bed_height_m: 0.0,
-        time_s: 0.0,
-        steps: 0,
-        dt_range_s: (0.0, 0.0),
-        interrupted: false,
-    };
+    let st = State::initial(setup);
     let (rho_p, rho_f) = (
         set.analysis.grain_density_kg_m3,
         set.analysis.fluid_density_kg_m3,
