@@ -21,6 +21,9 @@ pub struct Unstable {
     /// Largest time step expected to be stable for this body, s (infinite if unknown; 0 when no
     /// step is stable for the scheme in use, e.g. explicit drag at a yield-stress stop).
     pub stable_dt_s: f64,
+    /// What to do, when the explicit-drag advice derived from `stable_dt_s` does not apply
+    /// (e.g. "try dt ≤ 5e-5 s: half the step, …"); empty: that advice.
+    pub advice: String,
 }
 
 impl fmt::Display for Unstable {
@@ -30,7 +33,9 @@ impl fmt::Display for Unstable {
             "unstable: body `{}` at t = {:.6e} s (step {}): {} with dt = {:.3e} s",
             self.body, self.time_s, self.step, self.what, self.dt_s
         )?;
-        if self.stable_dt_s == 0.0 {
+        if !self.advice.is_empty() {
+            write!(f, "; {}", self.advice)?;
+        } else if self.stable_dt_s == 0.0 {
             write!(
                 f,
                 "; no time step makes the explicit scheme hold a body at rest against a yield stress: use integrator = \"implicit\" or \"exponential\""

@@ -123,6 +123,19 @@ pub struct EngineSettings {
     pub friction: f64,
     /// How the drag acts on a body in contact. Default [`ContactDrag::EffectiveMass`].
     pub contact_drag: ContactDrag,
+    /// Overlap of a contact, as a fraction of the body's diameter, beyond which the run stops as
+    /// unstable (bodies passing through each other or through a wall). Default 0.25; 0 turns the
+    /// check off. Resting overlaps are ~1e-4 d at the default contact frequency, impacts ~1e-2 d.
+    #[serde(default = "default_max_penetration")]
+    pub max_penetration_fraction: f64,
+    /// Largest distance of a body's centre from the origin, m, beyond which the run stops as
+    /// unstable (a body that left the domain). Default None: no bound.
+    #[serde(default)]
+    pub max_distance_m: Option<f64>,
+}
+
+fn default_max_penetration() -> f64 {
+    0.25
 }
 
 /// How the drag of a body in contact is handed to Rapier's contact solver (see the module doc).
@@ -145,7 +158,7 @@ impl EngineSettings {
     /// fastest body is expected to move at `max_speed_m_s` (e.g. the largest terminal velocity):
     /// length unit = `min_diameter_m`, 1e4 Hz contacts, damping ratio 10, speed cap
     /// max(400·lu, 4·`max_speed_m_s`), 4 solver iterations, no sleeping, friction 0.5,
-    /// effective-mass contact drag.
+    /// effective-mass contact drag, runs stopped at overlaps beyond 0.25 d, no domain bound.
     pub fn for_scene(min_diameter_m: f64, max_speed_m_s: f64) -> Self {
         assert!(
             min_diameter_m > 0.0 && min_diameter_m.is_finite(),
@@ -160,6 +173,8 @@ impl EngineSettings {
             can_sleep: false,
             friction: 0.5,
             contact_drag: ContactDrag::EffectiveMass,
+            max_penetration_fraction: default_max_penetration(),
+            max_distance_m: None,
         }
     }
 }
@@ -177,7 +192,9 @@ impl fmt::Display for BodyId {
 /// Builds the run-wide [`Unstable`] report for body `index` of a world: `quantity` is what went
 /// wrong (`"position"` or `"velocity"` non-finite, `"quarantined"` when Rapier disabled the body,
 /// `"speed"` above half the speed cap, `"intermediate speed"` when the free-flight force would
-/// exceed the cap and the step was refused), `value` its value, `suggested_dt_s` a step that should
+/// exceed the cap and the step was refused, `"penetration"` for an overlap beyond
+/// [`EngineSettings::max_penetration_fraction`], `"distance from the origin"` beyond
+/// [`EngineSettings::max_distance_m`]), `value` its value, `suggested_dt_s` a step that should
 /// cure it (half the current dt, and for the explicit integrator at most half its stability limit).
 pub(crate) fn unstable(
     index: usize,
@@ -187,6 +204,16 @@ pub(crate) fn unstable(
     value: f64,
     suggested_dt_s: f64,
 ) -> Unstable {
+    let advice = if suggested_dt_s < 0.5 * dt_s * (1.0 - 1e-12) {
+        // The explicit integrator's drag limit is the binding one.
+        String::new()
+    } else {
+        format!(
+            "try dt ≤ {suggested_dt_s:.3e} s (half the step: contacts and the speed cap hold when \
+             a body travels a small fraction of its diameter per step), or check the initial \
+             positions and the scene's settings"
+        )
+    };
     Unstable {
         body: BodyId(index).to_string(),
         time_s,
@@ -194,6 +221,7 @@ pub(crate) fn unstable(
         what: format!("{quantity} = {value:.3e}"),
         dt_s,
         stable_dt_s: suggested_dt_s,
+        advice,
     }
 }
 

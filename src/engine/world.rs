@@ -620,6 +620,7 @@ impl World {
             let x = to_na(rb.translation());
             let v = to_na(rb.linvel());
             let speed = v.norm();
+            let d = body.drag.diameter_m;
             let (quantity, value) = if quarantined.contains(&body.handle) {
                 ("quarantined", f64::NAN)
             } else if !x.iter().all(|c| c.is_finite()) {
@@ -628,8 +629,26 @@ impl World {
                 ("velocity", speed)
             } else if speed > 0.5 * cap {
                 ("speed", speed)
+            } else if self.settings.max_distance_m.is_some_and(|r| x.norm() > r) {
+                ("distance from the origin (outside the domain), m", x.norm())
             } else {
-                continue;
+                let frac = self.settings.max_penetration_fraction;
+                let depth = if frac > 0.0 {
+                    self.physics
+                        .narrow_phase
+                        .contact_pairs_with(body.collider)
+                        .flat_map(|pair| pair.manifolds().iter())
+                        .flat_map(|m| m.points.iter())
+                        .map(|pt| -pt.dist)
+                        .fold(0.0, f64::max)
+                } else {
+                    0.0
+                };
+                if frac > 0.0 && depth > frac * d {
+                    ("penetration depth, m", depth)
+                } else {
+                    continue;
+                }
             };
             first_error = Some(unstable(
                 i,

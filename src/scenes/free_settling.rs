@@ -362,6 +362,7 @@ pub fn run_sphere_with<const D: usize>(
                 } else {
                     explicit_stable_dt_s(m, s.drag_slope_n_s_m)
                 },
+                advice: String::new(),
             });
         }
         let speed0 = -v[D - 1];
