@@ -19,7 +19,7 @@ pub mod stability;
 
 use crate::fluid::SphereDrag;
 use nalgebra::SVector;
-pub use stability::{Monitor, Unstable};
+pub use stability::{DtBasis, Monitor, Unstable};
 
 /// Time-integration scheme for the fluid forces. Default: `Exponential`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]

@@ -21,9 +21,19 @@ pub struct Unstable {
     /// Largest time step expected to be stable for this body, s (infinite if unknown; 0 when no
     /// step is stable for the scheme in use, e.g. explicit drag at a yield-stress stop).
     pub stable_dt_s: f64,
-    /// What to do, when the explicit-drag advice derived from `stable_dt_s` does not apply
-    /// (e.g. "try dt ≤ 5e-5 s: half the step, …"); empty: that advice.
-    pub advice: String,
+    /// How `stable_dt_s` was found, which sets the advice printed.
+    pub dt_basis: DtBasis,
+}
+
+/// How the suggested step of an [`Unstable`] report was found.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum DtBasis {
+    /// The explicit drag update's limit 2 m/(dF/dv) (0: no step holds a yield-stress stop).
+    #[default]
+    ExplicitDrag,
+    /// Half the step in use: a fault of the contacts, the speed cap or the domain, which a
+    /// body travelling a smaller fraction of its diameter per step avoids.
+    Halved,
 }
 
 impl fmt::Display for Unstable {
@@ -33,8 +43,14 @@ impl fmt::Display for Unstable {
             "unstable: body `{}` at t = {:.6e} s (step {}): {} with dt = {:.3e} s",
             self.body, self.time_s, self.step, self.what, self.dt_s
         )?;
-        if !self.advice.is_empty() {
-            write!(f, "; {}", self.advice)?;
+        if self.dt_basis == DtBasis::Halved {
+            write!(
+                f,
+                "; try dt ≤ {:.3e} s (half the step: contacts and the speed cap hold when a body \
+                 travels a small fraction of its diameter per step), or check the initial \
+                 positions and the scene's settings",
+                self.stable_dt_s
+            )?;
         } else if self.stable_dt_s == 0.0 {
             write!(
                 f,

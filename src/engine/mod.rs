@@ -204,15 +204,11 @@ pub(crate) fn unstable(
     value: f64,
     suggested_dt_s: f64,
 ) -> Unstable {
-    let advice = if suggested_dt_s < 0.5 * dt_s * (1.0 - 1e-12) {
-        // The explicit integrator's drag limit is the binding one.
-        String::new()
+    // The explicit integrator's drag limit, when below half the step, is the binding one.
+    let dt_basis = if suggested_dt_s < 0.5 * dt_s * (1.0 - 1e-12) {
+        crate::dynamics::DtBasis::ExplicitDrag
     } else {
-        format!(
-            "try dt ≤ {suggested_dt_s:.3e} s (half the step: contacts and the speed cap hold when \
-             a body travels a small fraction of its diameter per step), or check the initial \
-             positions and the scene's settings"
-        )
+        crate::dynamics::DtBasis::Halved
     };
     Unstable {
         body: BodyId(index).to_string(),
@@ -221,7 +217,7 @@ pub(crate) fn unstable(
         what: format!("{quantity} = {value:.3e}"),
         dt_s,
         stable_dt_s: suggested_dt_s,
-        advice,
+        dt_basis,
     }
 }
 

@@ -362,7 +362,7 @@ pub fn run_sphere_with<const D: usize>(
                 } else {
                     explicit_stable_dt_s(m, s.drag_slope_n_s_m)
                 },
-                advice: String::new(),
+                dt_basis: crate::dynamics::DtBasis::ExplicitDrag,
             });
         }
         let speed0 = -v[D - 1];
