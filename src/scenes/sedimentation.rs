@@ -37,6 +37,7 @@ use crate::instruments::pipette::{GrainSample, Pipette, PipetteReading};
 use crate::instruments::{Analysis, LayeredField, Point};
 use crate::output::{num, StagedDir};
 use crate::run::{Prepared, RunError, SceneReport};
+use crate::scenes::grain_contacts::{clusters, PairFinder, Probe};
 use crate::sample::{discretize, representative_grains, Distribution, Grain, SizeClass};
 use crate::scenario::{InstrumentsSpec, Physics, Rheology, SampleSpec, Scenario};
 use nalgebra::SVector;
@@ -161,6 +162,25 @@ pub struct State {
     pub dt_range_s: (f64, f64),
     /// The run stopped early on Ctrl-C/SIGTERM.
     pub interrupted: bool,
+    /// Contact statistics of the run (full physics with contacts or lubrication).
+    pub contacts: ContactStats,
+}
+
+/// How much the contact and lubrication pipeline did over a run.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ContactStats {
+    /// Close pairs found, summed over the steps.
+    pub pairs: u64,
+    /// Grains handed to the contact solve, summed over the steps.
+    pub grains: u64,
+    /// Most close pairs in one step.
+    pub max_pairs_per_step: usize,
+    /// Steps with at least one close pair.
+    pub steps_with_pairs: u64,
+    /// Rapier steps taken by the contact solve (all clusters, all substeps).
+    pub rapier_steps: u64,
+    /// Wall time spent finding pairs and resolving them, s.
+    pub wall_s: f64,
 }
 
 fn profile(st: &State, setup: &Setup, layers: usize, rho_p: f64) -> Profile {
@@ -242,6 +262,7 @@ pub fn simulate_with(
         steps: 0,
         dt_range_s: (f64::INFINITY, 0.0),
         interrupted: false,
+        contacts: ContactStats::default(),
     };
     // Voidage grid.
     let cell = sm.voidage_cell_m;
@@ -260,6 +281,8 @@ pub fn simulate_with(
     let (mut ti, mut si) = (0usize, 0usize);
     let bed_area = setup.width_m * setup.thickness_m * sm.bed_packing;
     let mass = |d: f64| sphere_mass_kg(d, sm.density_kg_m3);
+    let (mut y_start, mut v_start): (Vec<f64>, Vec<f64>) = (Vec::new(), Vec::new());
+    let mut finder = PairFinder::default();
     while st.time_s < s.time.end_s * (1.0 - 1e-12) {
         if crate::interrupt::requested() {
             st.interrupted = true;
@@ -302,6 +325,14 @@ pub fn simulate_with(
             }
         }
         let dt = dt.max(1e-12);
+        // Start-of-step heights and speeds, for the pair search and the contact solve.
+        let with_pairs = !ideal && (sm.contacts || sm.lubrication);
+        if with_pairs {
+            y_start.clear();
+            y_start.extend(st.grains.iter().map(|g| g.y_m));
+            v_start.clear();
+            v_start.extend_from_slice(&st.velocity_m_s);
+        }
         let solid_ref = &solid;
         let floor = st.bed_height_m;
         st.grains
@@ -332,6 +363,31 @@ pub fn simulate_with(
                     gr.y_m = floor + 0.5 * d;
                 }
             });
+        if with_pairs {
+            let t0 = std::time::Instant::now();
+            let probes: Vec<Option<Probe>> = st
+                .grains
+                .iter()
+                .zip(&st.settled)
+                .zip(&y_start)
+                .map(|((g, &settled), &y0)| {
+                    (!settled).then_some(Probe {
+                        x_m: g.x_m,
+                        y_start_m: y0,
+                        y_end_m: g.y_m,
+                        radius_m: 0.5 * g.diameter_m,
+                    })
+                })
+                .collect();
+            let pairs = finder.pairs(&probes, setup.width_m, sm.lubrication_outer_cutoff);
+            let groups = clusters(&pairs);
+            let cs = &mut st.contacts;
+            cs.pairs += pairs.len() as u64;
+            cs.grains += groups.iter().map(Vec::len).sum::<usize>() as u64;
+            cs.max_pairs_per_step = cs.max_pairs_per_step.max(pairs.len());
+            cs.steps_with_pairs += u64::from(!pairs.is_empty());
+            cs.wall_s += t0.elapsed().as_secs_f64();
+        }
         // Deposition (serial: the bed grows as grains join it).
         for ((gr, v), settled) in st
             .grains
@@ -735,6 +791,15 @@ pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, RunError> {
                 st.steps, st.dt_range_s.0, st.dt_range_s.1, st.time_s, wall, settled, st.bed_height_m
             ),
             format!(
+                "contacts: {} close pairs over {} steps (at most {} in one step), {} grains handed to the contact solve, {} Rapier steps, {:.2} s wall",
+                st.contacts.pairs,
+                st.contacts.steps_with_pairs,
+                st.contacts.max_pairs_per_step,
+                st.contacts.grains,
+                st.contacts.rapier_steps,
+                st.contacts.wall_s
+            ),
+            format!(
                 "instruments against the input curve (largest / mean |Δ percent finer|): {}",
                 instrument_errors
                     .iter()
@@ -1022,6 +1087,7 @@ pub fn initial_bulb_profile(set: &InstrumentSet, setup: &Setup) -> Vec<BulbRow> 
         steps: 0,
         dt_range_s: (0.0, 0.0),
         interrupted: false,
+        contacts: ContactStats::default(),
     };
     let (rho_p, rho_f) = (
         set.analysis.grain_density_kg_m3,
