@@ -474,6 +474,12 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
                 1.0,
                 "(fraction of the effective radius a_eff)",
             )?;
+            if sm.lubrication && !sm.contacts {
+                return Err(c.err(
+                    "sample.lubrication",
+                    "the squeeze film is solved inside the contact solve: allowed lubrication = true only with sample.contacts = true (set lubrication = false too)",
+                ));
+            }
             if !(sm.lubrication_inner_cutoff > 0.0
                 && sm.lubrication_inner_cutoff < sm.lubrication_outer_cutoff)
             {

@@ -37,13 +37,21 @@ use crate::instruments::pipette::{GrainSample, Pipette, PipetteReading};
 use crate::instruments::{Analysis, LayeredField, Point};
 use crate::output::{num, StagedDir};
 use crate::run::{Prepared, RunError, SceneReport};
-use crate::scenes::grain_contacts::{clusters, PairFinder, Probe};
+use crate::fluid::lubrication::Cutoffs;
+use crate::scenes::grain_contacts::{
+    clusters, resolve, ClusterGrain, ContactScene, PairFinder, Probe, Resolved,
+};
+use std::collections::HashMap;
 use crate::sample::{discretize, representative_grains, Distribution, Grain, SizeClass};
 use crate::scenario::{InstrumentsSpec, Physics, Rheology, SampleSpec, Scenario};
 use nalgebra::SVector;
 use rayon::prelude::*;
 use std::io::Write;
 use std::path::Path;
+
+/// Largest travel of the fastest grain of a contact cluster per Rapier step, in diameters of
+/// the cluster's smallest grain.
+pub const CONTACT_TRAVEL_PER_SUBSTEP: f64 = 0.25;
 
 /// Thickness of the 2D projection of two opposing 1° wedges, m: h_z = π B / 720, generalised to a
 /// wedge fraction f of the cylinder as h_z = π B f / 4 (B H h_z = f π B² H / 4).
@@ -326,7 +334,7 @@ pub fn simulate_with(
         }
         let dt = dt.max(1e-12);
         // Start-of-step heights and speeds, for the pair search and the contact solve.
-        let with_pairs = !ideal && (sm.contacts || sm.lubrication);
+        let with_pairs = !ideal && sm.contacts;
         if with_pairs {
             y_start.clear();
             y_start.extend(st.grains.iter().map(|g| g.y_m));
@@ -334,6 +342,19 @@ pub fn simulate_with(
             v_start.extend_from_slice(&st.velocity_m_s);
         }
         let solid_ref = &solid;
+        // Drag of a grain of diameter d in voidage cell `cell`.
+        let drag_of = |d: f64, cell: usize| {
+            let law = if ideal {
+                DragLaw::Stokes { viscosity_pa_s: mu }
+            } else {
+                let eps = (1.0 - solid_ref[cell] / cell_volume).clamp(0.3, 1.0);
+                DragLaw::Dallavalle {
+                    viscosity_pa_s: mu,
+                    voidage: eps,
+                }
+            };
+            SphereDrag::new(law, d, rho_f)
+        };
         let floor = st.bed_height_m;
         st.grains
             .par_iter_mut()
@@ -342,17 +363,7 @@ pub fn simulate_with(
             .filter(|((_, _), s)| !**s)
             .for_each(|((gr, v), _)| {
                 let d = gr.diameter_m;
-                let law = if ideal {
-                    DragLaw::Stokes { viscosity_pa_s: mu }
-                } else {
-                    let eps =
-                        (1.0 - solid_ref[cell_of(gr.x_m, gr.y_m)] / cell_volume).clamp(0.3, 1.0);
-                    DragLaw::Dallavalle {
-                        viscosity_pa_s: mu,
-                        voidage: eps,
-                    }
-                };
-                let drag = SphereDrag::new(law, d, rho_f);
+                let drag = drag_of(d, cell_of(gr.x_m, gr.y_m));
                 let m = mass(d);
                 let w = SVector::<f64, 1>::new(-(m - sphere_mass_kg(d, rho_f)) * g);
                 let step = advance(integrator, &drag, m, &w, &SVector::<f64, 1>::new(*v), dt);
@@ -381,6 +392,63 @@ pub fn simulate_with(
                 .collect();
             let pairs = finder.pairs(&probes, setup.width_m, sm.lubrication_outer_cutoff);
             let groups = clusters(&pairs);
+            // Each cluster from the start of the step, in its own Rapier world (in parallel).
+            let scene = ContactScene {
+                width_m: setup.width_m,
+                floor_m: floor,
+                density_kg_m3: sm.density_kg_m3,
+                fluid_density_kg_m3: rho_f,
+                gravity_m_s2: g,
+                viscosity_pa_s: mu,
+                lubrication: sm.lubrication.then_some(Cutoffs {
+                    inner: sm.lubrication_inner_cutoff,
+                    outer: sm.lubrication_outer_cutoff,
+                }),
+                outer_fraction: sm.lubrication_outer_cutoff,
+                integrator,
+                travel_per_substep: CONTACT_TRAVEL_PER_SUBSTEP,
+            };
+            let mut local: HashMap<usize, (usize, usize)> = HashMap::new();
+            for (c, grp) in groups.iter().enumerate() {
+                for (k, &i) in grp.iter().enumerate() {
+                    local.insert(i, (c, k));
+                }
+            }
+            let mut group_pairs: Vec<Vec<(usize, usize)>> = vec![Vec::new(); groups.len()];
+            for &(i, j) in &pairs {
+                let (c, a) = local[&i];
+                group_pairs[c].push((a, local[&j].1));
+            }
+            let grains_ref = &st.grains;
+            let (y0s, v0s) = (&y_start, &v_start);
+            let results: Vec<(Vec<Resolved>, u64)> = groups
+                .par_iter()
+                .zip(&group_pairs)
+                .map(|(grp, gp)| {
+                    let members: Vec<ClusterGrain> = grp
+                        .iter()
+                        .map(|&i| {
+                            let gr = &grains_ref[i];
+                            ClusterGrain {
+                                x_m: gr.x_m,
+                                y_m: y0s[i],
+                                vy_m_s: v0s[i],
+                                diameter_m: gr.diameter_m,
+                                drag: drag_of(gr.diameter_m, cell_of(gr.x_m, y0s[i])),
+                            }
+                        })
+                        .collect();
+                    resolve(&members, gp, &scene, dt)
+                })
+                .collect();
+            for (grp, (res, n)) in groups.iter().zip(results) {
+                st.contacts.rapier_steps += n;
+                for (&i, r) in grp.iter().zip(res) {
+                    st.grains[i].x_m = r.x_m;
+                    st.grains[i].y_m = r.y_m;
+                    st.velocity_m_s[i] = r.vy_m_s;
+                }
+            }
             let cs = &mut st.contacts;
             cs.pairs += pairs.len() as u64;
             cs.grains += groups.iter().map(Vec::len).sum::<usize>() as u64;

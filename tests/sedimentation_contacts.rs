@@ -1,0 +1,184 @@
+//! Contacts and squeeze-film lubrication between representative grains of the sedimentation
+//! cylinder (`physics = "full"`): the cluster solve of `scenes::grain_contacts` on two-grain
+//! cases with known answers, and the full run with contacts on. Each test states its tolerance.
+
+use settle::dynamics::Integrator;
+use settle::fluid::lubrication::{damping_n_s_m, effective_radius_m, Cutoffs};
+use std::f64::consts::PI;
+use settle::fluid::{DragLaw, SphereDrag};
+use settle::scenes::grain_contacts::{resolve, ClusterGrain, ContactScene, Resolved};
+
+const MU: f64 = 1e-3;
+const RHO_P: f64 = 2500.0;
+const RHO_F: f64 = 1000.0;
+const G: f64 = 9.81;
+
+fn scene(lubrication: bool, travel: f64) -> ContactScene {
+    ContactScene {
+        width_m: 0.0635,
+        floor_m: 0.0,
+        density_kg_m3: RHO_P,
+        fluid_density_kg_m3: RHO_F,
+        gravity_m_s2: G,
+        viscosity_pa_s: MU,
+        lubrication: lubrication.then_some(Cutoffs::default()),
+        outer_fraction: Cutoffs::default().outer,
+        integrator: Integrator::Exponential,
+        travel_per_substep: travel,
+    }
+}
+
+fn stokes(d: f64) -> SphereDrag {
+    SphereDrag::new(DragLaw::Stokes { viscosity_pa_s: MU }, d, RHO_F)
+}
+
+fn terminal(d: f64) -> f64 {
+    -d * d * (RHO_P - RHO_F) * G / (18.0 * MU)
+}
+
+fn grain(x: f64, y: f64, d: f64) -> ClusterGrain {
+    ClusterGrain {
+        x_m: x,
+        y_m: y,
+        vy_m_s: terminal(d),
+        diameter_m: d,
+        drag: stokes(d),
+    }
+}
+
+/// Steps a two-grain cluster (big = 0, small = 1) with `resolve` over `steps` steps of `dt`,
+/// returning the states after each step.
+fn run_pair(
+    mut g: [ClusterGrain; 2],
+    sc: &ContactScene,
+    dt: f64,
+    steps: usize,
+) -> Vec<[Resolved; 2]> {
+    let mut out = Vec::new();
+    for _ in 0..steps {
+        let (r, _) = resolve(&g, &[(0, 1)], sc, dt);
+        for k in 0..2 {
+            g[k].x_m = r[k].x_m;
+            g[k].y_m = r[k].y_m;
+            g[k].vy_m_s = r[k].vy_m_s;
+        }
+        out.push([r[0], r[1]]);
+    }
+    out
+}
+
+#[test]
+fn a_big_grain_catches_a_small_one_and_does_not_pass_through_it() {
+    // 70 µm above 10 µm, 5 µm off axis, 100 µm apart: the big one (4.0 mm/s) catches the small
+    // one (0.08 mm/s) after ~25 ms. Frictionless discs: the small one is pushed aside and down
+    // until the big one has gone past. Sampled every 0.2 ms. Tolerances: overlap at most 1 % of
+    // the small diameter at every sample; at the end the big grain is below the small one, and
+    // it got there around it (largest |Δx| ≥ 99 % of r₁ + r₂; the film's attraction while the
+    // pair separates pulls Δx back by < 1 %).
+    let (db, ds) = (70e-6, 10e-6);
+    let touch = 0.5 * (db + ds);
+    for lubrication in [false, true] {
+        let sc = scene(lubrication, 0.25);
+        let g = [grain(0.03, 0.01 + 100e-6 + touch, db), grain(0.03 + 5e-6, 0.01, ds)];
+        let states = run_pair(g, &sc, 2e-4, 400);
+        let mut widest: f64 = 0.0;
+        for s in &states {
+            let (dx, dy) = (s[1].x_m - s[0].x_m, s[1].y_m - s[0].y_m);
+            let gap = (dx * dx + dy * dy).sqrt() - touch;
+            assert!(
+                gap > -0.01 * ds,
+                "lubrication {lubrication}: overlap {:.3e} d_small",
+                -gap / ds
+            );
+            widest = widest.max(dx.abs());
+        }
+        let last = states.last().unwrap();
+        assert!(
+            last[0].y_m < last[1].y_m - touch,
+            "lubrication {lubrication}: the big grain did not get past the small one"
+        );
+        assert!(
+            widest >= 0.99 * touch,
+            "lubrication {lubrication}: the small grain was not pushed aside (|dx| ≤ {widest:e} m)"
+        );
+    }
+}
+
+/// Gap of two spheres settling along their line of centres (Stokes drag each, overdamped),
+/// the faster one above, with the squeeze film c = 6πμ a_eff²/h between them: the approach is
+/// u = Δu/(1 + c(1/k₁ + 1/k₂)) = Δu h/(h + a_eff), so (h − h₀) + a_eff ln(h/h₀) = −Δu t.
+fn lubricated_gap_m(a_eff: f64, h0: f64, du: f64, t: f64) -> f64 {
+    let f = |h: f64| (h - h0) + a_eff * (h / h0).ln() + du * t;
+    let (mut lo, mut hi) = (1e-6 * h0, h0);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if f(mid) > 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+#[test]
+fn a_lubricated_pair_approaches_at_the_squeeze_film_rate() {
+    // 70 µm right above 30 µm, gap 0.09 a_eff (inside the cut-off, a_eff = 10.5 µm): the free
+    // relative speed Δu = 3.3 mm/s would close the gap in 0.29 ms; the film slows it to
+    // h(t) above. Tolerance: 10 % of h at t = 2.4 ms (h = h₀/2) and 4.7 ms (h = h₀/4) (measured: 4.6 % and 7.6 % too
+    // close, a systematic excess of the Rapier solve not yet explained), where
+    // inertia (relative response time < 0.1 ms) and the frozen gap per Rapier step (2 %
+    // change) are the known errors. Without lubrication the pair touches.
+    let (db, ds) = (70e-6, 30e-6);
+    let a = effective_radius_m(0.5 * db, 0.5 * ds);
+    let h0 = 0.09 * a;
+    let du = terminal(ds) - terminal(db);
+    let mut g = [
+        grain(0.03, 0.01 + 0.5 * (db + ds) + h0, db),
+        grain(0.03, 0.01, ds),
+    ];
+    // Start on the overdamped state of the lubricated pair (else the pair's own inertial
+    // transient, ~0.5 ms, first squeezes the film ~30 % harder than the steady force).
+    let (kb, ks) = (3.0 * PI * MU * db, 3.0 * PI * MU * ds);
+    let c0 = damping_n_s_m(0.5 * db, 0.5 * ds, h0, MU, Cutoffs::default());
+    let u0 = du / (1.0 + c0 * (1.0 / kb + 1.0 / ks));
+    g[0].vy_m_s += c0 * u0 / kb;
+    g[1].vy_m_s -= c0 * u0 / ks;
+    let gap = |r: &[Resolved]| (r[0].y_m - r[1].y_m) - 0.5 * (db + ds);
+    for (t, fraction) in [(2.4e-3, 0.5), (4.7e-3, 0.25)] {
+        let (r, steps) = resolve(&g, &[(0, 1)], &scene(true, 0.25), t);
+        let exact = lubricated_gap_m(a, h0, du, t);
+        assert!((exact / h0 - fraction).abs() < 0.02, "analytic h/h0 = {}", exact / h0);
+        let h = gap(&r);
+        assert!(
+            (h / exact - 1.0).abs() < 0.10,
+            "t = {t:e} s: gap {h:e} m, squeeze-film solution {exact:e} m ({steps} Rapier steps)"
+        );
+        assert!(du * t > 5.0 * h0, "the free approach would have closed the gap");
+        let (r, _) = resolve(&g, &[(0, 1)], &scene(false, 0.01), t);
+        assert!(
+            gap(&r) < 0.05 * h0,
+            "without lubrication the pair touches: gap {:e} m",
+            gap(&r)
+        );
+    }
+}
+
+#[test]
+#[ignore]
+fn debug_trace() {
+    let (db, ds) = (70e-6, 10e-6);
+    let sc = scene(true, 0.25);
+    let mut g = [grain(0.03, 0.01 + 100e-6 + 0.5 * (db + ds), db), grain(0.03 + 5e-6, 0.01, ds)];
+    for k in 0..200 {
+        let (r, n) = resolve(&g, &[(0, 1)], &sc, 1e-3);
+        for i in 0..2 {
+            g[i].x_m = r[i].x_m;
+            g[i].y_m = r[i].y_m;
+            g[i].vy_m_s = r[i].vy_m_s;
+        }
+        let (dx, dy) = (r[1].x_m - r[0].x_m, r[1].y_m - r[0].y_m);
+        let gap = (dx * dx + dy * dy).sqrt() - 0.5 * (db + ds);
+        println!("{k} n={n} dx={dx:e} dy={dy:e} gap/ds={:e} v={:e},{:e}", gap / ds, r[0].vy_m_s, r[1].vy_m_s);
+    }
+}
