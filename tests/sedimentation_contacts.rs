@@ -7,13 +7,14 @@ use settle::fluid::lubrication::{damping_n_s_m, effective_radius_m, Cutoffs};
 use std::f64::consts::PI;
 use settle::fluid::{DragLaw, SphereDrag};
 use settle::scenes::grain_contacts::{resolve, ClusterGrain, ContactScene, Resolved};
+use settle::scenes::sedimentation::{CONTACT_FILM_CHANGE_PER_STEP, CONTACT_TRAVEL_PER_SUBSTEP};
 
 const MU: f64 = 1e-3;
 const RHO_P: f64 = 2500.0;
 const RHO_F: f64 = 1000.0;
 const G: f64 = 9.81;
 
-fn scene(lubrication: bool, travel: f64) -> ContactScene {
+fn scene(lubrication: bool, travel: f64, film: f64) -> ContactScene {
     ContactScene {
         width_m: 0.0635,
         floor_m: 0.0,
@@ -25,6 +26,7 @@ fn scene(lubrication: bool, travel: f64) -> ContactScene {
         outer_fraction: Cutoffs::default().outer,
         integrator: Integrator::Exponential,
         travel_per_substep: travel,
+        film_change_per_step: film,
     }
 }
 
@@ -56,7 +58,8 @@ fn run_pair(
 ) -> Vec<[Resolved; 2]> {
     let mut out = Vec::new();
     for _ in 0..steps {
-        let (r, _) = resolve(&g, &[(0, 1)], sc, dt);
+        let (r, solve) = resolve(&g, &[(0, 1)], sc, dt);
+        assert!(!solve.fallback, "the contact solve fell back to the free update");
         for k in 0..2 {
             g[k].x_m = r[k].x_m;
             g[k].y_m = r[k].y_m;
@@ -78,7 +81,7 @@ fn a_big_grain_catches_a_small_one_and_does_not_pass_through_it() {
     let (db, ds) = (70e-6, 10e-6);
     let touch = 0.5 * (db + ds);
     for lubrication in [false, true] {
-        let sc = scene(lubrication, 0.25);
+        let sc = scene(lubrication, CONTACT_TRAVEL_PER_SUBSTEP, CONTACT_FILM_CHANGE_PER_STEP);
         let g = [grain(0.03, 0.01 + 100e-6 + touch, db), grain(0.03 + 5e-6, 0.01, ds)];
         let states = run_pair(g, &sc, 2e-4, 400);
         let mut widest: f64 = 0.0;
@@ -146,39 +149,27 @@ fn a_lubricated_pair_approaches_at_the_squeeze_film_rate() {
     g[1].vy_m_s -= c0 * u0 / ks;
     let gap = |r: &[Resolved]| (r[0].y_m - r[1].y_m) - 0.5 * (db + ds);
     for (t, fraction) in [(2.4e-3, 0.5), (4.7e-3, 0.25)] {
-        let (r, steps) = resolve(&g, &[(0, 1)], &scene(true, 0.25), t);
         let exact = lubricated_gap_m(a, h0, du, t);
         assert!((exact / h0 - fraction).abs() < 0.02, "analytic h/h0 = {}", exact / h0);
-        let h = gap(&r);
-        assert!(
-            (h / exact - 1.0).abs() < 0.10,
-            "t = {t:e} s: gap {h:e} m, squeeze-film solution {exact:e} m ({steps} Rapier steps)"
-        );
+        // Fine film steps (1 %), then the run's setting.
+        for (film, tolerance) in [(0.01, 0.10), (CONTACT_FILM_CHANGE_PER_STEP, 0.30)] {
+            let sc = scene(true, CONTACT_TRAVEL_PER_SUBSTEP, film);
+            let (r, solve) = resolve(&g, &[(0, 1)], &sc, t);
+            assert!(!solve.fallback);
+            let steps = solve.rapier_steps;
+            let h = gap(&r);
+            println!("film {film}: t = {t:e} s: gap / squeeze-film solution = {:.4} ({steps} Rapier steps)", h / exact);
+            assert!(
+                (h / exact - 1.0).abs() < tolerance,
+                "film {film}: t = {t:e} s: gap {h:e} m, squeeze-film solution {exact:e} m ({steps} Rapier steps)"
+            );
+        }
         assert!(du * t > 5.0 * h0, "the free approach would have closed the gap");
-        let (r, _) = resolve(&g, &[(0, 1)], &scene(false, 0.01), t);
+        let (r, _) = resolve(&g, &[(0, 1)], &scene(false, 0.01, 0.01), t);
         assert!(
             gap(&r) < 0.05 * h0,
             "without lubrication the pair touches: gap {:e} m",
             gap(&r)
         );
-    }
-}
-
-#[test]
-#[ignore]
-fn debug_trace() {
-    let (db, ds) = (70e-6, 10e-6);
-    let sc = scene(true, 0.25);
-    let mut g = [grain(0.03, 0.01 + 100e-6 + 0.5 * (db + ds), db), grain(0.03 + 5e-6, 0.01, ds)];
-    for k in 0..200 {
-        let (r, n) = resolve(&g, &[(0, 1)], &sc, 1e-3);
-        for i in 0..2 {
-            g[i].x_m = r[i].x_m;
-            g[i].y_m = r[i].y_m;
-            g[i].vy_m_s = r[i].vy_m_s;
-        }
-        let (dx, dy) = (r[1].x_m - r[0].x_m, r[1].y_m - r[0].y_m);
-        let gap = (dx * dx + dy * dy).sqrt() - 0.5 * (db + ds);
-        println!("{k} n={n} dx={dx:e} dy={dy:e} gap/ds={:e} v={:e},{:e}", gap / ds, r[0].vy_m_s, r[1].vy_m_s);
     }
 }

@@ -182,10 +182,6 @@ pub fn clusters(pairs: &[(usize, usize)]) -> Vec<Vec<usize>> {
     out
 }
 
-/// Largest relative change of a squeeze film's gap over one Rapier step of the contact solve
-/// (the damper uses the gap at the start of the step).
-pub const FILM_CHANGE_PER_STEP: f64 = 0.01;
-
 /// A grain handed to the contact solve, at the start of the step. SI units.
 #[derive(Clone, Copy, Debug)]
 pub struct ClusterGrain {
@@ -225,6 +221,19 @@ pub struct ContactScene {
     /// Largest travel of the fastest grain per Rapier step, in diameters of the cluster's
     /// smallest grain (the engine keeps overlaps below ~1 % of d up to ~0.1–0.5 d per step).
     pub travel_per_substep: f64,
+    /// Largest relative change of a squeeze film's gap over one Rapier step (the damper uses
+    /// the gap at the start of the step: a first-order error in this fraction).
+    pub film_change_per_step: f64,
+}
+
+/// What the contact solve of one cluster did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Solve {
+    /// Rapier steps taken.
+    pub rapier_steps: u64,
+    /// The engine reported an unstable step (speed above half its cap, or non-finite): the
+    /// cluster was advanced by the free update for this step instead.
+    pub fallback: bool,
 }
 
 /// A grain at the end of the step.
@@ -264,7 +273,7 @@ fn stokes_speed_m_s(g: &ClusterGrain, sc: &ContactScene) -> f64 {
 }
 
 /// Resolves one cluster of grains linked by close `pairs` (indices into `grains`) over a step
-/// `dt_s`, and returns their states at its end and the number of Rapier steps taken.
+/// `dt_s`, and returns their states at its end and what the solve did ([`Solve`]).
 ///
 /// 1. **Free approach**: every grain moves exactly (vertically, as outside contacts) up to the
 ///    first time t_c at which a pair may come within its lubrication cut-off, widened by two
@@ -276,7 +285,7 @@ fn stokes_speed_m_s(g: &ClusterGrain, sc: &ContactScene) -> f64 {
 ///    smallest diameter per Rapier step. Before every Rapier step, each pair with a gap below
 ///    h_out gets the squeeze-film damper c = 6πμ a_eff²/max(h, h_in) along its line of centres
 ///    ([`World::add_pair_damper`], implicit in the solve), and the step is also cut so that
-///    no film changes by more than [`FILM_CHANGE_PER_STEP`] of its gap. The window opens two Rapier steps of
+///    no film changes by more than `film_change_per_step` of its gap. The window opens two Rapier steps of
 ///    travel before the cut-off, and starts with a step of 1e-6 of a Rapier step with the
 ///    prediction distance floored at that margin, so that the narrow phase sees the pair (and
 ///    the engine drives it with the effective-mass drag) before it is close.
@@ -290,7 +299,7 @@ pub fn resolve(
     pairs: &[(usize, usize)],
     sc: &ContactScene,
     dt_s: f64,
-) -> (Vec<Resolved>, u64) {
+) -> (Vec<Resolved>, Solve) {
     let probe_at = |k: usize, t: f64| {
         let g = &grains[k];
         Probe {
@@ -351,7 +360,7 @@ pub fn resolve(
         })
         .collect();
     if t_c >= dt_s {
-        return (state, 0);
+        return (state, Solve::default());
     }
     // 2. Contact window in a Rapier world.
     let v_max = grains
@@ -361,6 +370,9 @@ pub fn resolve(
         .fold(0.0, f64::max);
     let mut settings = EngineSettings::for_scene(d_min, v_max);
     settings.friction = 0.0;
+    // A small grain squeezed by a large one may move faster than its own terminal speed: the
+    // cap (an instability detector) is set well above the cluster's largest terminal speed.
+    settings.max_linear_velocity_m_s = settings.max_linear_velocity_m_s.max(40.0 * v_max);
     let mut world = World::new(settings, sc.gravity_m_s2);
     world.add_floor(sc.floor_m);
     world.add_wall(Vector::new(0.0, 0.0), Vector::new(1.0, 0.0));
@@ -422,8 +434,8 @@ pub fn resolve(
                 }
             }
         }
-        // Within the film, the gap may change by at most 1 % per Rapier step (the damper's
-        // gap is frozen over the step): h ≤ 0.1 max(gap, h_in)/|approach speed|.
+        // Within the film, the gap may change by at most `film_change_per_step` per Rapier step
+        // (the damper's gap is frozen over the step): h ≤ f max(gap, h_in)/|approach speed|.
         let mut h_lub = f64::INFINITY;
         if let Some(cut) = sc.lubrication {
             for &(i, j) in pairs {
@@ -436,7 +448,7 @@ pub fn resolve(
                     let a_eff = cut_of(i, j) / sc.outer_fraction;
                     if approach > 0.0 {
                         h_lub = h_lub.min(
-                            FILM_CHANGE_PER_STEP * gap_ij.max(cut.inner * a_eff) / approach,
+                            sc.film_change_per_step * gap_ij.max(cut.inner * a_eff) / approach,
                         );
                     }
                 }
@@ -447,15 +459,33 @@ pub fn resolve(
         // The engine refuses a step (states untouched) whose free-flight force would exceed its
         // speed cap: retry smaller.
         let mut h_try = h;
-        let mut ok = false;
+        let mut last = None;
         for _ in 0..20 {
-            if world.step(h_try, sc.integrator).is_ok() {
-                ok = true;
-                break;
+            match world.step(h_try, sc.integrator) {
+                Ok(()) => {
+                    last = None;
+                    break;
+                }
+                Err(e) => last = Some(e),
             }
             h_try *= 0.25;
         }
-        assert!(ok, "contact solve unstable at t = {t:e} s (dt {h_try:e} s)");
+        if last.is_some() {
+            // The engine reported a speed above half its cap (or a non-finite state): give up
+            // the contact solve of this cluster for this step, counted as a fallback.
+            let free_only = grains
+                .iter()
+                .map(|g| {
+                    let (y, v) = free(g, sc, g.y_m, g.vy_m_s, dt_s);
+                    Resolved {
+                        x_m: g.x_m,
+                        y_m: y,
+                        vy_m_s: v,
+                    }
+                })
+                .collect();
+            return (free_only, Solve { rapier_steps: steps, fallback: true });
+        }
         t += h_try;
         steps += 1;
         // 3. Release once no pair is close or may meet on the free paths for the rest.
@@ -510,7 +540,13 @@ pub fn resolve(
         let r = radius(k);
         s.x_m = s.x_m.clamp(r, sc.width_m - r);
     }
-    (state, steps)
+    (
+        state,
+        Solve {
+            rapier_steps: steps,
+            fallback: false,
+        },
+    )
 }
 
 #[cfg(test)]

@@ -39,7 +39,7 @@ use crate::output::{num, StagedDir};
 use crate::run::{Prepared, RunError, SceneReport};
 use crate::fluid::lubrication::Cutoffs;
 use crate::scenes::grain_contacts::{
-    clusters, resolve, ClusterGrain, ContactScene, PairFinder, Probe, Resolved,
+    clusters, resolve, ClusterGrain, ContactScene, PairFinder, Probe, Resolved, Solve,
 };
 use std::collections::HashMap;
 use crate::sample::{discretize, representative_grains, Distribution, Grain, SizeClass};
@@ -51,7 +51,13 @@ use std::path::Path;
 
 /// Largest travel of the fastest grain of a contact cluster per Rapier step, in diameters of
 /// the cluster's smallest grain.
-pub const CONTACT_TRAVEL_PER_SUBSTEP: f64 = 0.25;
+pub const CONTACT_TRAVEL_PER_SUBSTEP: f64 = 1.0;
+
+/// Largest relative change of a squeeze film's gap per Rapier step of the contact solve in the
+/// run. The approach from h_out to h_in takes ln(h_out/h_in)/f Rapier steps; the frozen gap
+/// makes the film approach too fast by a first-order error in f (see
+/// `tests/sedimentation_contacts.rs` for the measured figures).
+pub const CONTACT_FILM_CHANGE_PER_STEP: f64 = 0.25;
 
 /// Thickness of the 2D projection of two opposing 1° wedges, m: h_z = π B / 720, generalised to a
 /// wedge fraction f of the cylinder as h_z = π B f / 4 (B H h_z = f π B² H / 4).
@@ -187,6 +193,8 @@ pub struct ContactStats {
     pub steps_with_pairs: u64,
     /// Rapier steps taken by the contact solve (all clusters, all substeps).
     pub rapier_steps: u64,
+    /// Cluster-steps the engine found unstable, advanced by the free update instead.
+    pub fallbacks: u64,
     /// Wall time spent finding pairs and resolving them, s.
     pub wall_s: f64,
 }
@@ -407,6 +415,7 @@ pub fn simulate_with(
                 outer_fraction: sm.lubrication_outer_cutoff,
                 integrator,
                 travel_per_substep: CONTACT_TRAVEL_PER_SUBSTEP,
+                film_change_per_step: CONTACT_FILM_CHANGE_PER_STEP,
             };
             let mut local: HashMap<usize, (usize, usize)> = HashMap::new();
             for (c, grp) in groups.iter().enumerate() {
@@ -421,7 +430,7 @@ pub fn simulate_with(
             }
             let grains_ref = &st.grains;
             let (y0s, v0s) = (&y_start, &v_start);
-            let results: Vec<(Vec<Resolved>, u64)> = groups
+            let results: Vec<(Vec<Resolved>, Solve)> = groups
                 .par_iter()
                 .zip(&group_pairs)
                 .map(|(grp, gp)| {
@@ -442,7 +451,8 @@ pub fn simulate_with(
                 })
                 .collect();
             for (grp, (res, n)) in groups.iter().zip(results) {
-                st.contacts.rapier_steps += n;
+                st.contacts.rapier_steps += n.rapier_steps;
+                st.contacts.fallbacks += u64::from(n.fallback);
                 for (&i, r) in grp.iter().zip(res) {
                     st.grains[i].x_m = r.x_m;
                     st.grains[i].y_m = r.y_m;
@@ -818,7 +828,7 @@ pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, RunError> {
     let settled = st.settled.iter().filter(|x| **x).count();
     let mut w = csv::Writer::from_path(stage.path("summary.csv"))
         .map_err(|e| io(std::io::Error::other(e)))?;
-    let rows: [(&str, String); 13] = [
+    let rows: [(&str, String); 20] = [
         ("sample", sm.sample.to_string()),
         ("representative_grains", st.grains.len().to_string()),
         ("real_grains_modelled", num(real)),
@@ -832,6 +842,16 @@ pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, RunError> {
         ("grains_settled_at_end", settled.to_string()),
         ("bed_height_m", num(st.bed_height_m)),
         ("wall_time_s", num(wall)),
+        ("contact_pairs", st.contacts.pairs.to_string()),
+        ("contact_steps_with_pairs", st.contacts.steps_with_pairs.to_string()),
+        (
+            "contact_max_pairs_per_step",
+            st.contacts.max_pairs_per_step.to_string(),
+        ),
+        ("contact_grains_handed", st.contacts.grains.to_string()),
+        ("contact_rapier_steps", st.contacts.rapier_steps.to_string()),
+        ("contact_fallbacks", st.contacts.fallbacks.to_string()),
+        ("contact_wall_time_s", num(st.contacts.wall_s)),
     ];
     w.write_record(["quantity", "value"])
         .map_err(|e| io(std::io::Error::other(e)))?;
@@ -859,12 +879,13 @@ pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, RunError> {
                 st.steps, st.dt_range_s.0, st.dt_range_s.1, st.time_s, wall, settled, st.bed_height_m
             ),
             format!(
-                "contacts: {} close pairs over {} steps (at most {} in one step), {} grains handed to the contact solve, {} Rapier steps, {:.2} s wall",
+                "contacts: {} close pairs over {} steps (at most {} in one step), {} grains handed to the contact solve, {} Rapier steps, {} fallbacks, {:.2} s wall",
                 st.contacts.pairs,
                 st.contacts.steps_with_pairs,
                 st.contacts.max_pairs_per_step,
                 st.contacts.grains,
                 st.contacts.rapier_steps,
+                st.contacts.fallbacks,
                 st.contacts.wall_s
             ),
             format!(
