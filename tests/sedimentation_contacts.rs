@@ -173,3 +173,87 @@ fn a_lubricated_pair_approaches_at_the_squeeze_film_rate() {
         );
     }
 }
+
+#[test]
+fn a_grain_pushed_against_a_wall_stays_in_the_domain() {
+    // 10 µm grain touching the wall x = 0, a 70 µm grain touching the wall 2 µm above contact
+    // (30 µm to its right): the contact pushes the small one into the wall; the big one (no
+    // friction) slides off it to the right and goes past. Sampled every 1 ms for 60 ms.
+    // Tolerances: grain–grain overlap ≤ 3 % of the small diameter (the small grain is wedged
+    // against the wall under the big one's drag, hundreds of times its own weight, on Rapier's
+    // soft contacts, one smallest diameter of travel per Rapier step: measured 2.1 %), each disc inside the walls, and the big grain ends
+    // below the small one having gone around it (largest |Δx| ≥ 99 % of r₁ + r₂).
+    let (db, ds): (f64, f64) = (70e-6, 10e-6);
+    let touch = 0.5 * (db + ds);
+    let dx = 0.5 * db - 0.5 * ds;
+    let dy = (touch * touch - dx * dx).sqrt() + 2e-6;
+    for lubrication in [false, true] {
+        let sc = scene(lubrication, CONTACT_TRAVEL_PER_SUBSTEP, CONTACT_FILM_CHANGE_PER_STEP);
+        let g = [grain(0.5 * db, 0.005 + dy, db), grain(0.5 * ds, 0.005, ds)];
+        let states = run_pair(g, &sc, 1e-3, 60);
+        let mut widest: f64 = 0.0;
+        for s in &states {
+            let (ddx, ddy) = (s[1].x_m - s[0].x_m, s[1].y_m - s[0].y_m);
+            let gap = (ddx * ddx + ddy * ddy).sqrt() - touch;
+            assert!(gap > -0.03 * ds, "lubrication {lubrication}: overlap {:.3e} d_small", -gap / ds);
+            for (k, d) in [(0, db), (1, ds)] {
+                assert!(s[k].x_m >= 0.5 * d && s[k].x_m <= sc.width_m - 0.5 * d);
+            }
+            widest = widest.max(ddx.abs());
+        }
+        let last = states.last().unwrap();
+        assert!(last[0].y_m < last[1].y_m - touch, "lubrication {lubrication}: the big grain is stuck");
+        assert!(widest >= 0.99 * touch, "lubrication {lubrication}: |dx| ≤ {widest:e} m");
+    }
+}
+
+#[test]
+fn full_physics_with_contacts_accounts_for_every_grain() {
+    use settle::fluid::sphere_volume_m3;
+    use settle::run::prepare;
+    use settle::scenes::sedimentation::{setup, simulate, State};
+    use std::path::Path;
+    // Sample 1, 20 000 grains, full physics with contacts and lubrication, 120 s. Tolerances:
+    // at every record time the suspended plus deposited solid volume equals the sample's to
+    // 1e-12 (relative), every grain lies inside the cylinder (x within [r, B − r], y within
+    // [bed − 1 % d, H]), the run found close pairs and resolved them in Rapier, and fewer than
+    // 1 % of the cluster solves fell back to the free update.
+    let ov: Vec<String> = vec![
+        "sample.particles=20000".into(),
+        "time.end_s=120".into(),
+        "time.dt_s=10".into(),
+        "sample.record_times_s=[10.0, 30.0, 60.0, 120.0]".into(),
+        "sample.snapshot_times_s=[]".into(),
+    ];
+    let p = prepare(Path::new("scenarios/sedimentation_sample1.toml"), None, &ov).unwrap();
+    let sm = p.scenario.sample.as_ref().unwrap();
+    assert!(sm.contacts && sm.lubrication, "contacts and lubrication are on by default");
+    let su = setup(&p.scenario, &p.path).unwrap();
+    let total: f64 = su
+        .grains
+        .iter()
+        .map(|g| g.weight * sphere_volume_m3(g.diameter_m))
+        .sum();
+    let mut records = 0;
+    let st = simulate(
+        &p.scenario,
+        &su,
+        |st: &State| {
+            records += 1;
+            let mut volume = 0.0;
+            for (g, _) in st.grains.iter().zip(&st.settled) {
+                volume += g.weight * sphere_volume_m3(g.diameter_m);
+                let r = 0.5 * g.diameter_m;
+                assert!(g.x_m >= r * (1.0 - 1e-9) && g.x_m <= su.width_m - r * (1.0 - 1e-9));
+                assert!(g.y_m - r >= -0.01 * g.diameter_m && g.y_m <= su.height_m);
+            }
+            assert!(((volume - total) / total).abs() < 1e-12);
+        },
+        |_| {},
+    );
+    assert_eq!(records, 4);
+    let c = st.contacts;
+    assert!(c.pairs > 100 && c.rapier_steps > c.pairs, "contacts: {c:?}");
+    assert!((c.fallbacks as f64) < 0.01 * c.pairs as f64, "contacts: {c:?}");
+    println!("contacts: {c:?}");
+}
