@@ -178,11 +178,10 @@ fn a_lubricated_pair_approaches_at_the_squeeze_film_rate() {
 fn a_grain_pushed_against_a_wall_stays_in_the_domain() {
     // 10 µm grain touching the wall x = 0, a 70 µm grain touching the wall 2 µm above contact
     // (30 µm to its right): the contact pushes the small one into the wall; the big one (no
-    // friction) slides off it to the right and goes past. Sampled every 1 ms for 60 ms.
-    // Tolerances: grain–grain overlap ≤ 3 % of the small diameter (the small grain is wedged
-    // against the wall under the big one's drag, hundreds of times its own weight, on Rapier's
-    // soft contacts, one smallest diameter of travel per Rapier step: measured 2.1 %), each disc inside the walls, and the big grain ends
-    // below the small one having gone around it (largest |Δx| ≥ 99 % of r₁ + r₂).
+    // friction) slides off it to the right and goes past. Sampled every 2 ms for 60 ms.
+    // Tolerances: grain–grain overlap ≤ 1 % of the small diameter (measured 0.31 %), each disc
+    // inside the walls, and the big grain ends below the small one having gone around it
+    // (largest |Δx| ≥ 99 % of r₁ + r₂).
     let (db, ds): (f64, f64) = (70e-6, 10e-6);
     let touch = 0.5 * (db + ds);
     let dx = 0.5 * db - 0.5 * ds;
@@ -190,12 +189,16 @@ fn a_grain_pushed_against_a_wall_stays_in_the_domain() {
     for lubrication in [false, true] {
         let sc = scene(lubrication, CONTACT_TRAVEL_PER_SUBSTEP, CONTACT_FILM_CHANGE_PER_STEP);
         let g = [grain(0.5 * db, 0.005 + dy, db), grain(0.5 * ds, 0.005, ds)];
-        let states = run_pair(g, &sc, 1e-3, 60);
+        // Each sample is its own solve from t = 0 (one Rapier world over the whole contact, as
+        // in the run, where a step spans the whole contact).
+        let states: Vec<[Resolved; 2]> = (1..=30)
+            .map(|k| run_pair(g, &sc, 2e-3 * k as f64, 1)[0])
+            .collect();
         let mut widest: f64 = 0.0;
         for s in &states {
             let (ddx, ddy) = (s[1].x_m - s[0].x_m, s[1].y_m - s[0].y_m);
             let gap = (ddx * ddx + ddy * ddy).sqrt() - touch;
-            assert!(gap > -0.03 * ds, "lubrication {lubrication}: overlap {:.3e} d_small", -gap / ds);
+            assert!(gap > -0.01 * ds, "lubrication {lubrication}: overlap {:.3e} d_small", -gap / ds);
             for (k, d) in [(0, db), (1, ds)] {
                 assert!(s[k].x_m >= 0.5 * d && s[k].x_m <= sc.width_m - 0.5 * d);
             }
