@@ -1,6 +1,11 @@
-//! Close pairs of representative grains in the sedimentation cylinder: a cell list (columns in x,
-//! sorted by height) that finds, for one step, every pair of suspended grains whose surface gap
-//! can fall below the lubrication cut-off within the step. Grains move only vertically between
+//! Contacts and squeeze-film lubrication between representative grains of the sedimentation
+//! cylinder ([`crate::scenes::sedimentation`], `physics = "full"`): the pair search
+//! ([`PairFinder`]), the clusters of linked pairs ([`clusters`]) and their contact solve in a
+//! Rapier 2D world ([`resolve`]).
+//!
+//! The pair search is a cell list (columns in x, sorted by height) that finds, for one step,
+//! every pair of suspended grains whose surface gap can fall below the lubrication cut-off
+//! within the step. Grains move only vertically between
 //! contacts, so a pair can meet only if their discs overlap horizontally (|Δx| < r₁ + r₂ + h_out),
 //! and their vertical separation, monotone over the step, is then smallest at one of its ends
 //! (or zero if they cross): the test is exact for the free update of the step, with no travel
