@@ -4,10 +4,10 @@
 
 use settle::dynamics::Integrator;
 use settle::fluid::lubrication::{damping_n_s_m, effective_radius_m, Cutoffs};
-use std::f64::consts::PI;
 use settle::fluid::{DragLaw, SphereDrag};
 use settle::scenes::grain_contacts::{resolve, ClusterGrain, ContactScene, Resolved};
 use settle::scenes::sedimentation::{CONTACT_FILM_CHANGE_PER_STEP, CONTACT_TRAVEL_PER_SUBSTEP};
+use std::f64::consts::PI;
 
 const MU: f64 = 1e-3;
 const RHO_P: f64 = 2500.0;
@@ -59,7 +59,10 @@ fn run_pair(
     let mut out = Vec::new();
     for _ in 0..steps {
         let (r, solve) = resolve(&g, &[(0, 1)], sc, dt);
-        assert!(!solve.fallback, "the contact solve fell back to the free update");
+        assert!(
+            !solve.fallback,
+            "the contact solve fell back to the free update"
+        );
         for k in 0..2 {
             g[k].x_m = r[k].x_m;
             g[k].y_m = r[k].y_m;
@@ -81,8 +84,15 @@ fn a_big_grain_catches_a_small_one_and_does_not_pass_through_it() {
     let (db, ds) = (70e-6, 10e-6);
     let touch = 0.5 * (db + ds);
     for lubrication in [false, true] {
-        let sc = scene(lubrication, CONTACT_TRAVEL_PER_SUBSTEP, CONTACT_FILM_CHANGE_PER_STEP);
-        let g = [grain(0.03, 0.01 + 100e-6 + touch, db), grain(0.03 + 5e-6, 0.01, ds)];
+        let sc = scene(
+            lubrication,
+            CONTACT_TRAVEL_PER_SUBSTEP,
+            CONTACT_FILM_CHANGE_PER_STEP,
+        );
+        let g = [
+            grain(0.03, 0.01 + 100e-6 + touch, db),
+            grain(0.03 + 5e-6, 0.01, ds),
+        ];
         let states = run_pair(g, &sc, 2e-4, 400);
         let mut widest: f64 = 0.0;
         for s in &states {
@@ -150,7 +160,11 @@ fn a_lubricated_pair_approaches_at_the_squeeze_film_rate() {
     let gap = |r: &[Resolved]| (r[0].y_m - r[1].y_m) - 0.5 * (db + ds);
     for (t, fraction) in [(2.4e-3, 0.5), (4.7e-3, 0.25)] {
         let exact = lubricated_gap_m(a, h0, du, t);
-        assert!((exact / h0 - fraction).abs() < 0.02, "analytic h/h0 = {}", exact / h0);
+        assert!(
+            (exact / h0 - fraction).abs() < 0.02,
+            "analytic h/h0 = {}",
+            exact / h0
+        );
         // Fine film steps (1 %), then the run's setting.
         for (film, tolerance) in [(0.01, 0.10), (CONTACT_FILM_CHANGE_PER_STEP, 0.30)] {
             let sc = scene(true, CONTACT_TRAVEL_PER_SUBSTEP, film);
@@ -164,7 +178,10 @@ fn a_lubricated_pair_approaches_at_the_squeeze_film_rate() {
                 "film {film}: t = {t:e} s: gap {h:e} m, squeeze-film solution {exact:e} m ({steps} Rapier steps)"
             );
         }
-        assert!(du * t > 5.0 * h0, "the free approach would have closed the gap");
+        assert!(
+            du * t > 5.0 * h0,
+            "the free approach would have closed the gap"
+        );
         let (r, _) = resolve(&g, &[(0, 1)], &scene(false, 0.01, 0.01), t);
         assert!(
             gap(&r) < 0.05 * h0,
@@ -187,7 +204,11 @@ fn a_grain_pushed_against_a_wall_stays_in_the_domain() {
     let dx = 0.5 * db - 0.5 * ds;
     let dy = (touch * touch - dx * dx).sqrt() + 2e-6;
     for lubrication in [false, true] {
-        let sc = scene(lubrication, CONTACT_TRAVEL_PER_SUBSTEP, CONTACT_FILM_CHANGE_PER_STEP);
+        let sc = scene(
+            lubrication,
+            CONTACT_TRAVEL_PER_SUBSTEP,
+            CONTACT_FILM_CHANGE_PER_STEP,
+        );
         let g = [grain(0.5 * db, 0.005 + dy, db), grain(0.5 * ds, 0.005, ds)];
         // Each sample is its own solve from t = 0 (one Rapier world over the whole contact, as
         // in the run, where a step spans the whole contact).
@@ -198,15 +219,25 @@ fn a_grain_pushed_against_a_wall_stays_in_the_domain() {
         for s in &states {
             let (ddx, ddy) = (s[1].x_m - s[0].x_m, s[1].y_m - s[0].y_m);
             let gap = (ddx * ddx + ddy * ddy).sqrt() - touch;
-            assert!(gap > -0.01 * ds, "lubrication {lubrication}: overlap {:.3e} d_small", -gap / ds);
+            assert!(
+                gap > -0.01 * ds,
+                "lubrication {lubrication}: overlap {:.3e} d_small",
+                -gap / ds
+            );
             for (k, d) in [(0, db), (1, ds)] {
                 assert!(s[k].x_m >= 0.5 * d && s[k].x_m <= sc.width_m - 0.5 * d);
             }
             widest = widest.max(ddx.abs());
         }
         let last = states.last().unwrap();
-        assert!(last[0].y_m < last[1].y_m - touch, "lubrication {lubrication}: the big grain is stuck");
-        assert!(widest >= 0.99 * touch, "lubrication {lubrication}: |dx| ≤ {widest:e} m");
+        assert!(
+            last[0].y_m < last[1].y_m - touch,
+            "lubrication {lubrication}: the big grain is stuck"
+        );
+        assert!(
+            widest >= 0.99 * touch,
+            "lubrication {lubrication}: |dx| ≤ {widest:e} m"
+        );
     }
 }
 
@@ -230,7 +261,10 @@ fn full_physics_with_contacts_accounts_for_every_grain() {
     ];
     let p = prepare(Path::new("scenarios/sedimentation_sample1.toml"), None, &ov).unwrap();
     let sm = p.scenario.sample.as_ref().unwrap();
-    assert!(sm.contacts && sm.lubrication, "contacts and lubrication are on by default");
+    assert!(
+        sm.contacts && sm.lubrication,
+        "contacts and lubrication are on by default"
+    );
     let su = setup(&p.scenario, &p.path).unwrap();
     let total: f64 = su
         .grains
@@ -257,6 +291,9 @@ fn full_physics_with_contacts_accounts_for_every_grain() {
     assert_eq!(records, 4);
     let c = st.contacts;
     assert!(c.pairs > 100 && c.rapier_steps > c.pairs, "contacts: {c:?}");
-    assert!((c.fallbacks as f64) < 0.01 * c.pairs as f64, "contacts: {c:?}");
+    assert!(
+        (c.fallbacks as f64) < 0.01 * c.pairs as f64,
+        "contacts: {c:?}"
+    );
     println!("contacts: {c:?}");
 }

@@ -123,7 +123,10 @@ mod tests {
     /// inertia + lubrication, the force applied inside the exact pair update (relaxation of the
     /// relative velocity towards −F/c over the step with the gap frozen).
     fn pushed_pair(a1: f64, a2: f64, h0: f64, f: f64, dt: f64, t_end: f64) -> f64 {
-        let (m1, m2) = (sphere_mass_kg(2.0 * a1, 2500.0), sphere_mass_kg(2.0 * a2, 2500.0));
+        let (m1, m2) = (
+            sphere_mass_kg(2.0 * a1, 2500.0),
+            sphere_mass_kg(2.0 * a2, 2500.0),
+        );
         let (mut v1, mut v2, mut h) = (0.0f64, 0.0f64, h0);
         let steps = (t_end / dt).round() as usize;
         let cut = Cutoffs::default();
@@ -161,7 +164,10 @@ mod tests {
             let exact = gap_under_constant_force_m(a1, a2, h0, f, MU, t);
             assert!(exact > 1e-3 * a, "inside the cut-offs");
             let err = (h / exact - 1.0).abs();
-            assert!(err < 1e-3, "t = {t:e}: h = {h:e}, exact {exact:e}, err {err:e}");
+            assert!(
+                err < 1e-3,
+                "t = {t:e}: h = {h:e}, exact {exact:e}, err {err:e}"
+            );
         }
     }
 
@@ -200,11 +206,18 @@ mod tests {
         for vn in [-1e-2, -1e-6, 3e-4] {
             let j = implicit_pair_step(c, m1, m2, vn, 1.0);
             let vn1 = vn + j * (1.0 / m1 + 1.0 / m2);
-            assert!(j.is_finite() && vn1.abs() <= 1e-12 * vn.abs(), "vn {vn} -> {vn1}");
+            assert!(
+                j.is_finite() && vn1.abs() <= 1e-12 * vn.abs(),
+                "vn {vn} -> {vn1}"
+            );
         }
         // A plane (infinite mass) takes the impulse without moving.
         let j = implicit_pair_step(c, f64::INFINITY, m2, -1e-3, 1.0);
-        assert!((j / m2 - 1e-3).abs() < 1e-15, "the sphere stops: Δv = {}", j / m2);
+        assert!(
+            (j / m2 - 1e-3).abs() < 1e-15,
+            "the sphere stops: Δv = {}",
+            j / m2
+        );
     }
 
     #[test]
@@ -218,7 +231,10 @@ mod tests {
         assert_eq!(damping_n_s_m(10e-6, 10e-6, -1e-7, MU, cut), inner);
         let f = force_n(10e-6, 10e-6, 0.05 * a, -1e-3, MU, cut);
         let hand = 6.0 * PI * MU * a * a * 1e-3 / (0.05 * a);
-        assert!((f / hand - 1.0).abs() < 1e-12, "F = {f:e}, by hand {hand:e}");
+        assert!(
+            (f / hand - 1.0).abs() < 1e-12,
+            "F = {f:e}, by hand {hand:e}"
+        );
         assert_eq!(effective_radius_m(f64::INFINITY, 4e-6), 4e-6);
     }
 }

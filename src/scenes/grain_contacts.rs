@@ -401,9 +401,8 @@ pub fn resolve(
     let gap = |w: &World, i: usize, j: usize| {
         (w.position_m(ids[j]) - w.position_m(ids[i])).norm() - radius(i) - radius(j)
     };
-    let on_floor = |w: &World, k: usize| {
-        w.position_m(ids[k])[1] - radius(k) <= sc.floor_m + 1e-3 * radius(k)
-    };
+    let on_floor =
+        |w: &World, k: usize| w.position_m(ids[k])[1] - radius(k) <= sc.floor_m + 1e-3 * radius(k);
     let cut_of = |i: usize, j: usize| {
         let (a, b) = (radius(i), radius(j));
         sc.outer_fraction * a * b / (a + b)
@@ -414,10 +413,7 @@ pub fn resolve(
     // A first step of 1e-6 of a Rapier step registers the close pairs (prediction distance
     // floored at the window's margin plus the largest cut-off), so that the first real step
     // already drives them with the effective-mass drag.
-    let cut_max = pairs
-        .iter()
-        .map(|&(i, j)| cut_of(i, j))
-        .fold(0.0, f64::max);
+    let cut_max = pairs.iter().map(|&(i, j)| cut_of(i, j)).fold(0.0, f64::max);
     world.set_min_prediction_distance_m(margin + cut_max);
     let mut warm = true;
     let mut released = false;
@@ -489,7 +485,13 @@ pub fn resolve(
                     }
                 })
                 .collect();
-            return (free_only, Solve { rapier_steps: steps, fallback: true });
+            return (
+                free_only,
+                Solve {
+                    rapier_steps: steps,
+                    fallback: true,
+                },
+            );
         }
         t += h_try;
         steps += 1;
@@ -572,7 +574,9 @@ mod tests {
         // Pseudo-random grains in a 2 mm × 20 mm box, moving down by up to 0.5 mm.
         let mut s = 12345u64;
         let mut rnd = || {
-            s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             (s >> 11) as f64 / (1u64 << 53) as f64
         };
         let probes: Vec<Option<Probe>> = (0..3000)
@@ -596,7 +600,11 @@ mod tests {
             }
         }
         let found = PairFinder::default().pairs(&probes, 2e-3, 0.1);
-        assert!(brute.len() > 10, "the case must have pairs: {}", brute.len());
+        assert!(
+            brute.len() > 10,
+            "the case must have pairs: {}",
+            brute.len()
+        );
         assert_eq!(found, brute);
     }
 

@@ -47,6 +47,7 @@
 //!   cost and the effect on the readings.
 
 use crate::dynamics::advance;
+use crate::fluid::lubrication::Cutoffs;
 use crate::fluid::{sphere_mass_kg, sphere_volume_m3, DragLaw, SphereDrag};
 use crate::instruments::buoyancy::{BuoyancyReading, BuoyancySphere};
 use crate::instruments::hydrometer::{Hydrometer, HydrometerReading, HydrometerSpec};
@@ -54,15 +55,14 @@ use crate::instruments::pipette::{GrainSample, Pipette, PipetteReading};
 use crate::instruments::{Analysis, LayeredField, Point};
 use crate::output::{num, StagedDir};
 use crate::run::{Prepared, RunError, SceneReport};
-use crate::fluid::lubrication::Cutoffs;
+use crate::sample::{discretize, representative_grains, Distribution, Grain, SizeClass};
+use crate::scenario::{InstrumentsSpec, Physics, Rheology, SampleSpec, Scenario};
 use crate::scenes::grain_contacts::{
     clusters, resolve, ClusterGrain, ContactScene, PairFinder, Probe, Resolved, Solve,
 };
-use std::collections::HashMap;
-use crate::sample::{discretize, representative_grains, Distribution, Grain, SizeClass};
-use crate::scenario::{InstrumentsSpec, Physics, Rheology, SampleSpec, Scenario};
 use nalgebra::SVector;
 use rayon::prelude::*;
+use std::collections::HashMap;
 use std::io::Write;
 use std::path::Path;
 
@@ -860,7 +860,10 @@ pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, RunError> {
         ("bed_height_m", num(st.bed_height_m)),
         ("wall_time_s", num(wall)),
         ("contact_pairs", st.contacts.pairs.to_string()),
-        ("contact_steps_with_pairs", st.contacts.steps_with_pairs.to_string()),
+        (
+            "contact_steps_with_pairs",
+            st.contacts.steps_with_pairs.to_string(),
+        ),
         (
             "contact_max_pairs_per_step",
             st.contacts.max_pairs_per_step.to_string(),
