@@ -219,6 +219,25 @@ pub fn run(root: &Path, quick: bool) -> Result<Vec<Figure>, String> {
             "s",
         ));
         out.push(fig(&name, "steps", st.steps as f64, "steps"));
+        out.push(fig(
+            &name,
+            "contact_pairs",
+            st.contacts.pairs as f64,
+            "pairs",
+        ));
+        out.push(fig(
+            &name,
+            "contact_grains_handed",
+            st.contacts.grains as f64,
+            "grains",
+        ));
+        out.push(fig(
+            &name,
+            "contact_rapier_steps",
+            st.contacts.rapier_steps as f64,
+            "steps",
+        ));
+        out.push(fig(&name, "contact_wall_time_s", st.contacts.wall_s, "s"));
     }
 
     // 6. The full Valentik sweep: 6 scenarios × 10 dt (1e-5 … 3e-1 s) × 3 integrators.

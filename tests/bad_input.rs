@@ -348,6 +348,51 @@ fn set_restitution_exponent_out_of_range() {
     );
 }
 
+/// Lubrication cut-offs of the sedimentation cylinder out of range are refused with key and range.
+#[test]
+fn set_lubrication_cutoffs_out_of_range() {
+    for (set, key, words) in [
+        (
+            "sample.lubrication_outer_cutoff=0",
+            "sample.lubrication_outer_cutoff",
+            &["0", "allowed", "≤ 1"][..],
+        ),
+        (
+            "sample.lubrication_outer_cutoff=1.5",
+            "sample.lubrication_outer_cutoff",
+            &["1.5", "allowed", "≤ 1"][..],
+        ),
+        (
+            "sample.lubrication_inner_cutoff=0.2",
+            "sample.lubrication_inner_cutoff",
+            &["0.2", "allowed", "< lubrication_outer_cutoff = 0.1"][..],
+        ),
+        (
+            "sample.lubrication_inner_cutoff=-1e-3",
+            "sample.lubrication_inner_cutoff",
+            &["-0.001", "allowed", "0 < lubrication_inner_cutoff"][..],
+        ),
+    ] {
+        let o = settle_run(&[good("sedimentation_sample1.toml")], &["--set", set]);
+        assert_refused(&o, "sedimentation_sample1.toml", Some(key), words);
+    }
+}
+
+/// Lubrication without contacts is refused (the squeeze film is solved in the contact solve).
+#[test]
+fn set_lubrication_without_contacts() {
+    let o = settle_run(
+        &[good("sedimentation_sample1.toml")],
+        &["--set", "sample.contacts=false"],
+    );
+    assert_refused(
+        &o,
+        "sedimentation_sample1.toml",
+        Some("sample.lubrication"),
+        &["allowed", "contacts = true"],
+    );
+}
+
 /// `--set` naming an unknown key is refused like a typo in the file.
 #[test]
 fn set_unknown_key() {

@@ -143,6 +143,8 @@ pub struct World {
     yield_hold: bool,
     /// Restitution of every contact; see [`World::set_restitution_law`].
     restitution: RestitutionLaw,
+    /// Smallest contact prediction distance, m; see [`World::set_min_prediction_distance_m`].
+    min_prediction_m: f64,
 }
 
 /// Rapier hook that sets each contact manifold's restitution from its impact speed (see
@@ -213,7 +215,16 @@ impl World {
             ground: None,
             yield_hold: true,
             restitution: RestitutionLaw::constant(0.0),
+            min_prediction_m: 0.0,
         }
+    }
+
+    /// Sets a floor under the contact prediction distance, m (default 0: Rapier's 0.02 length
+    /// units, or twice the largest travel of the step). Pairs within it get (speculative)
+    /// contacts at the next step, and so the effective-mass drag: a short first step then
+    /// registers pairs that are close but not yet touching.
+    pub fn set_min_prediction_distance_m(&mut self, distance_m: f64) {
+        self.min_prediction_m = distance_m.max(0.0);
     }
 
     /// Adds a dynamic sphere (a disc in 2D) and returns its id. Its Rapier mass is the 3D sphere
@@ -299,6 +310,42 @@ impl World {
                 }
             }
         }
+    }
+
+    /// Adds a linear damper between two bodies along the line of their centres at this moment
+    /// (the squeeze film of [`crate::fluid::lubrication`]): a Rapier joint with no locked axis and
+    /// a force-based velocity motor (target 0, damping `damping_n_s_m`, no stiffness) on the axis
+    /// from `a` to `b`, anchored at the centres. Rapier solves it implicitly with the contacts
+    /// (constraint compliance 1/(h·c)): the pair's relative normal velocity is damped by c v_n
+    /// with backward Euler inside the solve, together with the effective-mass drag, so it stays
+    /// stable however stiff c is. The axis is frozen: remove the damper and add a new one when
+    /// the pair has moved ([`World::remove_pair_damper`]).
+    pub fn add_pair_damper(
+        &mut self,
+        a: BodyId,
+        b: BodyId,
+        damping_n_s_m: f64,
+    ) -> rapier::prelude::ImpulseJointHandle {
+        use rapier::prelude::{GenericJointBuilder, JointAxesMask, JointAxis, MotorModel};
+        let (ha, hb) = (self.bodies[a.0].handle, self.bodies[b.0].handle);
+        let (ra, rb) = (&self.physics.bodies[ha], &self.physics.bodies[hb]);
+        let n = (rb.translation() - ra.translation()).normalize();
+        let (axis1, axis2) = (
+            ra.rotation().inverse() * n,
+            rb.rotation().inverse() * n,
+        );
+        let joint = GenericJointBuilder::new(JointAxesMask::empty())
+            .local_axis1(axis1)
+            .local_axis2(axis2)
+            .contacts_enabled(true)
+            .motor_model(JointAxis::LinX, MotorModel::ForceBased)
+            .motor_velocity(JointAxis::LinX, 0.0, damping_n_s_m);
+        self.physics.insert_impulse_joint(ha, hb, joint)
+    }
+
+    /// Removes a damper added by [`World::add_pair_damper`].
+    pub fn remove_pair_damper(&mut self, joint: rapier::prelude::ImpulseJointHandle) {
+        self.physics.remove_impulse_joint(joint);
     }
 
     /// Restricts the fluid to the region below a free surface (and within a cylinder), for scenes
@@ -596,7 +643,9 @@ impl World {
         let lu = self.settings.length_unit_m;
         self.physics
             .integration_parameters
-            .normalized_prediction_distance = DEFAULT_PREDICTION.max(2.0 * max_speed * dt_s / lu);
+            .normalized_prediction_distance = DEFAULT_PREDICTION
+            .max(2.0 * max_speed * dt_s / lu)
+            .max(self.min_prediction_m / lu);
         if self.restitution.is_speed_dependent() {
             self.physics
                 .step_with_events(&RestitutionHook(self.restitution), &());

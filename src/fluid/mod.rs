@@ -10,6 +10,7 @@
 pub mod bingham;
 pub mod buoyancy;
 pub mod drag;
+pub mod lubrication;
 pub mod newtonian;
 
 pub use bingham::BinghamRegime;

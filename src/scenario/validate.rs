@@ -469,6 +469,30 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
             c.in_open_closed("sample.voidage_cell_m", sm.voidage_cell_m, 0.0, 1.0, "m")?;
             c.in_open_closed("sample.bed_packing", sm.bed_packing, 0.0, 0.75, "")?;
             c.in_open_closed("sample.max_step_s", sm.max_step_s, 0.0, 1e6, "s")?;
+            c.in_open_closed(
+                "sample.lubrication_outer_cutoff",
+                sm.lubrication_outer_cutoff,
+                0.0,
+                1.0,
+                "(fraction of the effective radius a_eff)",
+            )?;
+            if sm.lubrication && !sm.contacts {
+                return Err(c.err(
+                    "sample.lubrication",
+                    "the squeeze film is solved inside the contact solve: allowed lubrication = true only with sample.contacts = true (set lubrication = false too)",
+                ));
+            }
+            if !(sm.lubrication_inner_cutoff > 0.0
+                && sm.lubrication_inner_cutoff < sm.lubrication_outer_cutoff)
+            {
+                return Err(c.err(
+                    "sample.lubrication_inner_cutoff",
+                    format!(
+                        "{} is out of range: allowed 0 < lubrication_inner_cutoff < lubrication_outer_cutoff = {} (fractions of the effective radius a_eff)",
+                        sm.lubrication_inner_cutoff, sm.lubrication_outer_cutoff
+                    ),
+                ));
+            }
             for (i, t) in sm
                 .record_times_s
                 .iter()
