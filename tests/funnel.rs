@@ -553,5 +553,8 @@ fn a_higher_release_brings_the_balls_to_fedems_depths() {
     let high = median_z_in_paste(&["funnel.outlet_above_surface_m=0.25"]);
     assert!(base > 0.125, "median Z at 15 cm release: {base}");
     assert!(base - high > 0.01, "median Z {base} → {high}");
-    assert!((0.11..0.125).contains(&high), "median Z at 25 cm release: {high}");
+    assert!(
+        (0.11..0.125).contains(&high),
+        "median Z at 25 cm release: {high}"
+    );
 }

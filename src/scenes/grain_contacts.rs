@@ -383,6 +383,9 @@ pub fn resolve(
     // A small grain squeezed by a large one may move faster than its own terminal speed: the
     // cap (an instability detector) is set well above the cluster's largest terminal speed.
     settings.max_linear_velocity_m_s = settings.max_linear_velocity_m_s.max(40.0 * v_max);
+    // Undoing overlaps left by earlier steps is this solve's job, not a fault: the engine's
+    // penetration check would send such clusters to the free fallback, which keeps the overlap.
+    settings.max_penetration_fraction = 0.0;
     let mut world = World::new(settings, sc.gravity_m_s2);
     world.add_floor(sc.floor_m);
     world.add_wall(Vector::new(0.0, 0.0), Vector::new(1.0, 0.0));
