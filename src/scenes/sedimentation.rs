@@ -198,6 +198,10 @@ pub struct State {
     pub cursor: [usize; 3],
     /// Contact statistics of the run (full physics with contacts or lubrication).
     pub contacts: ContactStats,
+    /// The numerical fault that stopped the run, if any (not checkpointed: a faulted run writes
+    /// nothing).
+    #[serde(skip)]
+    pub fault: Option<crate::dynamics::Unstable>,
 }
 
 impl State {
@@ -215,6 +219,7 @@ impl State {
             interrupted: false,
             cursor: [0; 3],
             contacts: ContactStats::default(),
+            fault: None,
         }
     }
 }
@@ -353,6 +358,11 @@ pub fn simulate_from(
     let bed_area = setup.width_m * setup.thickness_m * sm.bed_packing;
     let mass = |d: f64| sphere_mass_kg(d, sm.density_kg_m3);
     let (mut y_start, mut v_start): (Vec<f64>, Vec<f64>) = (Vec::new(), Vec::new());
+    let speed_bound = 2.0
+        * st.grains
+            .iter()
+            .map(|gr| gr.diameter_m * gr.diameter_m * (sm.density_kg_m3 - rho_f) * g / (18.0 * mu))
+            .fold(0.0, f64::max);
     let mut finder = PairFinder::default();
     while st.time_s < s.time.end_s * (1.0 - 1e-12) {
         if crate::interrupt::requested() {
@@ -520,6 +530,58 @@ pub fn simulate_from(
             cs.max_pairs_per_step = cs.max_pairs_per_step.max(pairs.len());
             cs.steps_with_pairs += u64::from(!pairs.is_empty());
             cs.wall_s += t0.elapsed().as_secs_f64();
+        }
+        // Numerical faults: a non-finite state, a grain outside the cylinder, or one faster than
+        // twice the Stokes terminal speed of the largest grain (no grain can settle faster: a
+        // small grain pushed by a large one moves at most at the large one's speed).
+        let (width, height) = (setup.width_m, setup.height_m);
+        let bad = st
+            .grains
+            .par_iter()
+            .zip(st.velocity_m_s.par_iter())
+            .position_first(|(gr, v)| {
+                !(gr.y_m.is_finite() && v.is_finite() && gr.x_m.is_finite())
+                    || v.abs() > speed_bound
+                    || gr.y_m > height + gr.diameter_m
+                    || gr.x_m < -1e-12
+                    || gr.x_m > width + 1e-12
+            });
+        if let Some(i) = bad {
+            let (gr, v) = (st.grains[i], st.velocity_m_s[i]);
+            let d = gr.diameter_m;
+            let m = mass(d);
+            let drag = SphereDrag::new(DragLaw::Stokes { viscosity_pa_s: mu }, d, rho_f);
+            let explicit = integrator == crate::dynamics::Integrator::Explicit;
+            let (stable, basis) = if explicit {
+                (
+                    crate::dynamics::explicit_stable_dt_s(m, drag.slope_n_s_m(0.0)),
+                    crate::dynamics::DtBasis::ExplicitDrag,
+                )
+            } else {
+                (0.5 * dt, crate::dynamics::DtBasis::Halved)
+            };
+            let (quantity, value) = if !(gr.y_m.is_finite() && gr.x_m.is_finite()) {
+                ("position", gr.y_m)
+            } else if !v.is_finite() {
+                ("velocity", v)
+            } else if v.abs() > speed_bound {
+                (
+                    "speed (bound: twice the largest grain's Stokes terminal speed), m/s",
+                    v.abs(),
+                )
+            } else {
+                ("height above the bottom (outside the cylinder), m", gr.y_m)
+            };
+            st.fault = Some(crate::dynamics::Unstable {
+                body: format!("grain {i} (d = {:.3e} m)", d),
+                time_s: st.time_s + dt,
+                step: st.steps + 1,
+                what: format!("{quantity} = {value:.3e}"),
+                dt_s: dt,
+                stable_dt_s: stable,
+                dt_basis: basis,
+            });
+            break;
         }
         // Deposition (serial: the bed grows as grains join it).
         for ((gr, v), settled) in st
@@ -771,6 +833,10 @@ pub fn run(p: &Prepared, stage: &StagedDir, ctx: &RunContext) -> Result<SceneRep
         },
     );
     bar.finish_and_clear();
+    if let Some(u) = st.fault.clone() {
+        // Nothing to resume from a run that went unstable.
+        return Err(RunError::Unstable(p.path.clone(), u));
+    }
     if st.interrupted {
         save(&st);
     }
