@@ -447,6 +447,12 @@ pub fn simulate_from(
                     gr.y_m = floor + 0.5 * d;
                 }
             });
+        // Numerical faults of the free update (before the contact solve, whose clusters the engine
+        // checks with its own bounds): an explicit blow-up shows here.
+        if let Some(u) = grain_fault(&st, setup, dt, Some(speed_bound), integrator, mu, rho_f, sm) {
+            st.fault = Some(u);
+            break;
+        }
         if with_pairs {
             let t0 = std::time::Instant::now();
             let probes: Vec<Option<Probe>> = st
@@ -531,56 +537,10 @@ pub fn simulate_from(
             cs.steps_with_pairs += u64::from(!pairs.is_empty());
             cs.wall_s += t0.elapsed().as_secs_f64();
         }
-        // Numerical faults: a non-finite state, a grain outside the cylinder, or one faster than
-        // twice the Stokes terminal speed of the largest grain (no grain can settle faster: a
-        // small grain pushed by a large one moves at most at the large one's speed).
-        let (width, height) = (setup.width_m, setup.height_m);
-        let bad = st
-            .grains
-            .par_iter()
-            .zip(st.velocity_m_s.par_iter())
-            .position_first(|(gr, v)| {
-                !(gr.y_m.is_finite() && v.is_finite() && gr.x_m.is_finite())
-                    || v.abs() > speed_bound
-                    || gr.y_m > height + gr.diameter_m
-                    || gr.x_m < -1e-12
-                    || gr.x_m > width + 1e-12
-            });
-        if let Some(i) = bad {
-            let (gr, v) = (st.grains[i], st.velocity_m_s[i]);
-            let d = gr.diameter_m;
-            let m = mass(d);
-            let drag = SphereDrag::new(DragLaw::Stokes { viscosity_pa_s: mu }, d, rho_f);
-            let explicit = integrator == crate::dynamics::Integrator::Explicit;
-            let (stable, basis) = if explicit {
-                (
-                    crate::dynamics::explicit_stable_dt_s(m, drag.slope_n_s_m(0.0)),
-                    crate::dynamics::DtBasis::ExplicitDrag,
-                )
-            } else {
-                (0.5 * dt, crate::dynamics::DtBasis::Halved)
-            };
-            let (quantity, value) = if !(gr.y_m.is_finite() && gr.x_m.is_finite()) {
-                ("position", gr.y_m)
-            } else if !v.is_finite() {
-                ("velocity", v)
-            } else if v.abs() > speed_bound {
-                (
-                    "speed (bound: twice the largest grain's Stokes terminal speed), m/s",
-                    v.abs(),
-                )
-            } else {
-                ("height above the bottom (outside the cylinder), m", gr.y_m)
-            };
-            st.fault = Some(crate::dynamics::Unstable {
-                body: format!("grain {i} (d = {:.3e} m)", d),
-                time_s: st.time_s + dt,
-                step: st.steps + 1,
-                what: format!("{quantity} = {value:.3e}"),
-                dt_s: dt,
-                stable_dt_s: stable,
-                dt_basis: basis,
-            });
+        // After the contact solve: a small grain squeezed by a large one may briefly move faster
+        // than the free bound (its speed is the cluster engine's to check).
+        if let Some(u) = grain_fault(&st, setup, dt, None, integrator, mu, rho_f, sm) {
+            st.fault = Some(u);
             break;
         }
         // Deposition (serial: the bed grows as grains join it).
@@ -621,6 +581,71 @@ pub fn simulate_from(
         checkpoint(&st);
     }
     st
+}
+
+/// The first grain in a numerical fault after a step of `dt_s` from `st` (state updated in
+/// place, time not yet advanced), as an [`Unstable`] report: a non-finite position or velocity,
+/// a centre outside the cylinder (beside the walls, or a diameter above the top), or, with
+/// `speed_bound_m_s`, a speed above it. The suggested dt is the explicit drag limit 2τ of that
+/// grain with the explicit integrator, else half the step.
+#[allow(clippy::too_many_arguments)]
+fn grain_fault(
+    st: &State,
+    setup: &Setup,
+    dt_s: f64,
+    speed_bound_m_s: Option<f64>,
+    integrator: crate::dynamics::Integrator,
+    mu: f64,
+    rho_f: f64,
+    sm: &SampleSpec,
+) -> Option<crate::dynamics::Unstable> {
+    use crate::dynamics::{explicit_stable_dt_s, DtBasis, Integrator};
+    let (width, height) = (setup.width_m, setup.height_m);
+    let bound = speed_bound_m_s.unwrap_or(f64::INFINITY);
+    let i = st
+        .grains
+        .par_iter()
+        .zip(st.velocity_m_s.par_iter())
+        .position_first(|(gr, v)| {
+            !(gr.y_m.is_finite() && v.is_finite() && gr.x_m.is_finite())
+                || v.abs() > bound
+                || gr.y_m > height + gr.diameter_m
+                || gr.x_m < -1e-12
+                || gr.x_m > width + 1e-12
+        })?;
+    let (gr, v) = (st.grains[i], st.velocity_m_s[i]);
+    let d = gr.diameter_m;
+    let (stable, basis) = if integrator == Integrator::Explicit {
+        let drag = SphereDrag::new(DragLaw::Stokes { viscosity_pa_s: mu }, d, rho_f);
+        let m = sphere_mass_kg(d, sm.density_kg_m3);
+        (
+            explicit_stable_dt_s(m, drag.slope_n_s_m(0.0)),
+            DtBasis::ExplicitDrag,
+        )
+    } else {
+        (0.5 * dt_s, DtBasis::Halved)
+    };
+    let (quantity, value) = if !(gr.y_m.is_finite() && gr.x_m.is_finite()) {
+        ("position", gr.y_m)
+    } else if !v.is_finite() {
+        ("velocity", v)
+    } else if v.abs() > bound {
+        (
+            "speed (bound: twice the largest grain's Stokes terminal speed), m/s",
+            v.abs(),
+        )
+    } else {
+        ("height above the bottom (outside the cylinder), m", gr.y_m)
+    };
+    Some(crate::dynamics::Unstable {
+        body: format!("grain {i} (d = {d:.3e} m)"),
+        time_s: st.time_s + dt_s,
+        step: st.steps + 1,
+        what: format!("{quantity} = {value:.3e}"),
+        dt_s,
+        stable_dt_s: stable,
+        dt_basis: basis,
+    })
 }
 
 /// Number of horizontal bands of the cylinder pictures.
