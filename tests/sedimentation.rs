@@ -171,24 +171,14 @@ fn an_explicit_blow_up_stops_the_run_instead_of_filling_the_bed() {
     assert!(e.contains("grain ") && e.contains("speed (bound"), "{e}");
     assert!(e.contains("step 1)"), "{e}");
     // The grain's diameter and the stable dt it prints: 2τ = ρ_p d²/(9 μ).
-    let d: f64 = e
-        .split("(d = ")
-        .nth(1)
-        .unwrap()
-        .split(' ')
-        .next()
-        .unwrap()
-        .parse()
-        .unwrap();
-    let stable: f64 = e
-        .split("use dt < ")
-        .nth(1)
-        .unwrap()
-        .split(' ')
-        .next()
-        .unwrap()
-        .parse()
-        .unwrap();
+    let number_after = |key: &str| -> f64 {
+        let tail = e
+            .split(key)
+            .nth(1)
+            .unwrap_or_else(|| panic!("no `{key}` in {e}"));
+        tail.split(' ').next().unwrap().parse().unwrap()
+    };
+    let (d, stable) = (number_after("(d = "), number_after("use dt < "));
     let two_tau = 2500.0 * d * d / (9.0 * 1e-3);
     assert!(
         (stable / two_tau - 1.0).abs() < 1e-3,
