@@ -272,9 +272,13 @@ fn free(g: &ClusterGrain, sc: &ContactScene, y: f64, v: f64, t: f64) -> (f64, f6
 
 /// Stokes terminal speed of a grain, m/s (an upper bound of its settling speed).
 fn stokes_speed_m_s(g: &ClusterGrain, sc: &ContactScene) -> f64 {
-    let d = g.diameter_m;
-    d * d * (sc.density_kg_m3 - sc.fluid_density_kg_m3) * sc.gravity_m_s2
-        / (18.0 * sc.viscosity_pa_s)
+    crate::fluid::newtonian::stokes_terminal_velocity_m_s(
+        g.diameter_m,
+        sc.density_kg_m3,
+        sc.fluid_density_kg_m3,
+        sc.viscosity_pa_s,
+        sc.gravity_m_s2,
+    )
 }
 
 /// Resolves one cluster of grains linked by close `pairs` (indices into `grains`) over a step

@@ -48,6 +48,7 @@
 
 use crate::dynamics::advance;
 use crate::fluid::lubrication::Cutoffs;
+use crate::fluid::newtonian::{stokes_response_time_s, stokes_terminal_velocity_m_s};
 use crate::fluid::{sphere_mass_kg, sphere_volume_m3, DragLaw, SphereDrag};
 use crate::instruments::buoyancy::{BuoyancyReading, BuoyancySphere};
 use crate::instruments::hydrometer::{Hydrometer, HydrometerReading, HydrometerSpec};
@@ -358,10 +359,11 @@ pub fn simulate_from(
     let bed_area = setup.width_m * setup.thickness_m * sm.bed_packing;
     let mass = |d: f64| sphere_mass_kg(d, sm.density_kg_m3);
     let (mut y_start, mut v_start): (Vec<f64>, Vec<f64>) = (Vec::new(), Vec::new());
+    let v_stokes = |d: f64| stokes_terminal_velocity_m_s(d, sm.density_kg_m3, rho_f, mu, g);
     let speed_bound = 2.0
         * st.grains
             .iter()
-            .map(|gr| gr.diameter_m * gr.diameter_m * (sm.density_kg_m3 - rho_f) * g / (18.0 * mu))
+            .map(|gr| v_stokes(gr.diameter_m))
             .fold(0.0, f64::max);
     let mut finder = PairFinder::default();
     while st.time_s < s.time.end_s * (1.0 - 1e-12) {
@@ -388,10 +390,7 @@ pub fn simulate_from(
                 .filter(|((_, s), _)| !**s)
                 .map(|((v, _), gr)| {
                     // Terminal speed bound (Stokes) covers grains still accelerating.
-                    v.abs().max(
-                        gr.diameter_m * gr.diameter_m * (sm.density_kg_m3 - rho_f) * g
-                            / (18.0 * mu),
-                    )
+                    v.abs().max(v_stokes(gr.diameter_m))
                 })
                 .fold(0.0, f64::max);
             if vmax > 0.0 {
@@ -449,7 +448,7 @@ pub fn simulate_from(
             });
         // Numerical faults of the free update (before the contact solve, whose clusters the engine
         // checks with its own bounds): an explicit blow-up shows here.
-        if let Some(u) = grain_fault(&st, setup, dt, Some(speed_bound), integrator, mu, rho_f, sm) {
+        if let Some(u) = grain_fault(&st, setup, dt, Some(speed_bound), integrator, mu, sm) {
             st.fault = Some(u);
             break;
         }
@@ -536,12 +535,16 @@ pub fn simulate_from(
             cs.max_pairs_per_step = cs.max_pairs_per_step.max(pairs.len());
             cs.steps_with_pairs += u64::from(!pairs.is_empty());
             cs.wall_s += t0.elapsed().as_secs_f64();
-        }
-        // After the contact solve: a small grain squeezed by a large one may briefly move faster
-        // than the free bound (its speed is the cluster engine's to check).
-        if let Some(u) = grain_fault(&st, setup, dt, None, integrator, mu, rho_f, sm) {
-            st.fault = Some(u);
-            break;
+            // After a contact solve: a small grain squeezed by a large one may briefly move faster
+            // than the free bound (its speed is the cluster engine's to check).
+            let moved = !pairs.is_empty();
+            if let Some(u) = moved
+                .then(|| grain_fault(&st, setup, dt, None, integrator, mu, sm))
+                .flatten()
+            {
+                st.fault = Some(u);
+                break;
+            }
         }
         // Deposition (serial: the bed grows as grains join it).
         for ((gr, v), settled) in st
@@ -587,8 +590,7 @@ pub fn simulate_from(
 /// place, time not yet advanced), as an [`Unstable`] report: a non-finite position or velocity,
 /// a centre outside the cylinder (beside the walls, or a diameter above the top), or, with
 /// `speed_bound_m_s`, a speed above it. The suggested dt is the explicit drag limit 2τ of that
-/// grain with the explicit integrator, else half the step.
-#[allow(clippy::too_many_arguments)]
+/// grain (Stokes τ = ρ_p d²/(18 μ)) with the explicit integrator, else half the step.
 fn grain_fault(
     st: &State,
     setup: &Setup,
@@ -596,10 +598,9 @@ fn grain_fault(
     speed_bound_m_s: Option<f64>,
     integrator: crate::dynamics::Integrator,
     mu: f64,
-    rho_f: f64,
     sm: &SampleSpec,
 ) -> Option<crate::dynamics::Unstable> {
-    use crate::dynamics::{explicit_stable_dt_s, DtBasis, Integrator};
+    use crate::dynamics::{DtBasis, Integrator};
     let (width, height) = (setup.width_m, setup.height_m);
     let bound = speed_bound_m_s.unwrap_or(f64::INFINITY);
     let i = st
@@ -616,10 +617,8 @@ fn grain_fault(
     let (gr, v) = (st.grains[i], st.velocity_m_s[i]);
     let d = gr.diameter_m;
     let (stable, basis) = if integrator == Integrator::Explicit {
-        let drag = SphereDrag::new(DragLaw::Stokes { viscosity_pa_s: mu }, d, rho_f);
-        let m = sphere_mass_kg(d, sm.density_kg_m3);
         (
-            explicit_stable_dt_s(m, drag.slope_n_s_m(0.0)),
+            2.0 * stokes_response_time_s(d, sm.density_kg_m3, mu),
             DtBasis::ExplicitDrag,
         )
     } else {
