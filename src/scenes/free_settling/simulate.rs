@@ -1,4 +1,4 @@
-//! The step loop of one sphere as named stages — take a step ([`free_step`] or a Rapier world),
+//! The step loop of one sphere as named stages — take a step (the free engine or a Rapier world),
 //! check stability, locate events within the step (surface entry, detectors, probes), record,
 //! decide whether to stop — and the runners over all spheres (rayon, results in input order),
 //! with one dispatch on the dimension and the engine.
