@@ -2,9 +2,10 @@
 //! run each, stage its outputs and move them into place only on success.
 
 use crate::dynamics::Unstable;
-use crate::output::{self, free_settling as out_fs, StagedDir};
+use crate::output::{self, StagedDir};
 use crate::scenario::{self, EngineChoice, Kind, Scenario, ScenarioError};
-use crate::scenes::{free_settling, spheres};
+use crate::scenes::free_settling::{self, output as out_fs};
+use crate::scenes::spheres;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -213,11 +214,7 @@ pub fn run_one_with(
     let t0 = Instant::now();
     let stage = StagedDir::new(out_dir, &s.name).map_err(io)?;
     let (results, report) = match s.kind {
-        Kind::FreeSettling | Kind::Drop => {
-            let results = run_spheres(p)?;
-            let report = write_sphere_outputs(p, &results, &stage)?;
-            (results, report)
-        }
+        Kind::FreeSettling | Kind::Drop => free_settling::run_scene(p, &stage)?,
         Kind::RestitutionDrop => (
             Vec::new(),
             crate::scenes::calibration::run_restitution(p, &stage)?,
@@ -262,99 +259,6 @@ pub fn run_one_with(
         lines: report.lines,
         out,
         wall_time_s: wall,
-    })
-}
-
-/// Runs the independent spheres of a free-settling or drop scenario.
-fn run_spheres(p: &Prepared) -> Result<Vec<free_settling::SphereResult>, RunError> {
-    let s = &p.scenario;
-    let opts = free_settling::RunOptions {
-        dt_s: s.time.dt_s,
-        integrator: s.time.integrator,
-        timeseries: s.record.timeseries,
-    };
-    match engine_name(s) {
-        "rapier" => free_settling::run_rapier(s, &p.spheres, opts),
-        _ => free_settling::run(s, &p.spheres, opts),
-    }
-    .map_err(|u| RunError::Unstable(p.path.clone(), u))
-}
-
-/// Writes the files of a free-settling or drop run into the staging folder.
-fn write_sphere_outputs(
-    p: &Prepared,
-    results: &[free_settling::SphereResult],
-    stage: &StagedDir,
-) -> Result<SceneReport, RunError> {
-    let s = &p.scenario;
-    let io = |e: std::io::Error| RunError::Io(p.path.clone(), e);
-    let integ = s.time.integrator.name();
-    if s.kind == Kind::Drop {
-        let sub = match s.fluid.submergence {
-            crate::scenario::Submergence::Full => "full",
-            crate::scenario::Submergence::Partial => "partial",
-        };
-        crate::output::drop::write_summary(
-            &stage.path("summary.csv"),
-            results,
-            s.time.dt_s,
-            integ,
-            sub,
-        )
-        .map_err(io)?;
-        crate::output::drop::write_chart(
-            &stage.path("settling_distance.svg"),
-            &format!(
-                "{}: settling distance against fall height ({sub} submergence)",
-                s.name
-            ),
-            results,
-        )
-        .map_err(RunError::Other)?;
-    } else {
-        let rows: Vec<Vec<String>> = results
-            .iter()
-            .map(|r| out_fs::summary_row(r, s.time.dt_s, integ))
-            .collect();
-        out_fs::write_summary(&stage.path("summary.csv"), &rows).map_err(io)?;
-        let stats = out_fs::metrics(results);
-        if !stats.is_empty() {
-            out_fs::write_metrics(&stage.path("metrics.csv"), &stats).map_err(io)?;
-            out_fs::write_chart(
-                &stage.path("terminal_velocity.svg"),
-                &format!(
-                    "{}: terminal velocity, measured (o) and simulated (•)",
-                    s.name
-                ),
-                results,
-            )
-            .map_err(RunError::Other)?;
-        }
-    }
-    if s.record.timeseries {
-        out_fs::write_timeseries(&stage.path("timeseries.csv"), results).map_err(io)?;
-    }
-    if results.iter().any(|r| !r.probes.is_empty()) {
-        out_fs::write_probes(&stage.path("probes.csv"), results).map_err(io)?;
-    }
-    let engine_settings = (engine_name(s) == "rapier").then(|| {
-        let d_min = p
-            .spheres
-            .iter()
-            .map(|c| c.spec.diameter_m)
-            .fold(f64::INFINITY, f64::min);
-        let v_max = results
-            .iter()
-            .map(|r| r.v_force_balance_m_s.abs())
-            .fold(0.0, f64::max);
-        crate::engine::EngineSettings::for_scene(d_min, 2.0 * v_max)
-    });
-    Ok(SceneReport {
-        steps: results.iter().map(|r| r.steps).sum(),
-        bodies: results.len(),
-        engine_settings,
-        lines: Vec::new(),
-        interrupted: false,
     })
 }
 

@@ -1,0 +1,116 @@
+//! Free settling (`kind = "free_settling"`) and drops (`kind = "drop"`): independent spheres
+//! released in a still fluid, each in its own world, no contacts (f-EDEM §3 single sphere in
+//! water; §4.1 Valentik & Whitmore's 3 m tank; §4.2 balls dropped into a paste).
+//!
+//! # Scene
+//!
+//! Each sphere is advanced by [`crate::dynamics::advance`] alone (`engine = "free"`, the default
+//! for this kind: there is nothing for a contact solver to do), or through a Rapier world with the
+//! force hook (`engine = "rapier"`), which must give the same answer (tests/engine_free_settling.rs)
+//! at ~300× the cost per step. A free-settling sphere is released submerged at `release.depth_m`
+//! (one radius when 0) and feels constant forces; a drop starts `fall_height_m` above the free
+//! surface and crosses it, its drag and buoyancy scaled by [`immersion`].
+//!
+//! # Equations
+//!
+//! - Net weight `W = (m − m_f) g`, `m = ρ π d³/6`, `m_f = ρ_f π d³/6`; drag from the scenario's law
+//!   ([`crate::scenes::sphere_drag`]).
+//! - The force-balance terminal velocity solves drag = net weight (f-EDEM eq. 15); it may sit on a
+//!   jump of eq. 19 or be zero (`static`: the yield stress holds the sphere).
+//! - For Stokes drag, the analytic solution v(t) = v_t + (v₀ − v_t) e^{−t/τ}, τ = m/(3π μ d)
+//!   (f-EDEM eq. 20–21), compared at every step.
+//! - The Bingham Reynolds number at the simulated terminal velocity (f-EDEM eq. 18).
+//!
+//! # Measurements per sphere
+//!
+//! - the section reading, as the experiment takes it: the section length divided by the transit
+//!   time between two detectors (`[measure]`), flagged steady when the velocities at the two
+//!   detectors differ by less than `steady_tolerance` of the section velocity;
+//! - the terminal velocity of the simulation: the mean velocity over a rolling window of
+//!   `terminal_window_m` once the velocities at its two ends differ by less than
+//!   `terminal_tolerance` (the sphere keeps falling past the tank bottom if it needs to);
+//! - velocities at probe times (dense output: the same scheme over the part of the step);
+//! - for drops, the entry speed at the surface and the settling distance of the lowest point.
+//!
+//! # Limits
+//!
+//! - No wall effect and no hindered settling: the spheres do not see each other or the container
+//!   walls (the container only sets the bottom at which a sphere stops).
+//! - An explicit step of a yield-stress drag chatters about rest; that is reported as unstable,
+//!   not cured by a smaller dt.
+//! - Interruption (Ctrl-C/SIGTERM) is checked every [`simulate::INTERRUPT_CHECK_STEPS`] steps of
+//!   every sphere; an interrupted run writes nothing (a partial set of spheres is no result).
+//!
+//! # Files
+//!
+//! [`setup`]: run options, dimension, per-sphere quantities fixed at release;
+//! [`simulate`]: the step loop as named stages, free engine and Rapier path;
+//! [`output`]: every file the kind writes; [`run_scene`] is the entry point of `settle run`.
+
+pub mod output;
+pub mod setup;
+pub mod simulate;
+
+pub use setup::{release_depth_m, RunOptions};
+pub use simulate::{
+    run, run_interruptible, run_rapier, run_sphere, Halt, Sample, SphereResult, StopReason,
+};
+
+use crate::run::{Prepared, RunError, SceneReport};
+use crate::scenario::Submergence;
+
+/// Immersed fractions (volume, projected area) of a sphere of diameter `d_m` whose centre is
+/// `depth_m` below the free surface (negative above). `full`: both 1 as soon as the lowest point
+/// touches the surface (f-EDEM); `partial`: the spherical cap below the surface,
+/// V_cap = π h² (3r − h)/3, and its projected area π (2 r h − h²) while h < r.
+pub fn immersion(depth_m: f64, d_m: f64, submergence: Submergence) -> (f64, f64) {
+    let r = 0.5 * d_m;
+    let h = (depth_m + r).clamp(0.0, d_m);
+    match submergence {
+        Submergence::Full => {
+            if depth_m + r >= 0.0 {
+                (1.0, 1.0)
+            } else {
+                (0.0, 0.0)
+            }
+        }
+        Submergence::Partial => {
+            let vol = h * h * (3.0 * r - h) / (4.0 * r * r * r);
+            let area = if h >= r {
+                1.0
+            } else {
+                h * (2.0 * r - h) / (r * r)
+            };
+            (vol, area)
+        }
+    }
+}
+
+/// Runs the spheres of a free-settling or drop scenario and writes its files into `stage`:
+/// the entry point of `settle run` for these kinds. Interrupted (Ctrl-C/SIGTERM), it writes
+/// nothing and returns [`RunError::Interrupted`] with the output folder.
+pub fn run_scene(
+    p: &Prepared,
+    stage: &crate::output::StagedDir,
+) -> Result<(Vec<SphereResult>, SceneReport), RunError> {
+    let s = &p.scenario;
+    let interrupted = || {
+        RunError::Interrupted(
+            stage
+                .dest()
+                .parent()
+                .map(|d| d.to_path_buf())
+                .unwrap_or_default(),
+        )
+    };
+    let results = match run_interruptible(s, &p.spheres, RunOptions::of(s)) {
+        Ok(r) => r,
+        Err(Halt::Unstable(u)) => return Err(RunError::Unstable(p.path.clone(), u)),
+        Err(Halt::Interrupted) => return Err(interrupted()),
+    };
+    let report = output::write_all(p, &results, stage).map_err(|e| match e {
+        RunError::Io(_, io) if io.kind() == std::io::ErrorKind::Interrupted => interrupted(),
+        e => e,
+    })?;
+    Ok((results, report))
+}

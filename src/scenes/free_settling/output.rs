@@ -1,0 +1,395 @@
+//! Every file a free-settling or drop run writes.
+//!
+//! - `kind = "free_settling"`: `summary.csv` (one row per sphere), `metrics.csv` and
+//!   `terminal_velocity.svg` (like f-EDEM Fig. 11) when measurements exist;
+//! - `kind = "drop"`: `summary.csv` with one row per sphere and fall height, and
+//!   `settling_distance.svg` (settling distance against fall height, one series per diameter,
+//!   like f-EDEM Fig. 16);
+//! - both: `timeseries.csv` when `record.timeseries`, `probes.csv` when probe times are set.
+//!
+//! `run.toml` is written by [`crate::run`] from the returned [`SceneReport`].
+
+use super::setup::uses_rapier;
+use super::SphereResult;
+use crate::output::chart::{scatter_svg, Scale, Series};
+use crate::output::metrics::ErrorStats;
+use crate::output::{num, opt, StagedDir};
+use crate::run::{Prepared, RunError, SceneReport};
+use crate::scenario::{Kind, Submergence};
+use std::collections::BTreeMap;
+use std::io;
+use std::path::Path;
+
+/// Writes the files of a free-settling or drop run into the staging folder and reports the
+/// run's steps, bodies and (Rapier) engine settings. An interruption requested while the time
+/// series is written ends it with an [`io::ErrorKind::Interrupted`] error.
+pub fn write_all(
+    p: &Prepared,
+    results: &[SphereResult],
+    stage: &StagedDir,
+) -> Result<SceneReport, RunError> {
+    let s = &p.scenario;
+    let io = |e: io::Error| RunError::Io(p.path.clone(), e);
+    let integ = s.time.integrator.name();
+    if s.kind == Kind::Drop {
+        let sub = match s.fluid.submergence {
+            Submergence::Full => "full",
+            Submergence::Partial => "partial",
+        };
+        write_drop_summary(&stage.path("summary.csv"), results, s.time.dt_s, integ, sub)
+            .map_err(io)?;
+        write_drop_chart(
+            &stage.path("settling_distance.svg"),
+            &format!(
+                "{}: settling distance against fall height ({sub} submergence)",
+                s.name
+            ),
+            results,
+        )
+        .map_err(RunError::Other)?;
+    } else {
+        let rows: Vec<Vec<String>> = results
+            .iter()
+            .map(|r| summary_row(r, s.time.dt_s, integ))
+            .collect();
+        write_summary(&stage.path("summary.csv"), &rows).map_err(io)?;
+        let stats = metrics(results);
+        if !stats.is_empty() {
+            write_metrics(&stage.path("metrics.csv"), &stats).map_err(io)?;
+            write_chart(
+                &stage.path("terminal_velocity.svg"),
+                &format!(
+                    "{}: terminal velocity, measured (o) and simulated (•)",
+                    s.name
+                ),
+                results,
+            )
+            .map_err(RunError::Other)?;
+        }
+    }
+    if s.record.timeseries {
+        write_timeseries(&stage.path("timeseries.csv"), results).map_err(io)?;
+    }
+    if results.iter().any(|r| !r.probes.is_empty()) {
+        write_probes(&stage.path("probes.csv"), results).map_err(io)?;
+    }
+    let engine_settings = uses_rapier(s).then(|| {
+        let d_min = p
+            .spheres
+            .iter()
+            .map(|c| c.spec.diameter_m)
+            .fold(f64::INFINITY, f64::min);
+        let v_max = results
+            .iter()
+            .map(|r| r.v_force_balance_m_s.abs())
+            .fold(0.0, f64::max);
+        crate::engine::EngineSettings::for_scene(d_min, 2.0 * v_max)
+    });
+    Ok(SceneReport {
+        steps: results.iter().map(|r| r.steps).sum(),
+        bodies: results.len(),
+        engine_settings,
+        lines: Vec::new(),
+        interrupted: false,
+    })
+}
+
+/// Header of `summary.csv`.
+pub const SUMMARY_HEADER: [&str; 23] = [
+    "sphere_id",
+    "suspension",
+    "diameter_m",
+    "density_kg_m3",
+    "v_measured_m_s",
+    "v_simulated_m_s",
+    "v_force_balance_m_s",
+    "rel_error",
+    "re_bingham",
+    "regime",
+    "steps",
+    "dt_s",
+    "integrator",
+    "v_analytic_m_s",
+    "rel_error_vs_force_balance",
+    "terminal_steady",
+    "v_section_m_s",
+    "steady_in_section",
+    "max_velocity_error_rel",
+    "response_time_s",
+    "rayleigh_time_s",
+    "stop",
+    "end_time_s",
+];
+
+/// Relative error of the simulated against the measured velocity, if measured.
+pub fn rel_error(r: &SphereResult) -> Option<f64> {
+    r.case
+        .spec
+        .v_measured_m_s
+        .map(|m| (r.v_simulated_m_s - m) / m)
+}
+
+/// Relative difference of the simulated velocity from the force balance (0 when both are 0).
+pub fn rel_error_vs_force_balance(r: &SphereResult) -> f64 {
+    if r.v_force_balance_m_s == 0.0 {
+        r.v_simulated_m_s.abs()
+    } else {
+        (r.v_simulated_m_s - r.v_force_balance_m_s) / r.v_force_balance_m_s
+    }
+}
+
+/// One `summary.csv` row.
+pub fn summary_row(r: &SphereResult, dt_s: f64, integrator: &str) -> Vec<String> {
+    let s = &r.case.spec;
+    vec![
+        r.case.id.clone(),
+        s.suspension.map(|x| x.to_string()).unwrap_or_default(),
+        num(s.diameter_m),
+        num(s.density_kg_m3),
+        opt(s.v_measured_m_s),
+        num(r.v_simulated_m_s),
+        num(r.v_force_balance_m_s),
+        opt(rel_error(r)),
+        opt(r.re_bingham),
+        r.regime.label().to_string(),
+        r.steps.to_string(),
+        num(dt_s),
+        integrator.to_string(),
+        opt(r.v_analytic_m_s),
+        num(rel_error_vs_force_balance(r)),
+        r.terminal_steady.map(|b| b.to_string()).unwrap_or_default(),
+        opt(r.v_section_m_s),
+        r.steady_in_section
+            .map(|b| b.to_string())
+            .unwrap_or_default(),
+        opt(r.max_velocity_error_rel),
+        num(r.response_time_s),
+        opt(r.rayleigh_time_s),
+        r.stop.label().to_string(),
+        num(r.end_time_s),
+    ]
+}
+
+fn csv_err(e: csv::Error) -> io::Error {
+    io::Error::other(e)
+}
+
+/// Writes `summary.csv` rows (with header) to `path`.
+pub fn write_summary(path: &Path, rows: &[Vec<String>]) -> io::Result<()> {
+    let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
+    w.write_record(SUMMARY_HEADER).map_err(csv_err)?;
+    for r in rows {
+        w.write_record(r).map_err(csv_err)?;
+    }
+    w.flush()
+}
+
+/// Writes `timeseries.csv`; stops with an [`io::ErrorKind::Interrupted`] error when an
+/// interruption is requested (checked before each sphere's rows).
+pub fn write_timeseries(path: &Path, results: &[SphereResult]) -> io::Result<()> {
+    let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
+    w.write_record([
+        "sphere_id",
+        "time_s",
+        "depth_m",
+        "velocity_m_s",
+        "velocity_analytic_m_s",
+        "depth_analytic_m",
+    ])
+    .map_err(csv_err)?;
+    for r in results {
+        if crate::interrupt::requested() {
+            return Err(io::Error::new(
+                io::ErrorKind::Interrupted,
+                "interrupted while writing timeseries.csv",
+            ));
+        }
+        for s in &r.samples {
+            w.write_record([
+                r.case.id.clone(),
+                num(s.time_s),
+                num(s.depth_m),
+                num(s.velocity_m_s),
+                opt(s.velocity_analytic_m_s),
+                opt(s.depth_analytic_m),
+            ])
+            .map_err(csv_err)?;
+        }
+    }
+    w.flush()
+}
+
+/// Writes `probes.csv` (velocity at the probe times).
+pub fn write_probes(path: &Path, results: &[SphereResult]) -> io::Result<()> {
+    let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
+    w.write_record([
+        "sphere_id",
+        "time_s",
+        "velocity_m_s",
+        "velocity_analytic_m_s",
+    ])
+    .map_err(csv_err)?;
+    for r in results {
+        for (t, v, a) in &r.probes {
+            w.write_record([r.case.id.clone(), num(*t), num(*v), opt(*a)])
+                .map_err(csv_err)?;
+        }
+    }
+    w.flush()
+}
+
+/// Error statistics per suspension and overall (`all`), for spheres with a measurement.
+pub fn metrics(results: &[SphereResult]) -> Vec<ErrorStats> {
+    let mut groups: BTreeMap<u32, Vec<f64>> = BTreeMap::new();
+    let mut all = Vec::new();
+    for r in results {
+        if let Some(e) = rel_error(r) {
+            groups
+                .entry(r.case.spec.suspension.unwrap_or(0))
+                .or_default()
+                .push(e);
+            all.push(e);
+        }
+    }
+    let mut out: Vec<ErrorStats> = groups
+        .into_iter()
+        .map(|(k, v)| ErrorStats::of(k.to_string(), &v))
+        .collect();
+    if !all.is_empty() {
+        out.push(ErrorStats::of("all", &all));
+    }
+    out
+}
+
+/// Writes `metrics.csv`.
+pub fn write_metrics(path: &Path, stats: &[ErrorStats]) -> io::Result<()> {
+    let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
+    w.write_record(ErrorStats::HEADER).map_err(csv_err)?;
+    for s in stats {
+        w.write_record(s.row()).map_err(csv_err)?;
+    }
+    w.flush()
+}
+
+/// Terminal velocity against sphere density, one colour per diameter: measured (hollow) and
+/// simulated (filled), like f-EDEM Fig. 11.
+pub fn write_chart(path: &Path, title: &str, results: &[SphereResult]) -> Result<(), String> {
+    type Points = Vec<(f64, f64)>;
+    let mut by_d: BTreeMap<u64, (Points, Points)> = BTreeMap::new();
+    for r in results {
+        let key = (r.case.spec.diameter_m * 1e6).round() as u64;
+        let e = by_d.entry(key).or_default();
+        if let Some(m) = r.case.spec.v_measured_m_s {
+            e.0.push((r.case.spec.density_kg_m3, m));
+        }
+        e.1.push((r.case.spec.density_kg_m3, r.v_simulated_m_s));
+    }
+    let mut series = Vec::new();
+    for (i, (d_um, (meas, mut sim))) in by_d.into_iter().enumerate() {
+        sim.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let d_mm = d_um as f64 / 1000.0;
+        if !meas.is_empty() {
+            series.push(Series {
+                label: format!("d = {d_mm} mm, measured"),
+                points: meas,
+                colour: i,
+                filled: false,
+                line: false,
+            });
+        }
+        series.push(Series {
+            label: format!("d = {d_mm} mm, simulated"),
+            points: sim,
+            colour: i,
+            filled: true,
+            line: true,
+        });
+    }
+    scatter_svg(
+        path,
+        title,
+        "sphere density (kg/m³)",
+        "terminal velocity (m/s)",
+        Scale::Linear,
+        Scale::Linear,
+        &series,
+    )
+}
+
+/// Header of a drop `summary.csv`. `settling_distance_m` is the depth of the ball's lowest point
+/// below the free surface once it has stopped (or at the end of the run); `centre_depth_m` the
+/// depth of its centre.
+pub const DROP_HEADER: [&str; 12] = [
+    "sphere_id",
+    "diameter_m",
+    "density_kg_m3",
+    "fall_height_m",
+    "entry_velocity_m_s",
+    "settling_distance_m",
+    "centre_depth_m",
+    "stop_time_s",
+    "steps",
+    "dt_s",
+    "integrator",
+    "submergence",
+];
+
+/// Writes the drop `summary.csv` (`kind = "drop"`).
+pub fn write_drop_summary(
+    path: &Path,
+    results: &[SphereResult],
+    dt_s: f64,
+    integrator: &str,
+    submergence: &str,
+) -> io::Result<()> {
+    let mut w = csv::Writer::from_path(path).map_err(io::Error::other)?;
+    w.write_record(DROP_HEADER).map_err(io::Error::other)?;
+    for r in results {
+        let d = r.case.spec.diameter_m;
+        w.write_record([
+            r.case.id.clone(),
+            num(d),
+            num(r.case.spec.density_kg_m3),
+            opt(r.case.fall_height_m),
+            opt(r.entry_velocity_m_s),
+            num(r.final_bottom_depth_m),
+            num(r.final_bottom_depth_m - 0.5 * d),
+            opt(r.stop_time_s),
+            r.steps.to_string(),
+            num(dt_s),
+            integrator.to_string(),
+            submergence.to_string(),
+        ])
+        .map_err(io::Error::other)?;
+    }
+    w.flush()
+}
+
+/// Writes `settling_distance.svg`: settling distance against fall height, one series per
+/// diameter (like f-EDEM Fig. 16).
+pub fn write_drop_chart(path: &Path, title: &str, results: &[SphereResult]) -> Result<(), String> {
+    let mut by_d: BTreeMap<u64, Vec<(f64, f64)>> = BTreeMap::new();
+    for r in results {
+        let key = (r.case.spec.diameter_m * 1e6).round() as u64;
+        by_d.entry(key).or_default().push((
+            r.case.fall_height_m.unwrap_or(0.0) * 1e3,
+            r.final_bottom_depth_m * 1e3,
+        ));
+    }
+    let series: Vec<Series> = by_d
+        .into_iter()
+        .enumerate()
+        .map(|(i, (d_um, pts))| {
+            Series::sorted_line(format!("d = {} mm", d_um as f64 / 1000.0), pts, i)
+        })
+        .collect();
+    scatter_svg(
+        path,
+        title,
+        "fall height (mm)",
+        "settling distance, ball bottom below surface (mm)",
+        Scale::Linear,
+        Scale::Linear,
+        &series,
+    )
+}
