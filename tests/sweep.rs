@@ -4,7 +4,7 @@
 
 use settle::dynamics::Integrator;
 use settle::run::prepare;
-use settle::sweep::{finish, grid, run_cases, shard, summarise, Row};
+use settle::sweep::{finish, grid, run_cases, shard, summarise, Row, Status};
 use std::path::Path;
 
 fn strip_wall(rows: &[Row]) -> Vec<Row> {
@@ -40,11 +40,11 @@ fn same(a: &[Row], b: &[Row]) -> bool {
 fn merged_shards_equal_the_unsharded_sweep_row_for_row() {
     let p = prepare(Path::new("scenarios/stokes_single.toml"), None, &[]).unwrap();
     let cases = grid(&Integrator::ALL, &[1e-2, 3e-3, 1e-3, 1e-4, 1e-5]);
-    let mut whole = run_cases(&p, &cases);
+    let mut whole = run_cases(&p, &cases).unwrap();
     finish(&mut whole);
     let dir = tempfile::tempdir().unwrap();
     for i in 1..=4 {
-        let part = run_cases(&p, &shard(&cases, i, 4));
+        let part = run_cases(&p, &shard(&cases, i, 4)).unwrap();
         settle::sweep::write_rows(&dir.path().join(format!("sweep_part_{i}_of_4.csv")), &part)
             .unwrap();
     }
@@ -71,18 +71,18 @@ fn the_sweep_reports_explicit_instability_beyond_two_tau() {
         &[Integrator::Explicit, Integrator::Exponential],
         &[1e-2, 3.5e-3, 2.5e-3, 1e-4],
     );
-    let mut rows = run_cases(&p, &cases);
+    let mut rows = run_cases(&p, &cases).unwrap();
     finish(&mut rows);
     for r in &rows {
-        let expect_stable = r.integrator == "exponential" || r.dt_s < 3e-3;
+        let expect_stable = r.integrator == Integrator::Exponential || r.dt_s < 3e-3;
         assert_eq!(
-            r.status == "stable",
+            r.status == Status::Stable,
             expect_stable,
-            "{} dt {}",
+            "{:?} dt {}",
             r.integrator,
             r.dt_s
         );
-        if r.status == "unstable" {
+        if r.status == Status::Unstable {
             assert!(
                 r.reason.contains("fedem-table1") && r.reason.contains("largest stable dt"),
                 "{}",
@@ -90,7 +90,7 @@ fn the_sweep_reports_explicit_instability_beyond_two_tau() {
             );
             assert!(r.value.is_nan());
         }
-        if r.integrator == "exponential" {
+        if r.integrator == Integrator::Exponential {
             assert!(
                 r.error_vs_reference.abs() < 1e-6,
                 "{} at {}: {}",
@@ -109,7 +109,7 @@ fn the_sweep_reports_explicit_instability_beyond_two_tau() {
 fn valentik_accuracy_at_large_steps() {
     let p = prepare(Path::new("scenarios/valentik_susp1.toml"), None, &[]).unwrap();
     let cases = grid(&[Integrator::Exponential], &[1e-1, 1e-3, 1e-4]);
-    let mut rows = run_cases(&p, &cases);
+    let mut rows = run_cases(&p, &cases).unwrap();
     finish(&mut rows);
     let sums = summarise(&rows);
     let at = |dt: f64| sums.iter().find(|s| s.dt_s == dt).unwrap();
@@ -132,11 +132,11 @@ fn funnel_pour_sweep_counts_balls_and_loses_none() {
     )
     .unwrap();
     let cases = grid(&[Integrator::Exponential], &[1e-3, 5e-4]);
-    let mut rows = run_cases(&p, &cases);
+    let mut rows = run_cases(&p, &cases).unwrap();
     finish(&mut rows);
     assert_eq!(rows.len(), 2 * 5);
     for r in &rows {
-        assert_eq!(r.status, "stable", "{}: {}", r.dt_s, r.reason);
+        assert_eq!(r.status, Status::Stable, "{}: {}", r.dt_s, r.reason);
         match r.quantity.as_str() {
             "balls_lost" => assert_eq!(r.value, 0.0),
             "balls_in_domain_at_count" => assert_eq!(r.value, 10.0),
