@@ -146,15 +146,13 @@ pub fn main() -> i32 {
             println!("-> {}", path.display());
             0
         }
-        Command::Sweep(args) => {
-            match crate::sweep::main(&args) {
-                Ok(()) => 0,
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    e.exit_code()
-                }
+        Command::Sweep(args) => match crate::sweep::main(&args) {
+            Ok(()) => 0,
+            Err(e) => {
+                eprintln!("error: {e}");
+                e.exit_code()
             }
-        }
+        },
     }
 }
 

@@ -14,7 +14,7 @@ pub struct Args {
     #[arg(required_unless_present = "merge")]
     pub scenarios: Vec<PathBuf>,
     /// Comma-separated time steps, s (e.g. 1e-1,1e-2,1e-3); each > 0.
-    #[arg(long, value_delimiter = ',', allow_negative_numbers = true,
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true,
           value_parser = parse_dt, conflicts_with = "dt_range")]
     pub dt: Vec<f64>,
     /// Log-spaced range of time steps LO:HI, s, 0 < LO < HI (with --per-decade).
@@ -28,7 +28,7 @@ pub struct Args {
     pub integrator: Vec<Integrator>,
     /// Tolerance of the recommended dt: the largest relative error against the finest stable dt
     /// accepted, 0 < TOL ≤ 1 (default: the scenario's [sweep] tol, else 0.01).
-    #[arg(long, allow_negative_numbers = true, value_parser = parse_tol)]
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_tol)]
     pub tol: Option<f64>,
     /// Output folder [default: out; with --merge, the first merged folder].
     #[arg(long)]
