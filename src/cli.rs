@@ -69,7 +69,8 @@ enum Command {
     /// reference, error against the reference and against the finest stable dt, wall time,
     /// steps, status stable/unstable with the reason), quantity_vs_dt.svg, speed_accuracy.svg and
     /// recommended_dt.csv, and prints the recommended dt beside the Rayleigh-time rule.
-    /// Defaults come from the scenario's [sweep] table.
+    /// Defaults come from the scenario's [sweep] table. Kinds free_settling, drop and funnel_pour
+    /// can be swept; other kinds, like bad options, exit 2 before anything is written.
     Sweep(crate::sweep::Args),
 }
 

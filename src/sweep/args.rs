@@ -23,11 +23,11 @@ pub struct Args {
     /// Steps per decade for --dt-range (at least 1).
     #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..))]
     pub per_decade: u32,
-    /// Comma-separated integrators (default: the scenario's [sweep] integrators, else all).
+    /// Comma-separated integrators (default: sweep.integrators of the scenario, else all).
     #[arg(long, value_delimiter = ',')]
     pub integrator: Vec<Integrator>,
     /// Tolerance of the recommended dt: the largest relative error against the finest stable dt
-    /// accepted, 0 < TOL ≤ 1 (default: the scenario's [sweep] tol, else 0.01).
+    /// accepted, 0 < TOL ≤ 1 (default: sweep.tol of the scenario, else 0.01).
     #[arg(long, allow_hyphen_values = true, value_parser = parse_tol)]
     pub tol: Option<f64>,
     /// Output folder [default: out; with --merge, the first merged folder].
