@@ -252,7 +252,7 @@ pub fn run(root: &Path, quick: bool) -> Result<Vec<Figure>, String> {
                 .ok_or("valentik scenario without [sweep]")?;
             let grid = crate::sweep::grid(&Integrator::ALL, &sw.dt_s);
             cases += grid.len();
-            let mut rows = crate::sweep::run_cases(p, &grid);
+            let mut rows = crate::sweep::run_cases(p, &grid).map_err(|e| e.to_string())?;
             crate::sweep::finish(&mut rows);
         }
         out.push(fig("valentik_sweep", "cases", cases as f64, "cases"));

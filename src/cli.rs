@@ -69,41 +69,9 @@ enum Command {
     /// reference, error against the reference and against the finest stable dt, wall time,
     /// steps, status stable/unstable with the reason), quantity_vs_dt.svg, speed_accuracy.svg and
     /// recommended_dt.csv, and prints the recommended dt beside the Rayleigh-time rule.
-    /// Defaults come from the scenario's [sweep] table.
-    Sweep {
-        /// Scenario files (TOML). Each gets its own sweep.
-        scenarios: Vec<PathBuf>,
-        /// Comma-separated time steps, s (e.g. 1e-1,1e-2,1e-3).
-        #[arg(long, value_delimiter = ',')]
-        dt: Vec<f64>,
-        /// Log-spaced range of time steps LO:HI, s (with --per-decade).
-        #[arg(long, value_name = "LO:HI")]
-        dt_range: Option<String>,
-        /// Steps per decade for --dt-range.
-        #[arg(long, default_value_t = 3)]
-        per_decade: u32,
-        /// Comma-separated integrators: explicit, implicit, exponential.
-        #[arg(long, value_delimiter = ',')]
-        integrator: Vec<String>,
-        /// Tolerance of the recommended dt (relative error against the finest dt). Default 0.01.
-        #[arg(long)]
-        tol: Option<f64>,
-        /// Output folder.
-        #[arg(long, default_value = "out")]
-        out: PathBuf,
-        /// Run only slice I of N of the grid (1-based), writing a partial CSV to merge later.
-        #[arg(long, value_name = "I/N")]
-        shard: Option<String>,
-        /// Merge the partial CSVs (sweep_part_*.csv) found in these folders, then chart.
-        #[arg(long, num_args = 1.., value_name = "DIR")]
-        merge: Vec<PathBuf>,
-        /// Override any scenario key (as for `run`).
-        #[arg(long = "set", value_name = "KEY=VALUE")]
-        set: Vec<String>,
-        /// Print nothing but errors.
-        #[arg(long, short)]
-        quiet: bool,
-    },
+    /// Defaults come from the scenario's [sweep] table. Kinds free_settling, drop and funnel_pour
+    /// can be swept; other kinds, like bad options, exit 2 before anything is written.
+    Sweep(crate::sweep::Args),
 }
 
 /// Parses the arguments, runs, and returns the process exit code.
@@ -179,40 +147,13 @@ pub fn main() -> i32 {
             println!("-> {}", path.display());
             0
         }
-        Command::Sweep {
-            scenarios,
-            dt,
-            dt_range,
-            per_decade,
-            integrator,
-            tol,
-            out,
-            shard,
-            merge,
-            set,
-            quiet,
-        } => {
-            let args = crate::sweep_cmd::SweepArgs {
-                scenarios,
-                dt,
-                dt_range,
-                per_decade,
-                integrators: integrator,
-                tol,
-                out,
-                shard,
-                merge,
-                overrides: set,
-                quiet,
-            };
-            match crate::sweep_cmd::sweep(&args) {
-                Ok(()) => 0,
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    e.exit_code()
-                }
+        Command::Sweep(args) => match crate::sweep::main(&args) {
+            Ok(()) => 0,
+            Err(e) => {
+                eprintln!("error: {e}");
+                e.exit_code()
             }
-        }
+        },
     }
 }
 

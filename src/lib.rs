@@ -20,4 +20,3 @@ pub mod sample;
 pub mod scenario;
 pub mod scenes;
 pub mod sweep;
-pub mod sweep_cmd;

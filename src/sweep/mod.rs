@@ -1,0 +1,205 @@
+//! Time-step sensitivity sweeps (`settle sweep`): every (integrator, dt) of a grid runs the
+//! scenario; each measured quantity is compared with its analytic or force-balance reference
+//! where one exists and with the finest stable dt of the same integrator. Cases run in
+//! parallel; `--shard I/N` runs a slice of the grid so a cluster job array can share it, and
+//! `--merge` joins the parts (see README, "Sweeps on a cluster").
+//!
+//! | file | job |
+//! |---|---|
+//! | `args.rs` | the command line (clap), value parsers for `I/N`, `LO:HI`, `--tol` |
+//! | `plan.rs` | [`Plan`]: integrators × dts (+ shard, tol) from the arguments and `[sweep]`; pure |
+//! | `targets.rs` | which kinds can be swept and the quantities each case yields; refuses others |
+//! | `table.rs` | typed [`Row`]s, CSV read/write, [`finish`] (error against the finest dt) |
+//! | `analysis.rs` | per-case summaries, recommended dt, Rayleigh time |
+//! | `report.rs` | charts, `recommended_dt.csv`, console table |
+//!
+//! Every input is checked before any case runs: a scenario that does not load, a kind that
+//! cannot be swept, or a scenario without time steps exits 2 with nothing written.
+
+mod analysis;
+mod args;
+mod error;
+mod plan;
+mod report;
+mod table;
+mod targets;
+
+pub use analysis::{rayleigh_time_of, recommended_dt, summarise, CaseSummary, RAYLEIGH_FRACTION};
+pub use args::{parse_dt, parse_dt_range, parse_shard, parse_tol, Args, BadValue, TOL_ALLOWED};
+pub use error::Error;
+pub use plan::{dt_range, grid, shard, Case, DtRange, Plan, Shard, DEFAULT_TOL};
+pub use report::{charts, write_results, Context};
+pub use table::{finish, from_csv, read_rows, rel, to_csv, write_rows, Row, Status, HEADER};
+pub use targets::{Target, SWEEPABLE, SWEEPABLE_NAMES};
+
+use crate::output::StagedDir;
+use crate::run::{prepare, Prepared};
+use std::path::{Path, PathBuf};
+
+/// Runs `cases` of a sweepable scenario (in parallel) and returns their rows, without
+/// `error_vs_finest`; [`Error::Unsweepable`] for other kinds.
+pub fn run_cases(p: &Prepared, cases: &[Case]) -> Result<Vec<Row>, Error> {
+    run_cases_with(p, cases, &|| {})
+}
+
+/// As [`run_cases`], calling `done` after each case (for a progress bar).
+pub fn run_cases_with(
+    p: &Prepared,
+    cases: &[Case],
+    done: &(dyn Fn() + Sync),
+) -> Result<Vec<Row>, Error> {
+    use rayon::prelude::*;
+    let target = Target::of(p)?;
+    Ok(cases
+        .par_iter()
+        .map(|c| {
+            let rows = target.run_case(p, c);
+            done();
+            rows
+        })
+        .flatten()
+        .collect())
+}
+
+/// Runs the plan's cases of one scenario: finished rows (see [`finish`]) for a whole grid, the
+/// unfinished rows of the shard for a sharded plan.
+pub fn run(p: &Prepared, plan: &Plan, done: &(dyn Fn() + Sync)) -> Result<Vec<Row>, Error> {
+    let mut rows = run_cases_with(p, &plan.cases_to_run(), done)?;
+    if plan.shard.is_none() {
+        finish(&mut rows);
+    }
+    Ok(rows)
+}
+
+/// `settle sweep`: checks every scenario and plan, then sweeps each file into
+/// `OUT/<name>_sweep/` (or writes its shard's part file there), or merges part files.
+pub fn main(args: &Args) -> Result<(), Error> {
+    if !args.merge.is_empty() {
+        return merge(args);
+    }
+    let mut jobs = Vec::new();
+    for f in &args.scenarios {
+        let p = prepare(f, None, &args.set)?;
+        Target::of(&p)?;
+        let plan = Plan::resolve(args, &p)?;
+        jobs.push((p, plan));
+    }
+    let out = args.out.clone().unwrap_or_else(|| PathBuf::from("out"));
+    for (p, plan) in &jobs {
+        sweep_file(p, plan, &out, args.quiet)?;
+    }
+    Ok(())
+}
+
+/// Sweeps one prepared scenario into `out`.
+fn sweep_file(p: &Prepared, plan: &Plan, out: &Path, quiet: bool) -> Result<(), Error> {
+    let cases = plan.cases_to_run();
+    let bar = crate::progress::bar(
+        cases.len() as u64,
+        &p.scenario.name,
+        "cases, {per_sec},",
+        quiet,
+    );
+    let rows = run(p, plan, &|| bar.inc(1))?;
+    bar.finish_and_clear();
+    let name = format!("{}_sweep", p.scenario.name);
+    if let Some(Shard { index, count }) = plan.shard {
+        let dir = out.join(&name);
+        std::fs::create_dir_all(&dir).map_err(|e| Error::Io(dir.clone(), e))?;
+        let file = dir.join(format!("sweep_part_{index}_of_{count}.csv"));
+        write_rows(&file, &rows).map_err(|e| Error::Io(file.clone(), e))?;
+        if !quiet {
+            println!(
+                "{}: shard {index}/{count} ({} rows) -> {}",
+                p.scenario.name,
+                rows.len(),
+                file.display()
+            );
+        }
+        return Ok(());
+    }
+    let io = |e| Error::Io(out.join(&name), e);
+    let stage = StagedDir::new(out, &name).map_err(io)?;
+    let cx = Context {
+        title: &p.scenario.name,
+        tol: plan.tol,
+        rayleigh_time_s: rayleigh_time_of(p),
+        quiet,
+    };
+    write_results(&stage.path(""), &rows, &cx)?;
+    let dest = stage.commit().map_err(io)?;
+    if !quiet {
+        println!("  -> {}", dest.display());
+    }
+    Ok(())
+}
+
+/// The part files `sweep_part_*.csv` of the `--merge` folders, each folder's sorted by name.
+fn part_files(dirs: &[PathBuf]) -> Result<Vec<PathBuf>, Error> {
+    let mut all = Vec::new();
+    for dir in dirs {
+        let rd = std::fs::read_dir(dir).map_err(|e| Error::Usage {
+            option: "--merge",
+            message: format!("{}: cannot read the folder: {e}", dir.display()),
+        })?;
+        let mut files: Vec<PathBuf> = rd
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .filter(|p| {
+                p.file_name()
+                    .and_then(|n| n.to_str())
+                    .is_some_and(|n| n.starts_with("sweep_part_") && n.ends_with(".csv"))
+            })
+            .collect();
+        files.sort();
+        all.extend(files);
+    }
+    if all.is_empty() {
+        return Err(Error::Usage {
+            option: "--merge",
+            message: "no sweep_part_*.csv in the given folders".into(),
+        });
+    }
+    Ok(all)
+}
+
+/// `--merge DIR...`: joins the part files, finishes and reports them into `--out` (default:
+/// the first folder). A scenario file, if given, supplies the title, `[sweep] tol` and the
+/// Rayleigh time.
+fn merge(args: &Args) -> Result<(), Error> {
+    let files = part_files(&args.merge)?;
+    let prepared = args
+        .scenarios
+        .first()
+        .map(|f| prepare(f, None, &args.set))
+        .transpose()?;
+    let mut rows: Vec<Row> = Vec::new();
+    for f in &files {
+        rows.extend(read_rows(f).map_err(|e| Error::BadPart(f.clone(), e))?);
+    }
+    finish(&mut rows);
+    let dest = args.out.clone().unwrap_or_else(|| args.merge[0].clone());
+    std::fs::create_dir_all(&dest).map_err(|e| Error::Io(dest.clone(), e))?;
+    let tol = args
+        .tol
+        .or_else(|| prepared.as_ref()?.scenario.sweep.as_ref()?.tol)
+        .unwrap_or(DEFAULT_TOL);
+    let cx = Context {
+        title: prepared
+            .as_ref()
+            .map(|p| p.scenario.name.as_str())
+            .unwrap_or("sweep"),
+        tol,
+        rayleigh_time_s: prepared.as_ref().and_then(rayleigh_time_of),
+        quiet: args.quiet,
+    };
+    write_results(&dest, &rows, &cx)?;
+    if !args.quiet {
+        println!(
+            "merged {} parts ({} rows) -> {}",
+            files.len(),
+            rows.len(),
+            dest.join("sweep.csv").display()
+        );
+    }
+    Ok(())
+}
