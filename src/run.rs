@@ -218,11 +218,8 @@ pub fn run_one_with(
             let report = write_sphere_outputs(p, &results, &stage)?;
             (results, report)
         }
-        Kind::RestitutionDrop => (
-            Vec::new(),
-            crate::scenes::calibration::run_restitution(p, &stage)?,
-        ),
-        Kind::TiltFriction => (Vec::new(), crate::scenes::calibration::run_tilt(p, &stage)?),
+        Kind::RestitutionDrop => (Vec::new(), crate::scenes::restitution_drop::run(p, &stage)?),
+        Kind::TiltFriction => (Vec::new(), crate::scenes::tilt_friction::run(p, &stage)?),
         Kind::FunnelPour => (Vec::new(), crate::scenes::funnel::run(p, &stage, ctx)?),
         Kind::Sedimentation => (
             Vec::new(),
