@@ -1,7 +1,8 @@
-//! One repeat of the pour, as named stages: build the world ([`initial_repeat`]), then step by
+//! One repeat of the pour, as named stages: build the world (`initial_repeat`), then step by
 //! step open the outlet, step the world, track wall breaches and record the census
-//! ([`RepeatRun::advance`]), until the end time or until every ball in play has rested; with
-//! checkpoints ([`Checkpoints`]) and resumption. [`simulate_with`] runs the repeats in parallel.
+//! (`RepeatRun::advance`), until the end time or until every ball in play has rested; with
+//! checkpoints (`Checkpoints`) and resumption ([`run_repeat_with`]). [`simulate_with`] runs the
+//! repeats in parallel.
 
 use super::{
     contacts, funnel, place_balls, repeats, Ball, Census, Geometry, Place, RepeatResult, Sample,
