@@ -215,11 +215,8 @@ pub fn run_one_with(
     let stage = StagedDir::new(out_dir, &s.name).map_err(io)?;
     let (results, report) = match s.kind {
         Kind::FreeSettling | Kind::Drop => free_settling::run_scene(p, &stage)?,
-        Kind::RestitutionDrop => (
-            Vec::new(),
-            crate::scenes::calibration::run_restitution(p, &stage)?,
-        ),
-        Kind::TiltFriction => (Vec::new(), crate::scenes::calibration::run_tilt(p, &stage)?),
+        Kind::RestitutionDrop => (Vec::new(), crate::scenes::restitution_drop::run(p, &stage)?),
+        Kind::TiltFriction => (Vec::new(), crate::scenes::tilt_friction::run(p, &stage)?),
         Kind::FunnelPour => (Vec::new(), crate::scenes::funnel::run(p, &stage, ctx)?),
         Kind::Sedimentation => (
             Vec::new(),

@@ -14,12 +14,11 @@
 //! rise in air, and each height is within 3 % of the measurement. Because the law is calibrated
 //! on those five heights, its predictive error is stated too (leave-one-out, 4.4 %).
 
-use settle::contact::RestitutionLaw;
+use settle::contact::{constant_fit, restitution_fits, RestitutionLaw};
 use settle::fluid::{buoyancy_n, sphere_mass_kg, DragLaw, SphereDrag};
 use settle::run::{prepare, run_one};
-use settle::scenes::calibration::{
-    constant_fit, drop_settings, restitution_fits, simulate_drop, tilt_threshold, TiltSetup,
-};
+use settle::scenes::restitution_drop::{drop_settings, simulate_drop};
+use settle::scenes::tilt_friction::{tilt_threshold, TiltSetup};
 use std::path::Path;
 
 const G: f64 = 9.81;

@@ -438,7 +438,7 @@ fn a_repeat_is_reproducible_from_its_seed() {
 
 #[test]
 fn presence_and_z_histogram_count_what_they_should() {
-    use settle::output::funnel::{presence, z_histogram};
+    use settle::scenes::funnel::output::{presence, z_histogram};
     use settle::scenes::funnel::{Ball, Place, RepeatResult};
     let ball = |x: f64, z: f64| Ball {
         diameter_m: D,

@@ -4,7 +4,6 @@
 pub mod chart;
 pub mod drop;
 pub mod free_settling;
-pub mod funnel;
 pub mod granulometry;
 pub mod metrics;
 

@@ -4,8 +4,10 @@ pub mod calibration;
 pub mod free_settling;
 pub mod funnel;
 pub mod grain_contacts;
+pub mod restitution_drop;
 pub mod sedimentation;
 pub mod spheres;
+pub mod tilt_friction;
 
 use crate::fluid::{DragLaw, SphereDrag};
 use crate::scenario::{DragLawName, Physics, Rheology, Scenario};

@@ -1,6 +1,5 @@
-//! Contact mechanics: the quantities that set DEM time steps, and the restitution law.
-
-use std::f64::consts::PI;
+//! The restitution law e(v) and its calibration on drop tests (f-EDEM App. II: a ball dropped
+//! from rest from H_f rebounds to H_r = e² H_f, eq. A4, without air).
 
 /// Largest restitution a law may return. Rapier treats a contact with e ≥ 1 as bouncy even when
 /// it persists (it could never come to rest), so the law stays just below 1.
@@ -126,28 +125,141 @@ impl RestitutionLaw {
     }
 }
 
-/// Rayleigh time of a sphere, s: T_R = π r / (0.8766 + 0.163 ν) · √(ρ_p / G), G = E / (2(1 + ν))
-/// (f-EDEM eq. 22; Li et al. 2005). The usual DEM rule takes 10–20 % of it as the time step.
-pub fn rayleigh_time_s(
-    diameter_m: f64,
-    density_kg_m3: f64,
-    youngs_modulus_pa: f64,
-    poisson_ratio: f64,
-) -> f64 {
-    let g = youngs_modulus_pa / (2.0 * (1.0 + poisson_ratio));
-    PI * 0.5 * diameter_m / (0.8766 + 0.163 * poisson_ratio) * (density_kg_m3 / g).sqrt()
+/// What constant restitution coefficients make of measured rebounds `measured_m` from heights
+/// `drop_m` (f-EDEM eq. A4: e = √(H_r/H_f)).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ConstantFit {
+    /// Mean of the per-height √(H_r/H_f) (f-EDEM's "average", 0.612).
+    pub e_mean: f64,
+    /// Least-squares e on the heights: e² = Σ H_r H_f / Σ H_f².
+    pub e_least_squares: f64,
+    /// The e minimising the largest relative height error: e² = 2 r_min r_max/(r_min + r_max),
+    /// r = H_r/H_f.
+    pub e_minimax: f64,
+    /// That smallest achievable largest relative error, (r_max − r_min)/(r_max + r_min): no
+    /// constant e matches every height better.
+    pub minimax_rel_error: f64,
+}
+
+/// Fits constant restitution coefficients to measured rebounds (see [`ConstantFit`]). `None`
+/// without data or with a non-positive height.
+pub fn constant_fit(drop_m: &[f64], measured_m: &[f64]) -> Option<ConstantFit> {
+    if drop_m.is_empty()
+        || drop_m.len() != measured_m.len()
+        || drop_m
+            .iter()
+            .chain(measured_m)
+            .any(|h| !h.is_finite() || *h <= 0.0)
+    {
+        return None;
+    }
+    let ratios: Vec<f64> = drop_m.iter().zip(measured_m).map(|(h, r)| r / h).collect();
+    let e_mean = ratios.iter().map(|r| r.sqrt()).sum::<f64>() / ratios.len() as f64;
+    let sxy: f64 = drop_m.iter().zip(measured_m).map(|(h, r)| h * r).sum();
+    let sxx: f64 = drop_m.iter().map(|h| h * h).sum();
+    let r_min = ratios.iter().copied().fold(f64::INFINITY, f64::min);
+    let r_max = ratios.iter().copied().fold(0.0, f64::max);
+    Some(ConstantFit {
+        e_mean,
+        e_least_squares: (sxy / sxx).sqrt(),
+        e_minimax: (2.0 * r_min * r_max / (r_min + r_max)).sqrt(),
+        minimax_rel_error: (r_max - r_min) / (r_max + r_min),
+    })
+}
+
+/// One restitution model calibrated on drop tests: a row of the restitution-drop scene's `fit.csv`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LawFit {
+    /// Model name: `constant_mean` (f-EDEM's e, the mean of √(H_r/H_f)),
+    /// `constant_least_squares`, `constant_minimax` (see [`ConstantFit`]) or `power_minimax`
+    /// ([`RestitutionLaw::minimax_fit`]).
+    pub model: &'static str,
+    /// The calibrated law.
+    pub law: RestitutionLaw,
+    /// Largest |e(v)² H_f / H_r − 1| over the heights (no air), v = √(2 g H_f).
+    pub max_rel_error: f64,
+    /// Largest error at a height left out of the calibration, the model refitted on the others
+    /// (leave-one-out cross-validation: what the model predicts, not what it fits). `None` for
+    /// models that are not refitted (the mean and least squares) or with fewer than 3 heights.
+    pub leave_one_out_max_rel_error: Option<f64>,
+}
+
+/// A calibration of a restitution law on (drop heights, measured rebounds).
+type Calibration<'a> = &'a dyn Fn(&[f64], &[f64]) -> Option<RestitutionLaw>;
+
+/// Largest relative rebound error of `law` against drop tests (no air).
+fn law_max_error(law: &RestitutionLaw, drop_m: &[f64], measured_m: &[f64], g: f64) -> f64 {
+    drop_m
+        .iter()
+        .zip(measured_m)
+        .map(|(h, r)| (law.at((2.0 * g * h).sqrt()).powi(2) * h / r - 1.0).abs())
+        .fold(0.0, f64::max)
+}
+
+/// The four restitution models of [`LawFit`] calibrated on drop heights `drop_m` and measured
+/// rebounds `measured_m` under gravity `g` (m/s²), the power law about `reference_speed_m_s`.
+/// Empty if the data cannot be fitted (see [`constant_fit`]).
+pub fn restitution_fits(
+    drop_m: &[f64],
+    measured_m: &[f64],
+    g: f64,
+    reference_speed_m_s: f64,
+) -> Vec<LawFit> {
+    let Some(c) = constant_fit(drop_m, measured_m) else {
+        return Vec::new();
+    };
+    let minimax =
+        |d: &[f64], m: &[f64]| constant_fit(d, m).map(|f| RestitutionLaw::constant(f.e_minimax));
+    let power = |d: &[f64], m: &[f64]| {
+        RestitutionLaw::minimax_fit(d, m, g, reference_speed_m_s).map(|(law, _)| law)
+    };
+    let leave_one_out = |fit: Calibration| {
+        if drop_m.len() < 3 {
+            return None;
+        }
+        let mut worst: f64 = 0.0;
+        for i in 0..drop_m.len() {
+            let keep = |x: &[f64]| -> Vec<f64> {
+                x.iter()
+                    .enumerate()
+                    .filter(|(j, _)| *j != i)
+                    .map(|(_, v)| *v)
+                    .collect()
+            };
+            let law = fit(&keep(drop_m), &keep(measured_m))?;
+            worst = worst.max(law_max_error(&law, &drop_m[i..=i], &measured_m[i..=i], g));
+        }
+        Some(worst)
+    };
+    let mut fits = Vec::new();
+    let mut push = |model, law: RestitutionLaw, loo| {
+        fits.push(LawFit {
+            model,
+            law,
+            max_rel_error: law_max_error(&law, drop_m, measured_m, g),
+            leave_one_out_max_rel_error: loo,
+        })
+    };
+    push("constant_mean", RestitutionLaw::constant(c.e_mean), None);
+    push(
+        "constant_least_squares",
+        RestitutionLaw::constant(c.e_least_squares),
+        None,
+    );
+    push(
+        "constant_minimax",
+        RestitutionLaw::constant(c.e_minimax),
+        leave_one_out(&minimax),
+    );
+    if let Some(law) = power(drop_m, measured_m) {
+        push("power_minimax", law, leave_one_out(&power));
+    }
+    fits
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn fedem_table1_rayleigh_time() {
-        // f-EDEM §3: d = 0.1 mm, ρ = 2700, E = 30 GPa, ν = 0.25 → T_R = 8.12e-8 s.
-        let tr = rayleigh_time_s(1e-4, 2700.0, 30e9, 0.25);
-        assert!((tr - 8.12e-8).abs() < 0.005e-8, "{tr}");
-    }
 
     #[test]
     fn constant_law_ignores_speed() {

@@ -5,7 +5,7 @@
 //! - `counts.csv`: per repeat, where the balls are at `funnel.count_time_s` and at the end, the
 //!   Z range in the paste, steps and wall time;
 //! - `timeseries.csv`: per repeat, the census of the balls (`in_paste, falling, in_funnel,
-//!   outside, away, lost`, see [`crate::scenes::funnel`]) and the largest speed of the balls in
+//!   outside, away, lost`, see [`super::Place`]) and the largest speed of the balls in
 //!   play (paste, falling, funnel) every `record.every_s` (default 0.01 s; negative times: the
 //!   balls settling in the closed funnel);
 //! - `z_distribution.csv` + `.svg`: ball centres in the paste per Z bin (`funnel.z_bin_m`, from 0 to
@@ -16,9 +16,9 @@
 //!   point (x, y, Z) inside a ball's sphere, as a cut through the hardened paste shows it
 //!   (f-EDEM Fig. 22, 15 repeats).
 
-use super::num;
+use super::{funnel, Geometry, Place, RepeatResult};
+use crate::output::{num, StagedDir};
 use crate::run::{Prepared, RunError};
-use crate::scenes::funnel::{Geometry, Place, RepeatResult};
 use plotters::prelude::*;
 use std::io;
 use std::path::Path;
@@ -433,13 +433,10 @@ pub fn write_presence_chart(
 pub fn write_all(
     p: &Prepared,
     results: &[RepeatResult],
-    stage: &crate::output::StagedDir,
+    stage: &StagedDir,
 ) -> Result<(), RunError> {
     let s = &p.scenario;
-    let f = s
-        .funnel
-        .as_ref()
-        .expect("validated: funnel_pour has [funnel]");
+    let f = funnel(s);
     let geo = Geometry::of(s);
     let io = |e: io::Error| RunError::Io(p.path.clone(), e);
     let reps = results.len();

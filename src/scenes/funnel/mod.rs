@@ -1,0 +1,124 @@
+//! The funnel pour of f-EDEM §4.2 (Figs. 17–22): balls held in a funnel above a cylinder of paste
+//! are released together, fall through air, enter the paste and stop, held by its yield stress.
+//! Repeated with different random initial placements (f-EDEM: 15 repeats) to give presence
+//! probabilities on horizontal planes.
+//!
+//! # Scene (3D, z up, origin at the centre of the cylinder bottom)
+//! - The table and the cylinder bottom: one half-space z ≥ 0 (nothing can pass through it).
+//! - The cylinder wall, inner radius R = `container.diameter_m`/2, from z = 0 to
+//!   `funnel.wall_above_surface_m` (default 0) above the paste surface z = H =
+//!   `container.height_m` (f-EDEM's mould is as high as its paste): `funnel.facets` boxes
+//!   of thickness `funnel.wall_thickness_m` whose inner faces make a regular polygon circumscribing
+//!   the circle of radius R.
+//! - The funnel, coaxial, its outlet `funnel.outlet_above_surface_m` above the paste surface: a
+//!   cone frustum (`outlet_diameter_m` at the bottom, `top_diameter_m` at `cone_height_m` above)
+//!   made of `facets` tilted boxes (a pyramid circumscribing the cone), and above it a vertical
+//!   column of height `column_height_m` (boxes at the top radius) to make room for the balls.
+//! - A plug: a box closing the outlet from below, removed at t = 0.
+//! - Every collider has the `[contacts]` restitution and friction; every contact feels the
+//!   rolling resistance `contacts.rolling_resistance` (torque −μ_r r Σ|F_n| ω̂, see
+//!   [`crate::engine::dim3::World::set_rolling_resistance`]).
+//! - The paste fills the cylinder below z = H: fluid forces (buoyancy, `drag.law`) act only there
+//!   ([`crate::engine::dim3::World::set_free_surface`]), from the moment a ball's lowest point
+//!   passes the surface (`fluid.submergence = "full"`, f-EDEM) or on the immersed cap
+//!   (`"partial"`). A ball at rest in paste is held by the yield stress until pushed harder than
+//!   its static resistance (see [`crate::engine::dim3::World::set_yield_hold`]).
+//!
+//! # Run of one repeat
+//! Ball i (diameter and density of `[[spheres]]` entry i mod n) is placed at random (ChaCha8,
+//! seed `repeats.seed` + repeat index) in the funnel and column, clear of the walls, the plug and
+//! the other balls by 5 % of its diameter; the balls fall onto the plug and settle for
+//! `funnel.fill_time_s`; the plug is removed at t = 0 and the run goes on to `time.end_s`, or
+//! stops earlier once t ≥ `count_time_s` and every ball has been slower than
+//! `funnel.rest_speed_m_s` for 0.05 s. Repeats run in parallel (rayon).
+//!
+//! # Where a ball is (centre position)
+//! `paste`: within the cylinder radius, its lowest point below the paste surface (z − r ≤ H: the
+//! fluid forces act on it with full submergence). `funnel`: above the outlet minus one radius,
+//! within the funnel's top radius. `falling`: between the two, within the funnel's top radius.
+//! `outside`: anywhere else in the domain (escaped over the rim, beside the cylinder). `away`: out
+//! of the domain (the cylinder about the axis 0.1 m beyond the scene, z from −d to 0.1 m above
+//! the column) after escaping over the rim. `lost`: passed through a wall, the funnel or the
+//! floor (its centre crossed the cylinder's radius more than d/4 below the rim, or got beyond a
+//! funnel wall's outer face, or below z = 0), or non-finite. Checked every step.
+//!
+//! # Files
+//!
+//! `balls.csv`, `counts.csv`, `timeseries.csv`, `z_distribution.csv` + `.svg` and
+//! `presence.csv` + `.svg` (see [`output`]).
+//!
+//! # Layout
+//!
+//! [`geometry`] (the scene and its colliders), [`placement`] (the random start), [`census`]
+//! (where the balls are, what a repeat records), [`repeat`] (the step loop of one repeat, with
+//! checkpoints, and the parallel repeats), [`report`] (the console summary), [`output`] (the
+//! files).
+
+pub mod census;
+pub mod geometry;
+pub mod output;
+pub mod placement;
+pub mod repeat;
+pub mod report;
+
+pub use census::{z_range, Ball, Census, Place, RepeatResult, Sample};
+pub use geometry::Geometry;
+pub use placement::place_balls;
+pub use repeat::{run_repeat, run_repeat_with, simulate, simulate_with, RepeatOutcome};
+
+use crate::output::StagedDir;
+use crate::run::{Prepared, RunContext, RunError, SceneReport};
+use crate::scenario::{Contacts, FunnelSpec, Repeats, Scenario};
+use std::time::Instant;
+
+/// Time over which every ball must stay slower than `rest_speed_m_s` before a run stops early, s.
+pub const REST_WINDOW_S: f64 = 0.05;
+/// Clearance of the random initial placement, as a fraction of the ball's diameter.
+pub const PLACEMENT_GAP: f64 = 0.05;
+/// Margin of the domain beyond the scene's bounding box, m.
+pub const DOMAIN_MARGIN_M: f64 = 0.1;
+/// Default interval of the time series when `record.every_s` is not set, s.
+pub const DEFAULT_RECORD_EVERY_S: f64 = 0.01;
+
+/// The `[funnel]` table of a validated `funnel_pour` scenario.
+fn funnel(s: &Scenario) -> &FunnelSpec {
+    s.funnel
+        .as_ref()
+        .expect("validated: funnel_pour has a [funnel] table")
+}
+
+/// The `[contacts]` table of a validated `funnel_pour` scenario.
+fn contacts(s: &Scenario) -> &Contacts {
+    s.contacts
+        .as_ref()
+        .expect("validated: funnel_pour has a [contacts] table")
+}
+
+/// The repeats of a scenario (default: one, seed 0).
+pub fn repeats(s: &Scenario) -> Repeats {
+    s.repeats.clone().unwrap_or(Repeats { count: 1, seed: 0 })
+}
+
+/// Funnel pour (kind `funnel_pour`): runs the repeats, writes `balls.csv`, `counts.csv`,
+/// `timeseries.csv`, `z_distribution.csv` + `.svg` and `presence.csv` + `.svg` (see
+/// [`output`]). Interrupted, it writes the repeats that finished.
+pub fn run(p: &Prepared, stage: &StagedDir, ctx: &RunContext) -> Result<SceneReport, RunError> {
+    let t0 = Instant::now();
+    let (results, interrupted) = simulate_with(p, ctx)?;
+    if results.is_empty() {
+        return Ok(SceneReport {
+            interrupted,
+            lines: vec!["interrupted before any repeat finished".into()],
+            ..SceneReport::default()
+        });
+    }
+    let wall_s = t0.elapsed().as_secs_f64();
+    output::write_all(p, &results, stage)?;
+    Ok(SceneReport {
+        steps: results.iter().map(|r| r.steps).sum(),
+        bodies: funnel(&p.scenario).count * results.len(),
+        engine_settings: Some(report::engine_settings(p)),
+        lines: report::lines(p, &results, wall_s),
+        interrupted,
+    })
+}

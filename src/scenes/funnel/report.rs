@@ -1,0 +1,129 @@
+//! The console summary of a funnel pour and the engine settings it records in `run.toml`.
+
+use super::{contacts, funnel, Census, Geometry, Place, RepeatResult};
+use crate::engine::EngineSettings;
+use crate::run::Prepared;
+use crate::scenario::Submergence;
+
+/// The engine settings of the scene: [`EngineSettings::for_scene`] for the smallest ball and the
+/// free-fall speed from the top of the column to the bottom, √(2 g z_top), with the contacts'
+/// friction.
+pub fn engine_settings(p: &Prepared) -> EngineSettings {
+    let s = &p.scenario;
+    let geo = Geometry::of(s);
+    let d_min = p
+        .spheres
+        .iter()
+        .map(|c| c.spec.diameter_m)
+        .fold(f64::INFINITY, f64::min);
+    let v_max = (2.0 * s.gravity_m_s2 * geo.column_top_z_m).sqrt();
+    let mut settings = EngineSettings::for_scene(d_min, v_max);
+    settings.friction = contacts(s).friction;
+    settings
+}
+
+/// The first line: repeats, balls, time step, submergence and wall time (`wall_s` in all, s).
+fn header(p: &Prepared, results: &[RepeatResult], wall_s: f64) -> String {
+    let s = &p.scenario;
+    let reps = results.len();
+    let mean_wall = results.iter().map(|r| r.wall_time_s).sum::<f64>() / reps as f64;
+    format!(
+        "funnel pour: {reps} repeat(s) × {} balls, dt = {:e} s, {} submergence; wall time {wall_s:.1} s ({mean_wall:.1} s per repeat, {} threads)",
+        funnel(s).count,
+        s.time.dt_s,
+        match s.fluid.submergence {
+            Submergence::Full => "full",
+            Submergence::Partial => "partial",
+        },
+        rayon::current_num_threads()
+    )
+}
+
+/// The census at `count_time_s` over the repeats that reached it (a range when they differ).
+fn at_count_time(n: usize, count_time_s: f64, results: &[RepeatResult]) -> Option<String> {
+    let counted: Vec<Census> = results.iter().filter_map(|r| r.census_at_count).collect();
+    if counted.is_empty() {
+        return None;
+    }
+    let rng = |f: &dyn Fn(&Census) -> usize| {
+        let lo = counted.iter().map(f).min().unwrap_or(0);
+        let hi = counted.iter().map(f).max().unwrap_or(0);
+        if lo == hi {
+            format!("{lo}")
+        } else {
+            format!("{lo}–{hi}")
+        }
+    };
+    Some(format!(
+        "at t = {count_time_s} s: {} of {n} balls in the paste, {} in the domain (f-EDEM Fig. 20: N = 68 for dt ≤ 1.04e-5 s)",
+        rng(&|c| c.paste),
+        rng(&|c| c.in_domain())
+    ))
+}
+
+/// Where the balls of every repeat are at the end, summed.
+fn at_the_end(n: usize, results: &[RepeatResult]) -> String {
+    let finals: Vec<Census> = results.iter().map(|r| r.census()).collect();
+    let sum = |f: &dyn Fn(&Census) -> usize| finals.iter().map(f).sum::<usize>();
+    format!(
+        "at the end: {} of {} balls in the paste; {} still in the funnel, {} falling, {} escaped over the rim ({} beside the cylinder, {} out of the domain), {} lost through a wall",
+        sum(&|c| c.paste),
+        n * results.len(),
+        sum(&|c| c.funnel),
+        sum(&|c| c.falling),
+        sum(&|c| c.outside + c.away),
+        sum(&|c| c.outside),
+        sum(&|c| c.away),
+        sum(&|c| c.lost)
+    )
+}
+
+/// The heights of the ball centres in the paste over all repeats (range, 5–95 %, median, cm).
+fn z_spread(results: &[RepeatResult]) -> Option<String> {
+    let mut zs: Vec<f64> = results
+        .iter()
+        .flat_map(|r| r.balls.iter())
+        .filter(|b| b.place == Place::Paste)
+        .map(|b| b.position_m[2])
+        .collect();
+    if zs.is_empty() {
+        return None;
+    }
+    zs.sort_by(f64::total_cmp);
+    let q = |f: f64| zs[((zs.len() - 1) as f64 * f).round() as usize] * 100.0;
+    Some(format!(
+        "ball centres in the paste at Z = {:.2}–{:.2} cm above the bottom (5–95 %: {:.2}–{:.2} cm, median {:.2} cm; f-EDEM Fig. 21: 8.5–13.5 cm)",
+        q(0.0),
+        q(1.0),
+        q(0.05),
+        q(0.95),
+        q(0.5)
+    ))
+}
+
+/// How well the balls had settled when the outlet opened, and when the runs ended.
+fn settling(results: &[RepeatResult]) -> String {
+    let slowest_fill = results
+        .iter()
+        .map(|r| r.max_speed_at_opening_m_s)
+        .fold(0.0, f64::max);
+    format!(
+        "largest ball speed when the outlet opened: {slowest_fill:.2e} m/s; runs ended at t = {:.3}–{:.3} s",
+        results.iter().map(|r| r.end_time_s).fold(f64::INFINITY, f64::min),
+        results.iter().map(|r| r.end_time_s).fold(0.0, f64::max)
+    )
+}
+
+/// The summary lines of a funnel pour of the (non-empty) `results`, `wall_s` of wall time in all.
+pub fn lines(p: &Prepared, results: &[RepeatResult], wall_s: f64) -> Vec<String> {
+    let f = funnel(&p.scenario);
+    let mut lines = vec![header(p, results, wall_s)];
+    lines.extend(
+        f.count_time_s
+            .and_then(|tc| at_count_time(f.count, tc, results)),
+    );
+    lines.push(at_the_end(f.count, results));
+    lines.extend(z_spread(results));
+    lines.push(settling(results));
+    lines
+}

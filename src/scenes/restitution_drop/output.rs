@@ -1,0 +1,214 @@
+//! Output files of a restitution drop:
+//!
+//! - `summary.csv`: one row per drop height (`drop_height_m, rebound_height_m,
+//!   measured_rebound_height_m, rel_error, restitution_effective, restitution_law,
+//!   ideal_rebound_height_m, rel_error_vs_ideal, restitution_from_heights, measured_restitution,
+//!   impact_speed_m_s, lift_off_speed_m_s`; heights in m, speeds in m/s);
+//! - `fit.csv`: the scenario's law as simulated, then each model of
+//!   [`crate::contact::restitution_fits`] with its largest relative error, leave-one-out error
+//!   and the heights within tolerance (only when measurements are given);
+//! - `rebound_height.svg`: rebound against drop height, ideal, simulated and measured.
+
+use super::fit::heights_within;
+use super::{Comparison, DropOutcome, Setup, Tally};
+use crate::contact::{LawFit, RestitutionLaw};
+use crate::output::chart::{scatter_svg, Scale, Series};
+use crate::output::{num, write_atomic};
+use std::io;
+use std::path::Path;
+
+/// Writes a CSV table (header, then rows) atomically.
+fn write_csv(path: &Path, header: &[&str], rows: &[Vec<String>]) -> io::Result<()> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record(header).map_err(io::Error::other)?;
+    for r in rows {
+        w.write_record(r).map_err(io::Error::other)?;
+    }
+    let bytes = w.into_inner().map_err(io::Error::other)?;
+    write_atomic(path, &bytes)
+}
+
+/// Writes `summary.csv`: one row per drop and its comparison.
+pub fn write_summary(path: &Path, outcomes: &[DropOutcome], rows: &[Comparison]) -> io::Result<()> {
+    let records: Vec<Vec<String>> = outcomes
+        .iter()
+        .zip(rows)
+        .map(|(o, c)| {
+            let h = o.drop_height_m;
+            vec![
+                num(h),
+                num(o.rebound_height_m),
+                c.measured_rebound_m.map(num).unwrap_or_default(),
+                c.rel_error.map(num).unwrap_or_default(),
+                num(o.restitution_effective),
+                num(c.law_restitution),
+                num(c.ideal_rebound_m),
+                c.rel_error_vs_ideal.map(num).unwrap_or_default(),
+                num((o.rebound_height_m / h).sqrt()),
+                c.measured_rebound_m
+                    .map(|m| num((m / h).sqrt()))
+                    .unwrap_or_default(),
+                num(o.impact_speed_m_s),
+                num(o.lift_off_speed_m_s),
+            ]
+        })
+        .collect();
+    write_csv(
+        path,
+        &[
+            "drop_height_m",
+            "rebound_height_m",
+            "measured_rebound_height_m",
+            "rel_error",
+            "restitution_effective",
+            "restitution_law",
+            "ideal_rebound_height_m",
+            "rel_error_vs_ideal",
+            "restitution_from_heights",
+            "measured_restitution",
+            "impact_speed_m_s",
+            "lift_off_speed_m_s",
+        ],
+        &records,
+    )
+}
+
+/// One row of `fit.csv`.
+fn fit_record(
+    model: &str,
+    law: &RestitutionLaw,
+    max_rel_error: f64,
+    leave_one_out: Option<f64>,
+    within: usize,
+    tolerance: f64,
+    heights: usize,
+) -> Vec<String> {
+    vec![
+        model.to_string(),
+        num(law.coefficient),
+        num(law.exponent),
+        num(law.reference_speed_m_s),
+        num(max_rel_error),
+        leave_one_out.map(num).unwrap_or_default(),
+        within.to_string(),
+        num(tolerance),
+        heights.to_string(),
+    ]
+}
+
+/// Writes `fit.csv`: first the scenario's law as simulated (Rapier, air; its within-count and
+/// error from `tally` over `simulated` drops), then every model of `fits` (no air, gravity
+/// `g_m_s2`).
+pub fn write_fit(
+    path: &Path,
+    setup: &Setup,
+    g_m_s2: f64,
+    tally: &Tally,
+    simulated: usize,
+    fits: &[LawFit],
+) -> io::Result<()> {
+    let spec = setup.spec;
+    let (heights, measured) = (&spec.drop_heights_m, &spec.measured_rebound_heights_m);
+    let mut records = vec![fit_record(
+        "scenario_simulated",
+        &setup.law,
+        tally.worst,
+        None,
+        tally.within,
+        spec.tolerance,
+        simulated,
+    )];
+    records.extend(fits.iter().map(|f| {
+        let within = heights_within(&f.law, heights, measured, g_m_s2, spec.tolerance);
+        fit_record(
+            f.model,
+            &f.law,
+            f.max_rel_error,
+            f.leave_one_out_max_rel_error,
+            within,
+            spec.tolerance,
+            heights.len(),
+        )
+    }));
+    write_csv(
+        path,
+        &[
+            "model",
+            "restitution",
+            "restitution_exponent",
+            "restitution_reference_speed_m_s",
+            "max_rel_error",
+            "leave_one_out_max_rel_error",
+            "heights_within_tolerance",
+            "tolerance",
+            "heights",
+        ],
+        &records,
+    )
+}
+
+/// Writes `rebound_height.svg`: the ideal rebound e(v)² H of the law (no air, gravity `g_m_s2`),
+/// the simulated rebounds and the measured ones, in mm.
+pub fn write_chart(
+    path: &Path,
+    name: &str,
+    setup: &Setup,
+    g_m_s2: f64,
+    outcomes: &[DropOutcome],
+) -> Result<(), String> {
+    let (law, spec) = (&setup.law, setup.spec);
+    let heights = &spec.drop_heights_m;
+    let e_at = |h: f64| law.at((2.0 * g_m_s2 * h).sqrt());
+    let mm = |x: f64| x * 1e3;
+    let mut series = vec![
+        Series {
+            label: if law.is_speed_dependent() {
+                format!(
+                    "ideal e(v)²H, e = {} (v/{} m/s)^-{}",
+                    law.coefficient, law.reference_speed_m_s, law.exponent
+                )
+            } else {
+                format!("ideal e²H, e = {}", law.coefficient)
+            },
+            points: heights
+                .iter()
+                .map(|&h| (mm(h), mm(e_at(h).powi(2) * h)))
+                .collect(),
+            colour: 2,
+            filled: false,
+            line: true,
+        },
+        Series {
+            label: "simulated (Rapier 3D, air)".into(),
+            points: outcomes
+                .iter()
+                .map(|o| (mm(o.drop_height_m), mm(o.rebound_height_m)))
+                .collect(),
+            colour: 1,
+            filled: true,
+            line: false,
+        },
+    ];
+    if !spec.measured_rebound_heights_m.is_empty() {
+        series.push(Series {
+            label: "measured (f-EDEM Table A2)".into(),
+            points: heights
+                .iter()
+                .zip(&spec.measured_rebound_heights_m)
+                .map(|(&h, &r)| (mm(h), mm(r)))
+                .collect(),
+            colour: 0,
+            filled: false,
+            line: false,
+        });
+    }
+    scatter_svg(
+        path,
+        &format!("{name}: rebound height against drop height"),
+        "drop height H_f (mm)",
+        "rebound height H_r (mm)",
+        Scale::Linear,
+        Scale::Linear,
+        &series,
+    )
+}

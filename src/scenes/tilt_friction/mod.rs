@@ -1,0 +1,124 @@
+//! Tilt test (kind `tilt_friction`, f-EDEM App. III): a block on a tilted plate, to calibrate the
+//! sliding friction coefficient.
+//!
+//! # Scene
+//!
+//! A cuboid block rests on a fixed horizontal plate (a half-space) and gravity is tilted by the
+//! angle θ about the y axis, `g (sin θ, 0, −cos θ)`: in the plate's frame this is the tilted plate
+//! of the test. This scene uses a bare Rapier 3D world (our [`World`] holds spheres only); its
+//! integration parameters are set from [`EngineSettings`] as [`World::new`] does. The block has no
+//! fluid forces: buoyancy scales the normal and tangential loads alike and drag acts only once the
+//! block moves, so neither shifts the threshold.
+//!
+//! # Equations
+//!
+//! After `duration_s` the displacement along the slope decides: the block slides if it moved more
+//! than `slide_distance_m` ([`simulate_tilt`]). A block on a plane tilted by θ sticks while
+//! tan θ ≤ μ (Coulomb), so the sticking threshold is `atan(contacts.friction)`. The angles given
+//! bracket the threshold; it is then bisected to `bisection_tolerance_deg` ([`tilt_threshold`]).
+//!
+//! # Limits
+//!
+//! Rapier has a single Coulomb friction coefficient per collider (static = dynamic): the test
+//! measures that one coefficient, not a static and a dynamic one.
+//!
+//! # Files
+//!
+//! `summary.csv` (one row per angle run, the given angles and the bisection's), `threshold.csv`
+//! and `tilt_displacement.svg` (see [`output`]).
+
+pub mod output;
+pub mod search;
+pub mod setup;
+pub mod simulate;
+
+pub use search::{tilt_threshold, TiltSearch};
+pub use setup::TiltSetup;
+pub use simulate::{simulate_tilt, TiltOutcome};
+
+#[cfg(doc)]
+use crate::engine::dim3::World;
+#[cfg(doc)]
+use crate::engine::EngineSettings;
+use crate::output::StagedDir;
+use crate::run::{Prepared, RunError, SceneReport};
+
+/// Console lines: one per given angle, then the threshold against atan(μ) = `expected_deg`.
+fn lines(
+    runs: &[TiltOutcome],
+    bracket: Option<(f64, f64)>,
+    friction: f64,
+    expected_deg: f64,
+) -> Vec<String> {
+    let mut lines: Vec<String> = runs
+        .iter()
+        .filter(|r| !r.bisection)
+        .map(|r| {
+            format!(
+                "θ = {:.2}°: displacement {:.3e} m, {}",
+                r.angle_deg,
+                r.displacement_m,
+                if r.slides { "slides" } else { "sticks" }
+            )
+        })
+        .collect();
+    lines.push(match bracket {
+        Some((lo, hi)) => format!(
+            "threshold {:.2}° (sticks at {lo:.3}°, slides at {hi:.3}°); atan(μ = {friction}) = {expected_deg:.2}°, \
+             error {:+.2}° (Rapier: one friction coefficient, static = dynamic)",
+            0.5 * (lo + hi),
+            0.5 * (lo + hi) - expected_deg
+        ),
+        None => format!(
+            "threshold not bracketed by the angles given (need a sticking angle below a sliding \
+             one); atan(μ = {friction}) = {expected_deg:.2}°"
+        ),
+    });
+    lines
+}
+
+/// Tilt friction (kind `tilt_friction`): runs the threshold search and writes `summary.csv`,
+/// `threshold.csv` and `tilt_displacement.svg`.
+pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, RunError> {
+    let s = &p.scenario;
+    let io = |e: std::io::Error| RunError::Io(p.path.clone(), e);
+    let spec = s
+        .tilt
+        .as_ref()
+        .ok_or_else(|| RunError::Other(format!("{}: missing [tilt]", p.path.display())))?;
+    let setup = TiltSetup::from_scenario(s, spec);
+    let search = tilt_threshold(&setup, &spec.angles_deg, spec.bisection_tolerance_deg)
+        .map_err(|u| RunError::Unstable(p.path.clone(), u))?;
+    let found = search.threshold_deg();
+    let TiltSearch { runs, bracket } = search;
+    let expected = setup.friction.atan().to_degrees();
+
+    output::write_summary(&stage.path("summary.csv"), &runs).map_err(io)?;
+    output::write_threshold(
+        &stage.path("threshold.csv"),
+        setup.friction,
+        expected,
+        found,
+        bracket,
+    )
+    .map_err(io)?;
+    let title = format!(
+        "{}: displacement down the slope after {} s",
+        s.name, spec.duration_s
+    );
+    output::write_chart(
+        &stage.path("tilt_displacement.svg"),
+        &title,
+        &runs,
+        expected,
+    )
+    .map_err(RunError::Other)?;
+
+    Ok(SceneReport {
+        steps: runs.len() as u64 * setup.steps(),
+        bodies: runs.len(),
+        engine_settings: Some(setup.settings),
+        lines: lines(&runs, bracket, setup.friction, expected),
+        interrupted: false,
+    })
+}

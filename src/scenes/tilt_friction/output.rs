@@ -1,0 +1,126 @@
+//! Output files of a tilt test:
+//!
+//! - `summary.csv`: one row per angle run, the given angles and the bisection's, sorted by angle
+//!   (`angle_deg, displacement_m, slides, source`; `source` is `given` or `bisection`);
+//! - `threshold.csv`: the friction coefficient, atan(μ), the threshold found and its bracket, and
+//!   the error (degrees);
+//! - `tilt_displacement.svg`: displacement down the slope against the angle.
+
+use super::TiltOutcome;
+use crate::output::chart::{scatter_svg, Scale, Series};
+use crate::output::{num, opt, write_atomic};
+use std::io;
+use std::path::Path;
+
+/// Writes a CSV table (header, then rows) atomically.
+fn write_csv(path: &Path, header: &[&str], rows: &[Vec<String>]) -> io::Result<()> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record(header).map_err(io::Error::other)?;
+    for r in rows {
+        w.write_record(r).map_err(io::Error::other)?;
+    }
+    let bytes = w.into_inner().map_err(io::Error::other)?;
+    write_atomic(path, &bytes)
+}
+
+/// Writes `summary.csv`.
+pub fn write_summary(path: &Path, runs: &[TiltOutcome]) -> io::Result<()> {
+    let rows: Vec<Vec<String>> = runs
+        .iter()
+        .map(|r| {
+            vec![
+                num(r.angle_deg),
+                num(r.displacement_m),
+                r.slides.to_string(),
+                if r.bisection { "bisection" } else { "given" }.to_string(),
+            ]
+        })
+        .collect();
+    write_csv(
+        path,
+        &["angle_deg", "displacement_m", "slides", "source"],
+        &rows,
+    )
+}
+
+/// Writes `threshold.csv`: `friction`, the expected threshold atan(μ) `expected_deg`, the
+/// threshold `found_deg` and the `bracket` (sticks at, slides at) of the search, degrees.
+pub fn write_threshold(
+    path: &Path,
+    friction: f64,
+    expected_deg: f64,
+    found_deg: Option<f64>,
+    bracket: Option<(f64, f64)>,
+) -> io::Result<()> {
+    write_csv(
+        path,
+        &[
+            "friction",
+            "expected_threshold_deg",
+            "threshold_deg",
+            "sticks_at_deg",
+            "slides_at_deg",
+            "error_deg",
+        ],
+        &[vec![
+            num(friction),
+            num(expected_deg),
+            opt(found_deg),
+            opt(bracket.map(|b| b.0)),
+            opt(bracket.map(|b| b.1)),
+            opt(found_deg.map(|f| f - expected_deg)),
+        ]],
+    )
+}
+
+/// Writes `tilt_displacement.svg`: sticking and sliding runs (displacement in mm against the
+/// angle in degrees) and the line θ = atan(μ) = `expected_deg`.
+pub fn write_chart(
+    path: &Path,
+    title: &str,
+    runs: &[TiltOutcome],
+    expected_deg: f64,
+) -> Result<(), String> {
+    let pts = |slides: bool| -> Vec<(f64, f64)> {
+        runs.iter()
+            .filter(|r| r.slides == slides)
+            .map(|r| (r.angle_deg, r.displacement_m * 1e3))
+            .collect()
+    };
+    let y_max = runs
+        .iter()
+        .map(|r| r.displacement_m * 1e3)
+        .fold(0.0, f64::max);
+    let series = [
+        Series {
+            label: "sticks".into(),
+            points: pts(false),
+            colour: 0,
+            filled: true,
+            line: false,
+        },
+        Series {
+            label: "slides".into(),
+            points: pts(true),
+            colour: 1,
+            filled: true,
+            line: false,
+        },
+        Series {
+            label: format!("atan(μ) = {expected_deg:.2}°"),
+            points: vec![(expected_deg, 0.0), (expected_deg, y_max)],
+            colour: 2,
+            filled: false,
+            line: true,
+        },
+    ];
+    scatter_svg(
+        path,
+        title,
+        "tilt angle (°)",
+        "displacement (mm)",
+        Scale::Linear,
+        Scale::Linear,
+        &series,
+    )
+}

@@ -1,0 +1,92 @@
+//! One tilt run: the block on the plate in a bare Rapier 3D world, gravity tilted by the angle.
+
+use super::TiltSetup;
+use crate::engine::{unstable, EngineSettings, Unstable};
+use rapier3d_f64::prelude::{
+    nalgebra::Unit, ColliderBuilder, IntegrationParameters, PhysicsWorld, RigidBodyBuilder,
+    RigidBodyHandle, SpringCoefficients,
+};
+
+type RVector = rapier3d_f64::math::Vector;
+
+/// Result of one tilt angle.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TiltOutcome {
+    /// Tilt angle, degrees.
+    pub angle_deg: f64,
+    /// Displacement of the block's centre down the slope after the run, m.
+    pub displacement_m: f64,
+    /// Displacement above `slide_distance_m`.
+    pub slides: bool,
+    /// Found by bisection (not one of the angles given).
+    pub bisection: bool,
+}
+
+/// Sets Rapier's integration parameters from `st` and the time step `dt_s`, as
+/// [`crate::engine::dim3::World::new`] does (engine/world.rs, `World::new`).
+// TODO(merge): EngineSettings::apply — replace this copy by `st.apply(p)` once helper `engine`'s
+// branch is merged (then only `p.dt = dt_s` stays here).
+fn set_integration_parameters(p: &mut IntegrationParameters, st: &EngineSettings, dt_s: f64) {
+    p.length_unit = st.length_unit_m;
+    let springs = SpringCoefficients::new(st.contact_natural_frequency_hz, st.damping_ratio);
+    p.contact_softness = springs;
+    p.static_contact_softness = springs;
+    p.normalized_max_linear_velocity = st.max_linear_velocity_m_s / st.length_unit_m;
+    p.num_solver_iterations = st.num_solver_iterations.max(1);
+    p.dt = dt_s;
+}
+
+/// The tilted scene: a plate (the half-space z ≤ 0) and the block resting on it, gravity
+/// `g (sin θ, 0, −cos θ)`. Returns the world and the block's handle.
+fn tilted_world(t: &TiltSetup, angle_deg: f64) -> (PhysicsWorld, RigidBodyHandle) {
+    let st = &t.settings;
+    let mut w = PhysicsWorld::new();
+    let th = angle_deg.to_radians();
+    w.gravity = RVector::new(t.gravity_m_s2 * th.sin(), 0.0, -t.gravity_m_s2 * th.cos());
+    set_integration_parameters(&mut w.integration_parameters, st, t.dt_s);
+    let plate = ColliderBuilder::halfspace(Unit::new_unchecked(RVector::Z))
+        .friction(t.friction)
+        .restitution(t.restitution);
+    w.insert_collider(plate, None);
+    let [lx, ly, lz] = t.block_size_m;
+    let rb = RigidBodyBuilder::dynamic()
+        .translation(RVector::new(0.0, 0.0, 0.5 * lz))
+        .can_sleep(st.can_sleep);
+    let block = ColliderBuilder::cuboid(0.5 * lx, 0.5 * ly, 0.5 * lz)
+        .density(t.block_density_kg_m3)
+        .friction(t.friction)
+        .restitution(t.restitution);
+    let (handle, _) = w.insert(rb, block);
+    (w, handle)
+}
+
+/// Runs the block at one angle (gravity tilted about y; +x is down the slope). Errors with
+/// [`Unstable`] when the block's position turns non-finite or its speed exceeds half the speed
+/// cap of the settings.
+pub fn simulate_tilt(t: &TiltSetup, angle_deg: f64) -> Result<TiltOutcome, Unstable> {
+    let (mut w, handle) = tilted_world(t, angle_deg);
+    let cap = t.settings.max_linear_velocity_m_s;
+    for i in 1..=t.steps() {
+        w.step_with_events(&(), &());
+        let rb = &w.bodies[handle];
+        let speed = rb.linvel().length();
+        let bad = if !rb.translation().is_finite() {
+            Some(("position", rb.translation().length()))
+        } else if !speed.is_finite() || speed > 0.5 * cap {
+            Some(("speed", speed))
+        } else {
+            None
+        };
+        if let Some((what, value)) = bad {
+            let time = i as f64 * t.dt_s;
+            return Err(unstable(0, time, t.dt_s, what, value, 0.5 * t.dt_s));
+        }
+    }
+    let displacement_m = w.bodies[handle].translation().x;
+    Ok(TiltOutcome {
+        angle_deg,
+        displacement_m,
+        slides: displacement_m > t.slide_distance_m,
+        bisection: false,
+    })
+}
