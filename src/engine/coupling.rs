@@ -32,26 +32,25 @@ impl<const D: usize> FreeFlight<D> {
     }
 }
 
-/// The exact free-flight scheme for a body of mass `mass_kg` with velocity `v0_m_s`, under
-/// gravity `gravity_m_s2` (a vector), the constant `body_force_n` (buoyancy, …) and `drag`,
-/// over `dt_s` with `substeps` = K Rapier substeps. The target is the integrator's step under the
-/// weight `W = m g + body_force_n` ([`dynamics::advance`]), or the ballistic one when the body
-/// feels no fluid at all (no drag slope at rest and no static resistance: above a free surface).
+/// The exact free-flight scheme for a body of mass `mass_kg` with velocity `v0_m_s`, under the
+/// constant force `weight_n` = W = m g + body force (buoyancy, …) and `drag`, over `dt_s` with
+/// `substeps` = K Rapier substeps. The target is the integrator's step ([`dynamics::advance`]),
+/// or the ballistic one when the body feels no fluid at all (no drag slope at rest and no static
+/// resistance: above a free surface).
 pub fn free_flight<const D: usize>(
     integrator: Integrator,
     drag: &SphereDrag,
     mass_kg: f64,
-    gravity_m_s2: &SVector<f64, D>,
-    body_force_n: &SVector<f64, D>,
+    weight_n: &SVector<f64, D>,
     v0_m_s: &SVector<f64, D>,
     dt_s: f64,
     substeps: f64,
 ) -> FreeFlight<D> {
-    let w = gravity_m_s2 * mass_kg + body_force_n;
+    let w = weight_n;
     let target = if drag.slope_n_s_m(0.0) == 0.0 && drag.static_resistance_n() == 0.0 {
         ballistic(&(w / mass_kg), v0_m_s, dt_s)
     } else {
-        dynamics::advance(integrator, drag, mass_kg, &w, v0_m_s, dt_s)
+        dynamics::advance(integrator, drag, mass_kg, w, v0_m_s, dt_s)
     };
     let a = substep_acceleration(&target.displacement_m, v0_m_s, dt_s, substeps);
     FreeFlight {
@@ -166,7 +165,7 @@ pub fn clamped_f0_n(
 /// is backward Euler on the drag, `(m + k dt) v₁ = m v₀ + F dt + J`. None when either is not
 /// positive (no drag to treat so; the body then gets Rapier's damping).
 pub fn effective_mass_factors(damping: f64, spin_damping: f64) -> Option<(f64, f64)> {
-    (damping > 0.0 && spin_damping > 0.0).then(|| (1.0 + damping, 1.0 + spin_damping))
+    (damping > 0.0 && spin_damping > 0.0).then_some((1.0 + damping, 1.0 + spin_damping))
 }
 
 /// Largest speed a body in contact may reach over the step, m/s, for the contact prediction
@@ -262,7 +261,15 @@ mod tests {
         let v0 = Vector3::new(1e-3, 0.0, 0.0);
         let tau = rho * d * d / (18.0 * 1e-3);
         let dt = 10.0 * tau;
-        let f = free_flight(Integrator::Exponential, &drag, m, &g, &buoy, &v0, dt, 4.0);
+        let f = free_flight(
+            Integrator::Exponential,
+            &drag,
+            m,
+            &(g * m + buoy),
+            &v0,
+            dt,
+            4.0,
+        );
         // Analytic: v(t) = v_t + (v₀ − v_t) e^{−t/τ}, x(t) = v_t t + (v₀ − v_t) τ (1 − e^{−t/τ}).
         let vt = Vector3::new(0.0, 0.0, -(rho - 1000.0) * 9.81 * d * d / (18.0 * 1e-3));
         let e = (-dt / tau).exp();
@@ -285,8 +292,7 @@ mod tests {
             Integrator::Exponential,
             &drag,
             0.5,
-            &g,
-            &Vector2::zeros(),
+            &(g * 0.5),
             &v0,
             0.1,
             4.0,

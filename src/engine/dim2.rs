@@ -16,6 +16,8 @@ fn spin_norm(spin: rapier::math::AngVector) -> f64 {
     spin.abs()
 }
 
+// The same source is this module in both dimensions, on purpose (against each Rapier crate).
+#[allow(clippy::duplicate_mod)]
 #[path = "world/mod.rs"]
 mod world;
 pub use world::*;

@@ -17,6 +17,8 @@ fn spin_norm(spin: rapier::math::AngVector) -> f64 {
     spin.length()
 }
 
+// The same source is this module in both dimensions, on purpose (against each Rapier crate).
+#[allow(clippy::duplicate_mod)]
 #[path = "world/mod.rs"]
 mod world;
 pub use world::*;

@@ -72,7 +72,8 @@ mod tests {
         let r = 0.5 * D;
         // Above the surface, and fully under.
         assert_eq!(immersion(-r - 1e-6, D, Submergence::Partial), (0.0, 0.0));
-        assert_eq!(immersion(r + 1e-6, D, Submergence::Partial), (1.0, 1.0));
+        let (v, a) = immersion(r + 1e-6, D, Submergence::Partial);
+        assert!((v - 1.0).abs() < 1e-15 && a == 1.0, "{v} {a}");
         // Centre on the surface: half the volume, the whole projected area (the equator).
         let (v, a) = immersion(0.0, D, Submergence::Partial);
         assert!((v - 0.5).abs() < 1e-15 && a == 1.0, "{v} {a}");

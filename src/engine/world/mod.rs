@@ -303,3 +303,28 @@ fn unboost(rb: &mut rapier::prelude::RigidBody, body: &mut Body) {
         body.boosted = false;
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn settings_reach_rapier() {
+        let mut s = EngineSettings::for_scene(1e-4, 0.05);
+        s.num_solver_iterations = 0;
+        let mut p = IntegrationParameters::default();
+        s.apply(&mut p);
+        assert_eq!(p.length_unit, 1e-4);
+        let springs = SpringCoefficients::new(1e4, 10.0);
+        assert_eq!(p.contact_softness, springs);
+        assert_eq!(p.static_contact_softness, springs);
+        // Speed cap max(400 × 1e-4, 4 × 0.05) = 0.2 m/s = 2000 length units per second.
+        assert!((p.normalized_max_linear_velocity - 2000.0).abs() < 1e-9);
+        assert_eq!(p.num_solver_iterations, 1);
+        // The world is built with it, with gravity along the last axis.
+        let w = World::new(EngineSettings::for_scene(1e-4, 0.05), 9.81);
+        let q = &w.rapier().integration_parameters;
+        assert_eq!((q.length_unit, q.num_solver_iterations), (1e-4, 4));
+        assert_eq!(to_na(w.rapier().gravity), up() * -9.81);
+    }
+}
