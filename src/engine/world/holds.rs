@@ -5,8 +5,7 @@
 use super::super::LIN_AXES;
 use super::{rapier, World};
 use crate::engine::BodyId;
-use rapier::prelude::RigidBodyBuilder;
-use rapier::prelude::RigidBodyHandle;
+use rapier::prelude::{RigidBodyBuilder, RigidBodyHandle};
 
 /// Damping of the yield-stress holds' velocity motors, N s/m (Rapier's force-based motor model):
 /// large enough that the motor is a rigid velocity constraint (its compliance 1/(h·D) is ~1e-7
