@@ -1,7 +1,20 @@
 //! The DEM engine: a [Rapier](https://rapier.rs) world (f64) whose spheres feel the fluid forces
 //! of [`crate::fluid`], integrated by [`crate::dynamics::advance`]. One source serves both
 //! dimensions: [`dim2`] (rapier2d, gravity along −y) and [`dim3`] (rapier3d, gravity along −z) each
-//! compile `world.rs` against their Rapier crate; gravity acts along the **last** axis.
+//! compile the module tree `engine/world/` against their Rapier crate; gravity acts along the
+//! **last** axis.
+//!
+//! # Layout
+//!
+//! - [`settings`](EngineSettings): the numerical settings and [`EngineSettings::apply`], which
+//!   writes them into Rapier's integration parameters;
+//! - [`coupling`]: the dimension-free coupling maths below (free-flight force, effective mass,
+//!   clamps, hold decision), const-generic over the dimension and tested without Rapier;
+//! - [`faults`]: the fault scan after each step, the refused step and the [`Unstable`] report;
+//! - [`dim2`], [`dim3`]: the Rapier worlds, `world/{mod,step,holds,surface,contacts,restitution}.rs`
+//!   compiled once per dimension.
+//!
+//! The engine imports only from the physics layer (fluid, contact, dynamics) and Rapier.
 //!
 //! # Design
 //!
@@ -96,88 +109,19 @@
 //!   a frictionless 2.5 µm pile stepped at dt = 1e-2 s kept a grain jittering at 1 % of v_t. See the
 //!   survey in `tests/engine_rest.rs`.
 
+pub mod coupling;
+pub mod dim2;
+pub mod dim3;
+pub mod faults;
+mod settings;
+
 pub use crate::dynamics::Unstable;
+pub(crate) use faults::unstable;
+pub use settings::{ContactDrag, EngineSettings, RapierIntegrationParameters};
+
 use crate::fluid::{DragLaw, SphereDrag};
 use serde::{Deserialize, Serialize};
 use std::fmt;
-
-/// Numerical settings of a Rapier world, derived from the scene. SI units. Recorded in run.toml.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct EngineSettings {
-    /// Rapier's `length_unit`, m: scales slop, prediction distance, contact recycling, sleep
-    /// threshold and the speed cap. Default: the smallest particle diameter of the scene.
-    pub length_unit_m: f64,
-    /// Natural frequency of the contact constraints, Hz, for dynamic–dynamic and static contacts
-    /// alike. Resting penetration ≈ g′/(2πf)², independent of the size. Default 1e4.
-    pub contact_natural_frequency_hz: f64,
-    /// Damping ratio of the contact constraints. Default 10 (Rapier's).
-    pub damping_ratio: f64,
-    /// Rapier's speed cap, m/s: must exceed every real speed (bodies above half of it are reported
-    /// as unstable). Default: max(400 × length unit, 4 × the scene's largest expected speed).
-    pub max_linear_velocity_m_s: f64,
-    /// Rapier's `num_solver_iterations` = number of substeps K per step. Default 4 (Rapier's).
-    pub num_solver_iterations: usize,
-    /// Whether bodies may fall asleep. Default false: grains settling at µm/s must not sleep.
-    pub can_sleep: bool,
-    /// Coulomb friction coefficient of every collider (balls, floor, walls). Default 0.5 (Rapier's).
-    pub friction: f64,
-    /// How the drag acts on a body in contact. Default [`ContactDrag::EffectiveMass`].
-    pub contact_drag: ContactDrag,
-    /// Overlap of a contact, as a fraction of the body's diameter, beyond which the run stops as
-    /// unstable (bodies passing through each other or through a wall). Default 0.25; 0 turns the
-    /// check off. Resting overlaps are ~1e-4 d at the default contact frequency, impacts ~1e-2 d.
-    #[serde(default = "default_max_penetration")]
-    pub max_penetration_fraction: f64,
-    /// Largest distance of a body's centre from the origin, m, beyond which the run stops as
-    /// unstable (a body that left the domain). Default None: no bound.
-    #[serde(default)]
-    pub max_distance_m: Option<f64>,
-}
-
-fn default_max_penetration() -> f64 {
-    0.25
-}
-
-/// How the drag of a body in contact is handed to Rapier's contact solver (see the module doc).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum ContactDrag {
-    /// Backward-Euler drag inside the solve: for the step, the body's Rapier mass and inertia are
-    /// raised to `m + k dt` and `I + k_rot dt` with its momentum kept. Contact forces and velocities
-    /// consistent at any dt/τ; positions in contact lag by up to 3/8 when dt ≫ τ.
-    #[default]
-    EffectiveMass,
-    /// Rapier's `linear_damping` = k/m (and `angular_damping` = k_rot/I). Right velocities and
-    /// resting forces, but positions advance with the undamped velocity: loaded grains move about
-    /// (1 + k dt/m) too far per step, which breaks piles once dt ≫ τ.
-    Damping,
-}
-
-impl EngineSettings {
-    /// Settings for a scene whose smallest particle has diameter `min_diameter_m` and whose
-    /// fastest body is expected to move at `max_speed_m_s` (e.g. the largest terminal velocity):
-    /// length unit = `min_diameter_m`, 1e4 Hz contacts, damping ratio 10, speed cap
-    /// max(400·lu, 4·`max_speed_m_s`), 4 solver iterations, no sleeping, friction 0.5,
-    /// effective-mass contact drag, runs stopped at overlaps beyond 0.25 d, no domain bound.
-    pub fn for_scene(min_diameter_m: f64, max_speed_m_s: f64) -> Self {
-        assert!(
-            min_diameter_m > 0.0 && min_diameter_m.is_finite(),
-            "smallest diameter must be positive and finite, got {min_diameter_m}"
-        );
-        Self {
-            length_unit_m: min_diameter_m,
-            contact_natural_frequency_hz: 1e4,
-            damping_ratio: 10.0,
-            max_linear_velocity_m_s: (400.0 * min_diameter_m).max(4.0 * max_speed_m_s.abs()),
-            num_solver_iterations: 4,
-            can_sleep: false,
-            friction: 0.5,
-            contact_drag: ContactDrag::EffectiveMass,
-            max_penetration_fraction: default_max_penetration(),
-            max_distance_m: None,
-        }
-    }
-}
 
 /// Index of a body in a world, in the order of `add_sphere` calls (0, 1, …).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
@@ -186,38 +130,6 @@ pub struct BodyId(pub usize);
 impl fmt::Display for BodyId {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "body {}", self.0)
-    }
-}
-
-/// Builds the run-wide [`Unstable`] report for body `index` of a world: `quantity` is what went
-/// wrong (`"position"` or `"velocity"` non-finite, `"quarantined"` when Rapier disabled the body,
-/// `"speed"` above half the speed cap, `"intermediate speed"` when the free-flight force would
-/// exceed the cap and the step was refused, `"penetration"` for an overlap beyond
-/// [`EngineSettings::max_penetration_fraction`], `"distance from the origin"` beyond
-/// [`EngineSettings::max_distance_m`]), `value` its value, `suggested_dt_s` a step that should
-/// cure it (half the current dt, and for the explicit integrator at most half its stability limit).
-pub(crate) fn unstable(
-    index: usize,
-    time_s: f64,
-    dt_s: f64,
-    quantity: &str,
-    value: f64,
-    suggested_dt_s: f64,
-) -> Unstable {
-    // The explicit integrator's drag limit, when below half the step, is the binding one.
-    let dt_basis = if suggested_dt_s < 0.5 * dt_s * (1.0 - 1e-12) {
-        crate::dynamics::DtBasis::ExplicitDrag
-    } else {
-        crate::dynamics::DtBasis::Halved
-    };
-    Unstable {
-        body: BodyId(index).to_string(),
-        time_s,
-        step: (time_s / dt_s).round() as u64,
-        what: format!("{quantity} = {value:.3e}"),
-        dt_s,
-        stable_dt_s: suggested_dt_s,
-        dt_basis,
     }
 }
 
@@ -239,49 +151,4 @@ pub fn rotational_drag_n_m_s(drag: &SphereDrag) -> f64 {
 /// Moment of inertia of a sphere about a diameter, kg m²: m d²/10.
 pub fn sphere_inertia_kg_m2(mass_kg: f64, diameter_m: f64) -> f64 {
     0.1 * mass_kg * diameter_m * diameter_m
-}
-
-/// Damping of the yield-stress holds' velocity motors, N s/m (Rapier's force-based motor model):
-/// large enough that the motor is a rigid velocity constraint (its compliance 1/(h·D) is ~1e-7
-/// kg⁻¹, against 1/m ≥ 1 kg⁻¹ for any grain up to 1 kg) until it reaches its force limit.
-const HOLD_DAMPING: f64 = 1e12;
-
-/// |ω| of a Rapier angular velocity: a scalar in 2D, a vector in 3D.
-trait SpinNorm {
-    fn spin_norm(&self) -> f64;
-}
-
-impl SpinNorm for f64 {
-    fn spin_norm(&self) -> f64 {
-        self.abs()
-    }
-}
-
-impl SpinNorm for rapier3d_f64::math::Vector {
-    fn spin_norm(&self) -> f64 {
-        self.length()
-    }
-}
-
-/// 2D world (rapier2d-f64): discs standing for spheres, gravity along −y.
-pub mod dim2 {
-    use rapier2d_f64 as rapier;
-    /// Rapier's linear joint axes in this dimension (the yield-stress hold's motors).
-    const LIN_AXES: [rapier::prelude::JointAxis; 2] = [
-        rapier::prelude::JointAxis::LinX,
-        rapier::prelude::JointAxis::LinY,
-    ];
-    include!("world.rs");
-}
-
-/// 3D world (rapier3d-f64): spheres, gravity along −z.
-pub mod dim3 {
-    use rapier3d_f64 as rapier;
-    /// Rapier's linear joint axes in this dimension (the yield-stress hold's motors).
-    const LIN_AXES: [rapier::prelude::JointAxis; 3] = [
-        rapier::prelude::JointAxis::LinX,
-        rapier::prelude::JointAxis::LinY,
-        rapier::prelude::JointAxis::LinZ,
-    ];
-    include!("world.rs");
 }

@@ -10,9 +10,11 @@
 pub mod bingham;
 pub mod buoyancy;
 pub mod drag;
+pub mod immersion;
 pub mod lubrication;
 pub mod newtonian;
 
 pub use bingham::BinghamRegime;
 pub use buoyancy::{buoyancy_n, sphere_area_m2, sphere_mass_kg, sphere_volume_m3, weight_n};
 pub use drag::{DragLaw, DragRegime, Solved, SphereDrag};
+pub use immersion::{immersion, Submergence};

@@ -465,18 +465,7 @@ pub enum Kind {
     Sedimentation,
 }
 
-/// How fluid forces act on a sphere crossing the free surface.
-#[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq, Eq, Default)]
-#[serde(rename_all = "lowercase")]
-pub enum Submergence {
-    /// f-EDEM: the whole buoyancy and drag act from the moment the sphere's lowest point
-    /// touches the surface.
-    #[default]
-    Full,
-    /// Buoyancy on the immersed spherical cap's volume, drag scaled by the immersed fraction of
-    /// the projected area, while the sphere crosses the surface.
-    Partial,
-}
+pub use crate::fluid::Submergence;
 
 /// Physics switch.
 #[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq, Eq, Default)]

@@ -57,34 +57,8 @@ pub use simulate::{
 };
 
 use crate::run::{Prepared, RunError, SceneReport};
-use crate::scenario::Submergence;
 
-/// Immersed fractions (volume, projected area) of a sphere of diameter `d_m` whose centre is
-/// `depth_m` below the free surface (negative above). `full`: both 1 as soon as the lowest point
-/// touches the surface (f-EDEM); `partial`: the spherical cap below the surface,
-/// V_cap = π h² (3r − h)/3, and its projected area π (2 r h − h²) while h < r.
-pub fn immersion(depth_m: f64, d_m: f64, submergence: Submergence) -> (f64, f64) {
-    let r = 0.5 * d_m;
-    let h = (depth_m + r).clamp(0.0, d_m);
-    match submergence {
-        Submergence::Full => {
-            if depth_m + r >= 0.0 {
-                (1.0, 1.0)
-            } else {
-                (0.0, 0.0)
-            }
-        }
-        Submergence::Partial => {
-            let vol = h * h * (3.0 * r - h) / (4.0 * r * r * r);
-            let area = if h >= r {
-                1.0
-            } else {
-                h * (2.0 * r - h) / (r * r)
-            };
-            (vol, area)
-        }
-    }
-}
+pub use crate::fluid::immersion::immersion;
 
 /// Runs the spheres of a free-settling or drop scenario and writes its files into `stage`:
 /// the entry point of `settle run` for these kinds. Interrupted (Ctrl-C/SIGTERM), it writes

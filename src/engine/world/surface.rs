@@ -1,0 +1,60 @@
+//! The free surface: where the fluid is, and the fluid forces a body feels at the start of a
+//! step (drag, body force and spin drag scaled by its immersed fractions,
+//! [`crate::fluid::immersion::immersion`]).
+
+use super::{to_na, Body, Vector, World, DIM};
+use crate::fluid::{immersion, SphereDrag, Submergence};
+
+/// The fluid's extent, for scenes where bodies travel through air before they enter the fluid
+/// (see [`World::set_free_surface`]). SI units.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct FreeSurface {
+    /// Height of the free surface on the last axis, m: the fluid lies below it.
+    pub height_m: f64,
+    /// Radius of the fluid column about the vertical axis through the origin, m (a cylindrical
+    /// container); None: the fluid extends sideways without bound.
+    pub radius_m: Option<f64>,
+    /// How the fluid forces act on a sphere crossing the surface (f-EDEM: full).
+    pub submergence: Submergence,
+}
+
+impl World {
+    /// Restricts the fluid to the region below a free surface (and within a cylinder), for scenes
+    /// where bodies fall through air into the fluid (f-EDEM §4.2 funnel pour). Each step, a body's
+    /// drag (and its rotational drag) is scaled by the immersed fraction of its projected area and
+    /// its body force (`FluidBody::body_force_n`, the buoyancy) by the immersed fraction of its
+    /// volume, both from [`crate::fluid::immersion::immersion`] at the start of the step:
+    /// with `full` submergence both are 1 as soon as the sphere's lowest point is below the
+    /// surface, 0 above; with `partial`, the spherical cap below it. Outside `radius_m` (measured
+    /// from the vertical axis through the origin, at the sphere's centre) there is no fluid. Entry
+    /// is not located within the step (a body enters up to one step late: |v| dt).
+    pub fn set_free_surface(&mut self, surface: FreeSurface) {
+        self.surface = Some(surface);
+    }
+
+    /// Fluid forces on a body at the start of a step: (drag, body force, spin-drag rate), with the
+    /// free surface's immersed fractions applied if one is set.
+    pub(super) fn fluid_now(&self, body: &Body) -> (SphereDrag, Vector, f64) {
+        let Some(fs) = self.surface else {
+            return (body.drag, body.body_force_n, body.spin_drag_rate_hz);
+        };
+        let x = to_na(self.physics.bodies[body.handle].translation());
+        let mut horizontal = x;
+        horizontal[DIM - 1] = 0.0;
+        let outside = fs.radius_m.is_some_and(|r| horizontal.norm() > r);
+        let (fv, fa) = if outside {
+            (0.0, 0.0)
+        } else {
+            immersion(
+                fs.height_m - x[DIM - 1],
+                body.drag.diameter_m,
+                fs.submergence,
+            )
+        };
+        (
+            body.drag.scaled(fa),
+            body.body_force_n * fv,
+            body.spin_drag_rate_hz * fa,
+        )
+    }
+}
