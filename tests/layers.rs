@@ -31,7 +31,9 @@ fn layer(module: &str) -> Option<u8> {
 /// The top-level module a source file belongs to (`src/fluid/drag.rs` → `fluid`), None for the
 /// crate roots `lib.rs` and `main.rs`.
 fn module_of(rel: &Path) -> Option<String> {
-    let mut parts = rel.components().map(|c| c.as_os_str().to_string_lossy().into_owned());
+    let mut parts = rel
+        .components()
+        .map(|c| c.as_os_str().to_string_lossy().into_owned());
     let first = parts.next()?;
     if first == "lib.rs" || first == "main.rs" {
         return None;
@@ -152,7 +154,11 @@ fn every_import_respects_the_layer_table() {
     let files = sources();
     assert!(files.len() > 20, "found only {} source files", files.len());
     let bad = violations(&files);
-    assert!(bad.is_empty(), "imports against the layers:\n{}", bad.join("\n"));
+    assert!(
+        bad.is_empty(),
+        "imports against the layers:\n{}",
+        bad.join("\n")
+    );
 }
 
 #[test]
@@ -160,14 +166,28 @@ fn a_forbidden_import_is_caught() {
     let case = |path: &str, text: &str| violations(&[(PathBuf::from(path), text.to_string())]);
     // Physics importing the application layer, in each spelling.
     assert_eq!(case("fluid/drag.rs", "use crate::run::Prepared;").len(), 1);
-    assert_eq!(case("fluid/drag.rs", "use crate::{dynamics::X, scenes::Y};").len(), 1);
     assert_eq!(
-        case("engine/world/mod.rs", "    let x = crate::scenario::Submergence::Full;").len(),
+        case("fluid/drag.rs", "use crate::{dynamics::X, scenes::Y};").len(),
         1
     );
-    assert_eq!(case("io/mod.rs", "use crate::{fluid::{a, b}, error::E};").len(), 1);
+    assert_eq!(
+        case(
+            "engine/world/mod.rs",
+            "    let x = crate::scenario::Submergence::Full;"
+        )
+        .len(),
+        1
+    );
+    assert_eq!(
+        case("io/mod.rs", "use crate::{fluid::{a, b}, error::E};").len(),
+        1
+    );
     // Allowed: downward and same-layer imports; comments; the crate roots.
-    assert!(case("scenes/x.rs", "use crate::{engine::dim2, fluid::{a, b}, io};").is_empty());
+    assert!(case(
+        "scenes/x.rs",
+        "use crate::{engine::dim2, fluid::{a, b}, io};"
+    )
+    .is_empty());
     assert!(case("dynamics/mod.rs", "use crate::fluid::DragLaw;").is_empty());
     assert!(case("fluid/drag.rs", "/// see [`crate::run::Prepared`]").is_empty());
     assert!(case("lib.rs", "use crate::cli;").is_empty());

@@ -1,10 +1,9 @@
 //! One tilt run: the block on the plate in a bare Rapier 3D world, gravity tilted by the angle.
 
 use super::TiltSetup;
-use crate::engine::{unstable, EngineSettings, Unstable};
+use crate::engine::{unstable, Unstable};
 use rapier3d_f64::prelude::{
-    nalgebra::Unit, ColliderBuilder, IntegrationParameters, PhysicsWorld, RigidBodyBuilder,
-    RigidBodyHandle, SpringCoefficients,
+    nalgebra::Unit, ColliderBuilder, PhysicsWorld, RigidBodyBuilder, RigidBodyHandle,
 };
 
 type RVector = rapier3d_f64::math::Vector;
@@ -22,20 +21,6 @@ pub struct TiltOutcome {
     pub bisection: bool,
 }
 
-/// Sets Rapier's integration parameters from `st` and the time step `dt_s`, as
-/// [`crate::engine::dim3::World::new`] does (engine/world.rs, `World::new`).
-// TODO(merge): EngineSettings::apply — replace this copy by `st.apply(p)` once helper `engine`'s
-// branch is merged (then only `p.dt = dt_s` stays here).
-fn set_integration_parameters(p: &mut IntegrationParameters, st: &EngineSettings, dt_s: f64) {
-    p.length_unit = st.length_unit_m;
-    let springs = SpringCoefficients::new(st.contact_natural_frequency_hz, st.damping_ratio);
-    p.contact_softness = springs;
-    p.static_contact_softness = springs;
-    p.normalized_max_linear_velocity = st.max_linear_velocity_m_s / st.length_unit_m;
-    p.num_solver_iterations = st.num_solver_iterations.max(1);
-    p.dt = dt_s;
-}
-
 /// The tilted scene: a plate (the half-space z ≤ 0) and the block resting on it, gravity
 /// `g (sin θ, 0, −cos θ)`. Returns the world and the block's handle.
 fn tilted_world(t: &TiltSetup, angle_deg: f64) -> (PhysicsWorld, RigidBodyHandle) {
@@ -43,7 +28,8 @@ fn tilted_world(t: &TiltSetup, angle_deg: f64) -> (PhysicsWorld, RigidBodyHandle
     let mut w = PhysicsWorld::new();
     let th = angle_deg.to_radians();
     w.gravity = RVector::new(t.gravity_m_s2 * th.sin(), 0.0, -t.gravity_m_s2 * th.cos());
-    set_integration_parameters(&mut w.integration_parameters, st, t.dt_s);
+    st.apply(&mut w.integration_parameters);
+    w.integration_parameters.dt = t.dt_s;
     let plate = ColliderBuilder::halfspace(Unit::new_unchecked(RVector::Z))
         .friction(t.friction)
         .restitution(t.restitution);
