@@ -2,7 +2,7 @@
 //! file and the key, then validation of ranges.
 
 use super::schema::Scenario;
-use super::validate::validate;
+use super::validate::{check_tables, validate};
 use std::fmt;
 use std::path::{Path, PathBuf};
 
@@ -62,6 +62,7 @@ pub fn load_str(text: &str, path: &Path, overrides: &[String]) -> Result<Scenari
     for o in overrides {
         apply_override(&mut table, o).map_err(|m| ScenarioError::new(path, None, m))?;
     }
+    let present: Vec<String> = table.keys().cloned().collect();
     let value = toml::Value::Table(table);
     let scenario: Scenario = serde_path_to_error::deserialize(value).map_err(|e| {
         let key = e.path().to_string();
@@ -82,6 +83,8 @@ pub fn load_str(text: &str, path: &Path, overrides: &[String]) -> Result<Scenari
         let key = if key == "." { None } else { Some(key) };
         ScenarioError::new(path, key.as_deref(), msg)
     })?;
+    let present: Vec<&str> = present.iter().map(String::as_str).collect();
+    check_tables(&scenario, &present, path)?;
     validate(&scenario, path)?;
     Ok(scenario)
 }
