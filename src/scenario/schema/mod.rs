@@ -11,7 +11,7 @@ mod time;
 
 pub use bodies::{Container, Release, SphereSpec, SpheresCsv};
 pub use contacts::Contacts;
-pub use fluid::{Drag, DragLawName, Fluid, Rheology, Submergence};
+pub use fluid::{Drag, DragLawName, Fluid, Rheology, RheologyModel, Submergence};
 pub use kinds::funnel::{FunnelSpec, Repeats};
 pub use kinds::restitution_drop::RestitutionDropSpec;
 pub use kinds::sedimentation::{InstrumentsSpec, SampleSpec};
@@ -332,4 +332,84 @@ impl SweepSpec {
 /// `(0, end_s]` with the note used for times within a run.
 pub(crate) fn within_run(end_s: f64) -> Range<'static> {
     oc(0.0, end_s, "s (within time.end_s)")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::Path;
+
+    const STOKES: &str = include_str!("../../../scenarios/stokes_single.toml");
+
+    fn load(text: &str, set: &[&str]) -> Result<Scenario, ScenarioError> {
+        let set: Vec<String> = set.iter().map(|s| s.to_string()).collect();
+        crate::scenario::load_str(text, Path::new("t.toml"), &set)
+    }
+
+    #[test]
+    fn dim_reads_two_or_three_only() {
+        #[derive(Deserialize)]
+        struct D {
+            dimension: Dim,
+        }
+        let d: D = toml::from_str("dimension = 2").unwrap();
+        assert_eq!(d.dimension, Dim::Two);
+        let d: D = toml::from_str("dimension = 3").unwrap();
+        assert_eq!(d.dimension, Dim::Three);
+        assert!(toml::from_str::<D>("dimension = 4").is_err());
+        assert_eq!(u8::from(Dim::Two), 2);
+        let s = load(STOKES, &[]).unwrap();
+        assert_eq!(s.dim(), Dim::Three);
+        let e = load(STOKES, &["dimension=4"]).unwrap_err();
+        assert_eq!(e.key.as_deref(), Some("dimension"));
+        assert!(e.message.contains("2 or 3"), "{e}");
+    }
+
+    #[test]
+    fn engine_resolves_auto_per_kind() {
+        let s = load(STOKES, &[]).unwrap();
+        assert_eq!(s.engine(), Engine::Free);
+        let s = load(STOKES, &["engine=rapier"]).unwrap();
+        assert_eq!(s.engine(), Engine::Rapier);
+        assert_eq!(s.engine().name(), "rapier");
+        let mut s = s;
+        s.kind = Kind::FunnelPour;
+        s.engine = EngineChoice::Auto;
+        assert_eq!(s.engine(), Engine::Rapier);
+    }
+
+    #[test]
+    fn one_viscosity_for_every_rheology() {
+        let s = load(STOKES, &[]).unwrap();
+        assert_eq!(s.fluid.drag_viscosity_pa_s(), 1e-3);
+        let mut f = s.fluid.clone();
+        f.rheology = Rheology::Bingham;
+        f.viscosity_pa_s = None;
+        f.plastic_viscosity_pa_s = Some(0.7);
+        f.yield_stress_pa = Some(136.0);
+        assert_eq!(f.drag_viscosity_pa_s(), 0.7);
+        assert_eq!(
+            f.model(),
+            Some(fluid::RheologyModel::Bingham {
+                plastic_viscosity_pa_s: 0.7,
+                yield_stress_pa: 136.0
+            })
+        );
+        f.plastic_viscosity_pa_s = None;
+        assert!(f.drag_viscosity_pa_s().is_nan());
+        assert_eq!(f.model(), None);
+    }
+
+    #[test]
+    fn a_table_the_kind_does_not_use_is_refused() {
+        let e = load(STOKES, &["contacts.friction=0.3"]).unwrap_err();
+        assert_eq!(e.key.as_deref(), Some("contacts"));
+        assert!(e.message.contains("free_settling"), "{e}");
+        assert!(
+            e.message.contains("[measure]"),
+            "lists the used tables: {e}"
+        );
+        let e = load(STOKES, &["repeats.count=2"]).unwrap_err();
+        assert_eq!(e.key.as_deref(), Some("repeats"));
+    }
 }
