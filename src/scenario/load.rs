@@ -62,7 +62,15 @@ pub fn load_str(text: &str, path: &Path, overrides: &[String]) -> Result<Scenari
     for o in overrides {
         apply_override(&mut table, o).map_err(|m| ScenarioError::new(path, None, m))?;
     }
-    let present: Vec<String> = table.keys().cloned().collect();
+    // A table the kind does not use is refused before the tables are parsed, so that the
+    // error names the table and the kind rather than a key missing inside the unused table.
+    if let Some(kind) = table
+        .get("kind")
+        .and_then(|k| k.clone().try_into::<super::schema::Kind>().ok())
+    {
+        let present: Vec<&str> = table.keys().map(String::as_str).collect();
+        check_tables(kind, &present, path)?;
+    }
     let value = toml::Value::Table(table);
     let scenario: Scenario = serde_path_to_error::deserialize(value).map_err(|e| {
         let key = e.path().to_string();
@@ -83,8 +91,6 @@ pub fn load_str(text: &str, path: &Path, overrides: &[String]) -> Result<Scenari
         let key = if key == "." { None } else { Some(key) };
         ScenarioError::new(path, key.as_deref(), msg)
     })?;
-    let present: Vec<&str> = present.iter().map(String::as_str).collect();
-    check_tables(&scenario, &present, path)?;
     validate(&scenario, path)?;
     Ok(scenario)
 }

@@ -44,15 +44,15 @@ const TABLE_KINDS: &[(&str, &[Kind])] = {
     ]
 };
 
-/// Refuses a top-level table (of `present`, the keys of the file after `--set`) that the
-/// scenario's kind does not use, naming the table and the kind and listing the tables it uses.
-pub fn check_tables(s: &Scenario, present: &[&str], file: &Path) -> Result<(), ScenarioError> {
+/// Refuses a top-level table (of `present`, the keys of the file after `--set`) that `kind`
+/// does not use, naming the table and the kind and listing the tables it uses.
+pub fn check_tables(kind: Kind, present: &[&str], file: &Path) -> Result<(), ScenarioError> {
     for key in present {
         if let Some((_, kinds)) = TABLE_KINDS.iter().find(|(t, _)| t == key) {
-            if !kinds.contains(&s.kind) {
+            if !kinds.contains(&kind) {
                 let used: Vec<String> = TABLE_KINDS
                     .iter()
-                    .filter(|(_, k)| k.contains(&s.kind))
+                    .filter(|(_, k)| k.contains(&kind))
                     .map(|(t, _)| format!("[{t}]"))
                     .collect();
                 return Err(ScenarioError::new(
@@ -60,7 +60,7 @@ pub fn check_tables(s: &Scenario, present: &[&str], file: &Path) -> Result<(), S
                     Some(key),
                     format!(
                         "the [{key}] table is not used by kind = \"{}\" (allowed: [fluid], [drag], [time]{}{})",
-                        s.kind.name(),
+                        kind.name(),
                         if used.is_empty() { "" } else { ", " },
                         used.join(", ")
                     ),
