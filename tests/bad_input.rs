@@ -392,6 +392,30 @@ fn sample_csv_good_file_matches_distribution_load() {
     }
 }
 
+/// Every scenario of `scenarios/` loads (its tables all used by its kind) and its input files
+/// (spheres CSV, sample CSV) read.
+#[test]
+fn every_good_scenario_loads_with_its_inputs() {
+    let dir = crate_dir().join("scenarios");
+    let mut n = 0;
+    for e in std::fs::read_dir(&dir).expect("scenarios/") {
+        let path = e.expect("entry").path();
+        if path.extension().is_none_or(|x| x != "toml") {
+            continue;
+        }
+        let s = settle::scenario::load(&path, &[])
+            .unwrap_or_else(|e| panic!("{} does not load: {e}", path.display()));
+        settle::scenario::inputs::spheres(&s, &path)
+            .unwrap_or_else(|e| panic!("{}: spheres: {e}", path.display()));
+        if let Some(sm) = &s.sample {
+            settle::scenario::inputs::read_sample(sm, &path)
+                .unwrap_or_else(|e| panic!("{}: sample: {e}", path.display()));
+        }
+        n += 1;
+    }
+    assert!(n >= 16, "{n} scenarios");
+}
+
 /// A TOML syntax error names no key but the line (the broken `[drag` header is line 15).
 #[test]
 fn toml_syntax_error() {

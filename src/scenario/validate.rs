@@ -159,7 +159,7 @@ fn check_kind(c: &Check, s: &Scenario) -> Result<(), ScenarioError> {
                 .funnel
                 .as_ref()
                 .ok_or_else(|| missing("funnel", "a [funnel] table (count, geometry)"))?;
-            if !s.container.as_ref().is_some_and(|c| c.diameter_m.is_some()) {
+            if s.container.as_ref().is_none_or(|c| c.diameter_m.is_none()) {
                 return Err(missing(
                     "container.diameter_m",
                     "a cylindrical [container] with diameter_m",

@@ -62,8 +62,12 @@ pub struct SphereSpec {
     pub suspension: Option<u32>,
 }
 
-/// Spheres from a CSV file with columns `sphere_id, suspension, diameter_m, density_kg_m3,
-/// v_terminal_measured_m_s` (extra columns ignored), as `data/valentik_whitmore_1965_spheres.csv`.
+/// Spheres from a CSV file, as `data/valentik_whitmore_1965_spheres.csv`. Its columns are named
+/// like the keys of `[[spheres]]`: `id`, `suspension`, `diameter_m`, `density_kg_m3`,
+/// `youngs_modulus_pa`, `poisson_ratio`, `v_measured_m_s`; the old names `sphere_id` and
+/// `v_terminal_measured_m_s` still read, and the reference columns `re_bingham_tabulated`,
+/// `cd_tabulated` are allowed and not read. Any other column is refused; an empty field is an
+/// absent optional value. See [`crate::scenario::inputs::spheres`].
 #[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct SpheresCsv {

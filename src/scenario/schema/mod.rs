@@ -411,5 +411,13 @@ mod tests {
         );
         let e = load(STOKES, &["repeats.count=2"]).unwrap_err();
         assert_eq!(e.key.as_deref(), Some("repeats"));
+        // [contacts] is used by the sedimentation grain contacts.
+        let sed = include_str!("../../../scenarios/sedimentation_sample1.toml");
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/s.toml");
+        let set = [
+            "contacts.friction=0.3".to_string(),
+            "contacts.restitution=0.5".to_string(),
+        ];
+        crate::scenario::load_str(sed, &path, &set).expect("[contacts] on sedimentation");
     }
 }
