@@ -163,6 +163,13 @@ const CASES: &[&str] = &[
     "poisson_07.toml",
     "section_inverted.toml",
     "csv_missing.toml",
+    "unused_table_funnel.toml",
+    "unused_table_sample.toml",
+    "duplicate_sphere_id.toml",
+    "csv_duplicate_id.toml",
+    "sphere_wider_than_cylinder.toml",
+    "drop_10km.toml",
+    "csv_unknown_column.toml",
 ];
 
 #[test]
@@ -281,6 +288,133 @@ case!(
     Some("spheres_csv.path"),
     ["no_such_spheres.csv", "cannot read"]
 );
+
+// A table the kind does not use names the table and the kind.
+case!(
+    unused_table_funnel_on_free_settling,
+    "unused_table_funnel.toml",
+    Some("funnel"),
+    ["[funnel]", "not used", "free_settling"]
+);
+case!(
+    unused_table_sample_on_drop,
+    "unused_table_sample.toml",
+    Some("sample"),
+    ["[sample]", "not used", "\"drop\""]
+);
+// Issue 12, data loss 8: accepted silently by the old binary.
+case!(
+    duplicate_sphere_id,
+    "duplicate_sphere_id.toml",
+    Some("spheres[1].id"),
+    ["fedem-table1", "spheres[0]", "allowed one sphere per id"]
+);
+case!(
+    csv_duplicate_sphere_id,
+    "csv_duplicate_id.toml",
+    Some("spheres_csv.path"),
+    [
+        "spheres_duplicate_id.csv",
+        "row 4",
+        "S1-01",
+        "row 3",
+        "allowed one row per id"
+    ]
+);
+case!(
+    sphere_wider_than_cylinder,
+    "sphere_wider_than_cylinder.toml",
+    Some("spheres[0].diameter_m"),
+    ["0.003", "allowed", "< container.diameter_m = 0.002 m"]
+);
+case!(
+    drop_not_reaching_the_surface,
+    "drop_10km.toml",
+    Some("release.fall_heights_m[0]"),
+    [
+        "10000",
+        "time.end_s = 2 s",
+        "allowed 0 ≤ fall height < 19.62"
+    ]
+);
+case!(
+    csv_unknown_column,
+    "csv_unknown_column.toml",
+    Some("spheres_csv.path"),
+    [
+        "spheres_unknown_column.csv",
+        "column 5",
+        "`v_terminal_m_s`",
+        "unknown",
+        "v_measured_m_s or v_terminal_measured_m_s",
+        "id or sphere_id"
+    ]
+);
+
+/// A bad sample CSV is refused by the scenario layer's reader with its row, column and range
+/// (a `ScenarioError`: exit 2), before the run reads it.
+#[test]
+fn sample_csv_percent_out_of_range() {
+    let path = good("sedimentation_sample1.toml");
+    let s = settle::scenario::load(
+        &path,
+        &["sample.csv=\"../tests/bad_scenarios/bad_sample_percent.csv\"".to_string()],
+    )
+    .expect("a good scenario");
+    let e = settle::scenario::inputs::read_sample(s.sample.as_ref().expect("[sample]"), &path)
+        .expect_err("percent finer 120 must be refused");
+    let line = e.to_string();
+    assert_eq!(e.key.as_deref(), Some("sample.csv"), "{line}");
+    for w in [
+        "sedimentation_sample1.toml",
+        "bad_sample_percent.csv",
+        "row 5, column 3 (`percent_finer`)",
+        "120",
+        "allowed 0 ≤ percent_finer ≤ 100",
+    ] {
+        assert!(line.contains(w), "`{w}` missing from: {line}");
+    }
+}
+
+/// The good sample CSV reads to the same distribution as the physics layer's reader.
+#[test]
+fn sample_csv_good_file_matches_distribution_load() {
+    let path = good("sedimentation_sample1.toml");
+    let s = settle::scenario::load(&path, &[]).expect("good scenario");
+    let sm = s.sample.as_ref().expect("[sample]");
+    for n in 1..=5 {
+        let mut sm = sm.clone();
+        sm.sample = n;
+        let ours = settle::scenario::inputs::read_sample(&sm, &path).expect("good file");
+        let csv = path.parent().unwrap().join(&sm.csv);
+        let old = settle::sample::Distribution::load(&csv, n).expect("good file");
+        assert_eq!(ours, old, "sample {n}");
+    }
+}
+
+/// Every scenario of `scenarios/` loads (its tables all used by its kind) and its input files
+/// (spheres CSV, sample CSV) read.
+#[test]
+fn every_good_scenario_loads_with_its_inputs() {
+    let dir = crate_dir().join("scenarios");
+    let mut n = 0;
+    for e in std::fs::read_dir(&dir).expect("scenarios/") {
+        let path = e.expect("entry").path();
+        if path.extension().is_none_or(|x| x != "toml") {
+            continue;
+        }
+        let s = settle::scenario::load(&path, &[])
+            .unwrap_or_else(|e| panic!("{} does not load: {e}", path.display()));
+        settle::scenario::inputs::spheres(&s, &path)
+            .unwrap_or_else(|e| panic!("{}: spheres: {e}", path.display()));
+        if let Some(sm) = &s.sample {
+            settle::scenario::inputs::read_sample(sm, &path)
+                .unwrap_or_else(|e| panic!("{}: sample: {e}", path.display()));
+        }
+        n += 1;
+    }
+    assert!(n >= 16, "{n} scenarios");
+}
 
 /// A TOML syntax error names no key but the line (the broken `[drag` header is line 15).
 #[test]

@@ -67,7 +67,7 @@ pub fn estimate(s: &Scenario) -> Cost {
         Kind::FreeSettling | Kind::Drop => (
             s.time.end_s / s.time.dt_s,
             s.spheres.len().max(1) as f64,
-            if crate::run::engine_name(s) == "rapier" {
+            if s.engine() == super::schema::Engine::Rapier {
                 RAPIER_BODY_STEP_S
             } else {
                 FREE_BODY_STEP_S

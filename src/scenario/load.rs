@@ -2,7 +2,7 @@
 //! file and the key, then validation of ranges.
 
 use super::schema::Scenario;
-use super::validate::validate;
+use super::validate::{check_tables, validate};
 use std::fmt;
 use std::path::{Path, PathBuf};
 
@@ -61,6 +61,15 @@ pub fn load_str(text: &str, path: &Path, overrides: &[String]) -> Result<Scenari
     })?;
     for o in overrides {
         apply_override(&mut table, o).map_err(|m| ScenarioError::new(path, None, m))?;
+    }
+    // A table the kind does not use is refused before the tables are parsed, so that the
+    // error names the table and the kind rather than a key missing inside the unused table.
+    if let Some(kind) = table
+        .get("kind")
+        .and_then(|k| k.clone().try_into::<super::schema::Kind>().ok())
+    {
+        let present: Vec<&str> = table.keys().map(String::as_str).collect();
+        check_tables(kind, &present, path)?;
     }
     let value = toml::Value::Table(table);
     let scenario: Scenario = serde_path_to_error::deserialize(value).map_err(|e| {

@@ -1,10 +1,14 @@
-//! Scenario files: the TOML schema, loading with `--set` overrides, and validation.
+//! Scenario files: the TOML schema, loading with `--set` overrides, validation, and the input
+//! files a scenario names (spheres CSV, sample CSV).
 //!
 //! A scenario names its kind, dimension, fluid, drag law, time settings, bodies and what to
-//! record. Every quantity is in SI units with the unit in the key name. Unknown keys are errors.
-//! See `README.md` ("Scenario format") for a commented example of every table.
+//! record. Every quantity is in SI units with the unit in the key name. Unknown keys are errors,
+//! and so is a table the kind does not use. See `README.md` ("Scenario format") for a commented
+//! example of every table.
 
+mod check;
 pub mod cost;
+pub mod inputs;
 mod load;
 mod schema;
 mod validate;
@@ -12,3 +16,4 @@ mod validate;
 pub use load::{apply_override, load, load_str, ScenarioError};
 pub use schema::*;
 pub(crate) use validate::check_sphere;
+pub use validate::{kind_name, MAX_STEPS};

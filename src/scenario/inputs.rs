@@ -1,0 +1,450 @@
+//! The input files a scenario names, read and checked while the scenario is prepared, so that a
+//! bad file is refused (exit 2) before anything runs: the spheres of `[spheres_csv]` (with the
+//! inline `[[spheres]]`, [`spheres`]) and the sample distribution of a sedimentation run
+//! ([`read_sample`]). Every error names the scenario file, the key that names the input file,
+//! the input file, its row and column (1-based) and what is allowed.
+
+use super::load::ScenarioError;
+use super::schema::{SampleSpec, Scenario, SphereSpec};
+use crate::sample::Distribution;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+/// One sphere to simulate, with its identifier resolved.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SphereCase {
+    /// Identifier (`id` of `[[spheres]]`, `id` or `sphere_id` column of the CSV).
+    pub id: String,
+    /// The sphere's properties.
+    pub spec: SphereSpec,
+    /// Fall height of the lowest point above the free surface, m (kind `drop`).
+    pub fall_height_m: Option<f64>,
+}
+
+/// A column of the spheres CSV: the name it is written under (the TOML key of `[[spheres]]`
+/// first, then the old names still read) and the field it fills.
+struct SphereColumn {
+    names: &'static [&'static str],
+    field: Field,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+enum Field {
+    Id,
+    Suspension,
+    Diameter,
+    Density,
+    Youngs,
+    Poisson,
+    VMeasured,
+    /// A reference column kept in the file for the reader (tabulated figures); not read.
+    Ignored,
+}
+
+const SPHERE_COLUMNS: &[SphereColumn] = &[
+    SphereColumn {
+        names: &["id", "sphere_id"],
+        field: Field::Id,
+    },
+    SphereColumn {
+        names: &["suspension"],
+        field: Field::Suspension,
+    },
+    SphereColumn {
+        names: &["diameter_m"],
+        field: Field::Diameter,
+    },
+    SphereColumn {
+        names: &["density_kg_m3"],
+        field: Field::Density,
+    },
+    SphereColumn {
+        names: &["youngs_modulus_pa"],
+        field: Field::Youngs,
+    },
+    SphereColumn {
+        names: &["poisson_ratio"],
+        field: Field::Poisson,
+    },
+    SphereColumn {
+        names: &["v_measured_m_s", "v_terminal_measured_m_s"],
+        field: Field::VMeasured,
+    },
+    SphereColumn {
+        names: &["re_bingham_tabulated", "cd_tabulated"],
+        field: Field::Ignored,
+    },
+];
+
+/// An input CSV being read: builds errors naming the scenario file, the key and the CSV.
+struct CsvInput<'a> {
+    scenario_path: &'a Path,
+    key: &'static str,
+    csv_path: PathBuf,
+}
+
+impl CsvInput<'_> {
+    fn err(&self, msg: impl std::fmt::Display) -> ScenarioError {
+        ScenarioError::new(
+            self.scenario_path,
+            Some(self.key),
+            format!("`{}`: {msg}", self.csv_path.display()),
+        )
+    }
+
+    /// Opens the CSV (`#` comments, spaces around fields trimmed) and returns its header.
+    fn open(&self) -> Result<(csv::Reader<std::fs::File>, Vec<String>), ScenarioError> {
+        let mut rdr = csv::ReaderBuilder::new()
+            .comment(Some(b'#'))
+            .trim(csv::Trim::All)
+            .from_path(&self.csv_path)
+            .map_err(|e| {
+                ScenarioError::new(
+                    self.scenario_path,
+                    Some(self.key),
+                    format!(
+                        "cannot read `{}` (the path is relative to the scenario file's folder): {e}",
+                        self.csv_path.display()
+                    ),
+                )
+            })?;
+        let header = rdr
+            .headers()
+            .map_err(|e| self.err(format!("header: {e}")))?
+            .iter()
+            .map(str::to_string)
+            .collect();
+        Ok((rdr, header))
+    }
+
+    /// The number in `rec`'s column `col` (0-based), `None` if the field is empty.
+    fn number(
+        &self,
+        rec: &csv::StringRecord,
+        header: &[String],
+        col: usize,
+    ) -> Result<Option<f64>, ScenarioError> {
+        let raw = rec.get(col).unwrap_or("");
+        if raw.is_empty() {
+            return Ok(None);
+        }
+        raw.parse::<f64>().map(Some).map_err(|_| {
+            self.err(format!(
+                "row {}, column {} (`{}`): `{raw}` is not a number",
+                row_of(rec),
+                col + 1,
+                header[col]
+            ))
+        })
+    }
+
+    /// As [`Self::number`], required.
+    fn required(
+        &self,
+        rec: &csv::StringRecord,
+        header: &[String],
+        col: usize,
+    ) -> Result<f64, ScenarioError> {
+        self.number(rec, header, col)?.ok_or_else(|| {
+            self.err(format!(
+                "row {}, column {} (`{}`): empty: a number is required",
+                row_of(rec),
+                col + 1,
+                header[col]
+            ))
+        })
+    }
+}
+
+/// The 1-based line of a record in its file (header and comment lines count).
+fn row_of(rec: &csv::StringRecord) -> u64 {
+    rec.position().map(|p| p.line()).unwrap_or(0)
+}
+
+/// The column of each field of the spheres CSV, from its header; refuses an unknown or
+/// repeated column, and a missing required one, listing the columns it reads.
+fn sphere_columns(
+    input: &CsvInput,
+    header: &[String],
+) -> Result<HashMap<Field, usize>, ScenarioError> {
+    let known = || {
+        SPHERE_COLUMNS
+            .iter()
+            .map(|c| c.names.join(" or "))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let mut cols = HashMap::new();
+    for (i, name) in header.iter().enumerate() {
+        let Some(c) = SPHERE_COLUMNS
+            .iter()
+            .find(|c| c.names.contains(&name.as_str()))
+        else {
+            return Err(input.err(format!(
+                "column {} `{name}` is unknown: allowed columns {}",
+                i + 1,
+                known()
+            )));
+        };
+        if c.field != Field::Ignored && cols.insert(c.field, i).is_some() {
+            return Err(input.err(format!(
+                "column {} `{name}` repeats a column already given (allowed once: {})",
+                i + 1,
+                c.names.join(" or ")
+            )));
+        }
+    }
+    for f in [Field::Id, Field::Diameter, Field::Density] {
+        if !cols.contains_key(&f) {
+            let c = SPHERE_COLUMNS
+                .iter()
+                .find(|c| c.field == f)
+                .expect("listed");
+            return Err(input.err(format!(
+                "missing column `{}` (required: id or sphere_id, diameter_m, density_kg_m3; allowed {})",
+                c.names[0],
+                known()
+            )));
+        }
+    }
+    Ok(cols)
+}
+
+/// One row of the spheres CSV: its id, the sphere and its 1-based line.
+fn sphere_row(
+    input: &CsvInput,
+    header: &[String],
+    cols: &HashMap<Field, usize>,
+    rec: &csv::StringRecord,
+) -> Result<(String, SphereSpec, u64), ScenarioError> {
+    let opt = |f: Field| match cols.get(&f) {
+        Some(&c) => input.number(rec, header, c),
+        None => Ok(None),
+    };
+    let id = rec.get(cols[&Field::Id]).unwrap_or("").to_string();
+    if id.is_empty() {
+        return Err(input.err(format!(
+            "row {}, column {} (`{}`): empty: every sphere needs an id",
+            row_of(rec),
+            cols[&Field::Id] + 1,
+            header[cols[&Field::Id]]
+        )));
+    }
+    let suspension = match opt(Field::Suspension)? {
+        None => None,
+        Some(x) if x >= 0.0 && x.fract() == 0.0 && x <= u32::MAX as f64 => Some(x as u32),
+        Some(x) => {
+            return Err(input.err(format!(
+                "row {}, column {} (`suspension`): {x} is out of range: allowed a whole number ≥ 0",
+                row_of(rec),
+                cols[&Field::Suspension] + 1
+            )))
+        }
+    };
+    let spec = SphereSpec {
+        id: Some(id.clone()),
+        diameter_m: input.required(rec, header, cols[&Field::Diameter])?,
+        density_kg_m3: input.required(rec, header, cols[&Field::Density])?,
+        youngs_modulus_pa: opt(Field::Youngs)?,
+        poisson_ratio: opt(Field::Poisson)?,
+        v_measured_m_s: opt(Field::VMeasured)?,
+        suspension,
+    };
+    Ok((id, spec, row_of(rec)))
+}
+
+/// Resolves the spheres of `scenario`: the inline `[[spheres]]`, then the rows of
+/// `[spheres_csv]` (of its `suspension` if given; the path is relative to `scenario_path`'s
+/// folder), each checked like an inline sphere; with `release.fall_heights_m`, one case per
+/// sphere and height. Refuses two spheres with one id.
+pub fn spheres(
+    scenario: &Scenario,
+    scenario_path: &Path,
+) -> Result<Vec<SphereCase>, ScenarioError> {
+    let mut out: Vec<SphereCase> = scenario
+        .spheres
+        .iter()
+        .enumerate()
+        .map(|(i, s)| SphereCase {
+            id: s.id.clone().unwrap_or_else(|| format!("sphere-{i}")),
+            spec: s.clone(),
+            fall_height_m: None,
+        })
+        .collect();
+    for (i, c) in out.iter().enumerate() {
+        if let Some(j) = out[..i].iter().position(|o| o.id == c.id) {
+            return Err(ScenarioError::new(
+                scenario_path,
+                Some(&format!("spheres[{i}].id")),
+                format!(
+                    "`{}` is the id of spheres[{j}] already: allowed one sphere per id",
+                    c.id
+                ),
+            ));
+        }
+    }
+    if let Some(src) = &scenario.spheres_csv {
+        let base = scenario_path.parent().unwrap_or(Path::new("."));
+        let input = CsvInput {
+            scenario_path,
+            key: "spheres_csv.path",
+            csv_path: base.join(&src.path),
+        };
+        let (mut rdr, header) = input.open()?;
+        let cols = sphere_columns(&input, &header)?;
+        let mut seen: HashMap<String, u64> = HashMap::new();
+        let mut kept = 0;
+        for rec in rdr.records() {
+            let rec = rec.map_err(|e| input.err(e))?;
+            let (id, spec, row) = sphere_row(&input, &header, &cols, &rec)?;
+            if let Some(first) = seen.insert(id.clone(), row) {
+                return Err(input.err(format!(
+                    "row {row}: sphere id `{id}` is already the id of row {first}: allowed one row per id"
+                )));
+            }
+            if src.suspension.is_some() && spec.suspension != src.suspension {
+                continue;
+            }
+            if out.iter().any(|o| o.id == id) {
+                return Err(input.err(format!(
+                    "row {row}: sphere id `{id}` is already the id of an inline [[spheres]] table: allowed one sphere per id"
+                )));
+            }
+            super::check_sphere(
+                scenario_path,
+                &format!("spheres_csv `{}` row {row}", input.csv_path.display()),
+                &spec,
+                scenario,
+            )?;
+            kept += 1;
+            out.push(SphereCase {
+                id,
+                spec,
+                fall_height_m: None,
+            });
+        }
+        if kept == 0 {
+            return Err(input.err(format!(
+                "has no sphere{}",
+                src.suspension
+                    .map(|s| format!(" of suspension {s}"))
+                    .unwrap_or_default()
+            )));
+        }
+    }
+    if !scenario.release.fall_heights_m.is_empty() {
+        out = out
+            .iter()
+            .flat_map(|c| {
+                scenario
+                    .release
+                    .fall_heights_m
+                    .iter()
+                    .map(move |h| SphereCase {
+                        id: format!("{}-H{}mm", c.id, (h * 1e3 * 10.0).round() / 10.0),
+                        spec: c.spec.clone(),
+                        fall_height_m: Some(*h),
+                    })
+            })
+            .collect();
+    }
+    Ok(out)
+}
+
+/// Columns of the sample CSV, in the order of the data file.
+const SAMPLE_COLUMNS: [&str; 3] = ["sample", "diameter_m", "percent_finer"];
+
+/// Reads and checks the grain-size distribution of a sedimentation scenario's `[sample]`:
+/// sample `sample.sample` of the CSV `sample.csv` (relative to `scenario_path`'s folder) with
+/// columns `sample, diameter_m, percent_finer` (any order; no other column). Every row must hold
+/// a whole sample number ≥ 0, a diameter > 0 m and a percent finer within [0, 100]; the rows of
+/// the chosen sample (at least two) must have increasing diameters and non-decreasing percent
+/// finer. Errors (key `sample.csv`) name the CSV, the row and column (1-based) and the allowed
+/// range. The distribution is the one [`Distribution::load`] reads from a good file.
+pub fn read_sample(
+    sample: &SampleSpec,
+    scenario_path: &Path,
+) -> Result<Distribution, ScenarioError> {
+    let base = scenario_path.parent().unwrap_or(Path::new("."));
+    let input = CsvInput {
+        scenario_path,
+        key: "sample.csv",
+        csv_path: base.join(&sample.csv),
+    };
+    let (mut rdr, header) = input.open()?;
+    let mut cols = [usize::MAX; 3];
+    for (i, name) in header.iter().enumerate() {
+        match SAMPLE_COLUMNS.iter().position(|k| k == name) {
+            Some(k) if cols[k] == usize::MAX => cols[k] = i,
+            _ => {
+                return Err(input.err(format!(
+                    "column {} `{name}` is unknown or repeated: allowed columns {} (once each)",
+                    i + 1,
+                    SAMPLE_COLUMNS.join(", ")
+                )))
+            }
+        }
+    }
+    if let Some(k) = cols.iter().position(|&c| c == usize::MAX) {
+        return Err(input.err(format!(
+            "missing column `{}` (required: {})",
+            SAMPLE_COLUMNS[k],
+            SAMPLE_COLUMNS.join(", ")
+        )));
+    }
+    let mut points: Vec<(f64, f64, u64)> = Vec::new();
+    for rec in rdr.records() {
+        let rec = rec.map_err(|e| input.err(e))?;
+        let row = row_of(&rec);
+        let bad = |k: usize, x: f64, allowed: &str| {
+            input.err(format!(
+                "row {row}, column {} (`{}`): {x} is out of range: allowed {allowed}",
+                cols[k] + 1,
+                SAMPLE_COLUMNS[k]
+            ))
+        };
+        let n = input.required(&rec, &header, cols[0])?;
+        if !(n >= 0.0 && n.fract() == 0.0 && n <= u32::MAX as f64) {
+            return Err(bad(0, n, "a whole sample number ≥ 0"));
+        }
+        let d = input.required(&rec, &header, cols[1])?;
+        if !(d.is_finite() && d > 0.0) {
+            return Err(bad(1, d, "0 < diameter_m (m)"));
+        }
+        let f = input.required(&rec, &header, cols[2])?;
+        if !(0.0..=100.0).contains(&f) {
+            return Err(bad(2, f, "0 ≤ percent_finer ≤ 100 (%)"));
+        }
+        if n as u32 != sample.sample {
+            continue;
+        }
+        if let Some(&(d0, f0, r0)) = points.last() {
+            if d <= d0 {
+                return Err(bad(
+                    1,
+                    d,
+                    &format!("diameters increasing within a sample: > {d0} m of row {r0}"),
+                ));
+            }
+            if f < f0 {
+                return Err(bad(
+                    2,
+                    f,
+                    &format!("percent finer not decreasing within a sample: ≥ {f0} % of row {r0}"),
+                ));
+            }
+        }
+        points.push((d, f, row));
+    }
+    if points.len() < 2 {
+        return Err(input.err(format!(
+            "{} row(s) for sample {}: allowed at least two rows with sample = {} (key sample.sample)",
+            points.len(),
+            sample.sample,
+            sample.sample
+        )));
+    }
+    Ok(Distribution {
+        points: points.into_iter().map(|(d, f, _)| (d, f)).collect(),
+    })
+}

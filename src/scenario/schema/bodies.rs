@@ -1,0 +1,210 @@
+//! The container, the release and the spheres: `[container]`, `[release]`, `[[spheres]]`,
+//! `[spheres_csv]`.
+
+use super::super::check::{cc, oc, Check};
+use super::super::load::ScenarioError;
+use super::{Kind, Scenario};
+use serde::{Deserialize, Serialize};
+
+/// The container.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Container {
+    /// Height of the fluid column from the bottom to the free surface, m (> 0).
+    pub height_m: f64,
+    /// Diameter of a cylindrical container, m (3D only). Walls are not modelled in free settling.
+    #[serde(default)]
+    pub diameter_m: Option<f64>,
+    /// Width of a rectangular container, m (2D, or 3D square section).
+    #[serde(default)]
+    pub width_m: Option<f64>,
+}
+
+/// Release of the bodies.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq, Default)]
+#[serde(deny_unknown_fields)]
+pub struct Release {
+    /// Depth of the sphere's centre below the free surface at release, m. Default 0, which
+    /// means "just submerged": the centre at one radius below the surface.
+    #[serde(default)]
+    pub depth_m: f64,
+    /// Initial downward speed, m/s. Default 0 (from rest).
+    #[serde(default)]
+    pub velocity_m_s: f64,
+    /// Fall heights of the sphere's lowest point above the free surface, m (kind `drop`): every
+    /// sphere is dropped from each, from rest, as an independent case.
+    #[serde(default)]
+    pub fall_heights_m: Vec<f64>,
+}
+
+/// One sphere.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct SphereSpec {
+    /// Identifier in outputs. Default `sphere-<index>`.
+    #[serde(default)]
+    pub id: Option<String>,
+    /// Diameter d, m (0 < d ≤ 10).
+    pub diameter_m: f64,
+    /// Density ρ_p, kg/m³ (0 < ρ_p ≤ 25 000).
+    pub density_kg_m3: f64,
+    /// Young's modulus E, Pa (optional; for the Rayleigh time, f-EDEM eq. 22).
+    #[serde(default)]
+    pub youngs_modulus_pa: Option<f64>,
+    /// Poisson's ratio ν (optional; −1 < ν < 0.5).
+    #[serde(default)]
+    pub poisson_ratio: Option<f64>,
+    /// Measured terminal velocity, m/s (optional; compared in the summary).
+    #[serde(default)]
+    pub v_measured_m_s: Option<f64>,
+    /// Suspension or group number (optional; reported in the summary).
+    #[serde(default)]
+    pub suspension: Option<u32>,
+}
+
+/// Spheres from a CSV file, as `data/valentik_whitmore_1965_spheres.csv`. Its columns are named
+/// like the keys of `[[spheres]]`: `id`, `suspension`, `diameter_m`, `density_kg_m3`,
+/// `youngs_modulus_pa`, `poisson_ratio`, `v_measured_m_s`; the old names `sphere_id` and
+/// `v_terminal_measured_m_s` still read, and the reference columns `re_bingham_tabulated`,
+/// `cd_tabulated` are allowed and not read. Any other column is refused; an empty field is an
+/// absent optional value. See [`crate::scenario::inputs::spheres`].
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct SpheresCsv {
+    /// Path, relative to the scenario file.
+    pub path: String,
+    /// Keep only rows of this suspension (optional).
+    #[serde(default)]
+    pub suspension: Option<u32>,
+}
+
+impl Container {
+    /// Height, diameter (3D only) and width within (0, 10 km].
+    pub(crate) fn check(&self, c: &Check, dimension: u8) -> Result<(), ScenarioError> {
+        c.range("container.height_m", self.height_m, oc(0.0, 1e4, "m"))?;
+        if let Some(dia) = self.diameter_m {
+            if dimension == 2 {
+                return Err(c.err("container.diameter_m", "a cylinder is 3D-only: with dimension = 2 give container.width_m (the 2D projection of the cylinder)"));
+            }
+            c.range("container.diameter_m", dia, oc(0.0, 1e4, "m"))?;
+        }
+        if let Some(w) = self.width_m {
+            c.range("container.width_m", w, oc(0.0, 1e4, "m"))?;
+        }
+        Ok(())
+    }
+
+    /// The narrowest horizontal extent, m: the diameter of a cylinder, the width of a box (the
+    /// smaller if both are given), infinite if neither is.
+    pub fn narrowest_m(&self) -> f64 {
+        self.diameter_m
+            .unwrap_or(f64::INFINITY)
+            .min(self.width_m.unwrap_or(f64::INFINITY))
+    }
+}
+
+impl Release {
+    /// Depth and speed in range; fall heights for kind `drop` only, each reached by free fall
+    /// within `time.end_s`.
+    pub(crate) fn check(&self, c: &Check, s: &Scenario) -> Result<(), ScenarioError> {
+        c.table(
+            "release",
+            &[
+                ("depth_m", self.depth_m, cc(0.0, 1e4, "m")),
+                ("velocity_m_s", self.velocity_m_s, cc(0.0, 1e3, "m/s")),
+            ],
+        )?;
+        c.each(
+            "release.fall_heights_m",
+            &self.fall_heights_m,
+            cc(0.0, 1e4, "m"),
+        )?;
+        match s.kind {
+            Kind::Drop if self.fall_heights_m.is_empty() => {
+                return Err(c.err(
+                    "release.fall_heights_m",
+                    "missing: kind = \"drop\" needs at least one fall height ≥ 0 m",
+                ));
+            }
+            Kind::FreeSettling if !self.fall_heights_m.is_empty() => {
+                return Err(c.err("release.fall_heights_m", "only allowed with kind = \"drop\" (free_settling releases submerged spheres at release.depth_m)"));
+            }
+            _ => {}
+        }
+        // A ball still in the air at time.end_s has no settling distance (it would be written
+        // as minus the height left to fall). In air it falls freely (no fluid forces above the
+        // surface): h = v₀ T + ½ g T².
+        let (g, v0, end) = (s.gravity_m_s2, self.velocity_m_s, s.time.end_s);
+        let h_max = v0 * end + 0.5 * g * end * end;
+        for (i, &h) in self.fall_heights_m.iter().enumerate() {
+            if h >= h_max {
+                let t_fall = ((v0 * v0 + 2.0 * g * h).sqrt() - v0) / g;
+                return Err(c.err(
+                    &format!("release.fall_heights_m[{i}]"),
+                    format!(
+                        "{h} m takes {t_fall:.4} s of free fall to reach the surface, not within time.end_s = {end} s: allowed 0 ≤ fall height < {h_max:.6} m (v₀ T + ½ g T², T = time.end_s), or raise time.end_s"
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+impl SphereSpec {
+    /// Checks one sphere; `key` names it (`spheres[0]`, or a CSV row). Besides its own ranges:
+    /// narrower than the container and released above its bottom.
+    pub(crate) fn check(&self, c: &Check, key: &str, s: &Scenario) -> Result<(), ScenarioError> {
+        c.table(
+            key,
+            &[
+                ("diameter_m", self.diameter_m, oc(0.0, 10.0, "m")),
+                (
+                    "density_kg_m3",
+                    self.density_kg_m3,
+                    oc(0.0, 25_000.0, "kg/m³"),
+                ),
+            ],
+        )?;
+        if let Some(e) = self.youngs_modulus_pa {
+            c.range(&format!("{key}.youngs_modulus_pa"), e, oc(0.0, 1e13, "Pa"))?;
+        }
+        if let Some(nu) = self.poisson_ratio {
+            if !(nu > -1.0 && nu < 0.5) {
+                return Err(c.err(
+                    &format!("{key}.poisson_ratio"),
+                    format!("{nu} is out of range: allowed -1 < poisson_ratio < 0.5"),
+                ));
+            }
+        }
+        if let Some(v) = self.v_measured_m_s {
+            c.range(&format!("{key}.v_measured_m_s"), v, cc(0.0, 1e3, "m/s"))?;
+        }
+        if let Some(ct) = &s.container {
+            let (d, b) = (self.diameter_m, ct.narrowest_m());
+            if d >= b {
+                let which = if ct.diameter_m.is_some_and(|x| x <= b) {
+                    "container.diameter_m"
+                } else {
+                    "container.width_m"
+                };
+                return Err(c.err(
+                    &format!("{key}.diameter_m"),
+                    format!(
+                        "{d} m does not fit in the container: allowed 0 < diameter_m < {which} = {b} m"
+                    ),
+                ));
+            }
+            if s.release.depth_m + 0.5 * d > ct.height_m {
+                return Err(c.err(
+                    "release.depth_m",
+                    format!(
+                        "{} m puts {key} (d = {} m) below the container bottom at {} m",
+                        s.release.depth_m, d, ct.height_m
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,98 @@
+//! Kind `tilt_friction`: `[tilt]`.
+
+use super::super::super::check::{cc, oc, Check, MAX_STEPS};
+use super::super::super::load::ScenarioError;
+use super::super::Scenario;
+use serde::{Deserialize, Serialize};
+
+/// Tilt friction test (f-EDEM Appendix III): a cuboid block at rest on a fixed plate tilted by
+/// each angle (gravity is tilted instead of the plate: the same thing in the plate's frame).
+/// The contact friction is `contacts.friction`; the threshold angle is bracketed by the angles
+/// given and refined by bisection.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct TiltSpec {
+    /// Block edge lengths (x, y, z), m: x along the slope, z normal to the plate.
+    pub block_size_m: Vec<f64>,
+    /// Block density, kg/m³.
+    pub block_density_kg_m3: f64,
+    /// Tilt angles to test, degrees (0 ≤ angle < 90).
+    pub angles_deg: Vec<f64>,
+    /// Simulated time at each angle, s.
+    pub duration_s: f64,
+    /// Displacement along the slope after `duration_s` above which the block counts as sliding,
+    /// m. Default 1e-3.
+    #[serde(default = "default_slide_distance")]
+    pub slide_distance_m: f64,
+    /// The threshold angle is bisected until the bracket (largest sticking angle, smallest
+    /// sliding angle) is at most this wide, degrees. Default 0.1.
+    #[serde(default = "default_bisection_tolerance")]
+    pub bisection_tolerance_deg: f64,
+}
+
+fn default_slide_distance() -> f64 {
+    1e-3
+}
+
+fn default_bisection_tolerance() -> f64 {
+    0.1
+}
+
+impl TiltSpec {
+    /// Three edge lengths in (0, 10] m, density, at least one angle in [0°, 90°), a duration
+    /// of at least one step and at most [`MAX_STEPS`] steps, slide distance and bisection
+    /// tolerance in range.
+    pub(crate) fn check(&self, c: &Check, s: &Scenario) -> Result<(), ScenarioError> {
+        if self.block_size_m.len() != 3 {
+            return Err(c.err(
+                "tilt.block_size_m",
+                format!(
+                    "{} values: give the three edge lengths [x, y, z], each 0 < l ≤ 10 m",
+                    self.block_size_m.len()
+                ),
+            ));
+        }
+        c.each("tilt.block_size_m", &self.block_size_m, oc(0.0, 10.0, "m"))?;
+        c.range(
+            "tilt.block_density_kg_m3",
+            self.block_density_kg_m3,
+            oc(0.0, 25_000.0, "kg/m³"),
+        )?;
+        if self.angles_deg.is_empty() {
+            return Err(c.err(
+                "tilt.angles_deg",
+                "missing: give at least one angle, 0 ≤ angle < 90°",
+            ));
+        }
+        for (i, a) in self.angles_deg.iter().enumerate() {
+            if !(a.is_finite() && (0.0..90.0).contains(a)) {
+                return Err(c.err(
+                    &format!("tilt.angles_deg[{i}]"),
+                    format!("{a} is out of range: allowed 0 ≤ angle < 90°"),
+                ));
+            }
+        }
+        let dt = s.time.dt_s;
+        c.range(
+            "tilt.duration_s",
+            self.duration_s,
+            cc(dt, 1e4, "s (at least time.dt_s)"),
+        )?;
+        if self.duration_s / dt > MAX_STEPS {
+            return Err(c.err("time.dt_s", format!(
+                "{:.3e} steps per angle (tilt.duration_s/dt_s) exceed the limit of {MAX_STEPS:.0e}: raise dt_s",
+                self.duration_s / dt)));
+        }
+        c.table(
+            "tilt",
+            &[
+                ("slide_distance_m", self.slide_distance_m, oc(0.0, 1e3, "m")),
+                (
+                    "bisection_tolerance_deg",
+                    self.bisection_tolerance_deg,
+                    oc(0.0, 90.0, "°"),
+                ),
+            ],
+        )
+    }
+}
