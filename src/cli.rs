@@ -60,7 +60,8 @@ enum Command {
         /// and options come from DIR/checkpoint/request.toml).
         #[arg(long, value_name = "DIR", conflicts_with_all = ["scenarios", "out", "dt", "set"])]
         resume: Option<PathBuf>,
-        /// Run even if the cost estimate exceeds 24 h of wall time or 8 GB of memory.
+        /// Run even if the cost estimate exceeds 24 h of wall time, 8 GB of memory or 4 GB of
+        /// outputs.
         #[arg(long)]
         force: bool,
     },

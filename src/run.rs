@@ -449,11 +449,11 @@ fn prepare_all(req: &RunRequest) -> Result<Vec<Prepared>, RunError> {
                 ),
             )));
         }
-        let cost =
-            scenario::cost::check(&p.scenario, &p.path, req.force).map_err(RunError::Scenario)?;
+        let cost = scenario::cost::estimate(&p.scenario);
         if !req.quiet && cost.is_long() {
             eprintln!("{}: {}", p.path.display(), cost.describe());
         }
+        scenario::cost::check(&p.scenario, &p.path, req.force).map_err(RunError::Scenario)?;
     }
     Ok(prepared)
 }
