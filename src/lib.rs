@@ -15,7 +15,7 @@
 //! | 2 engine | [`engine`] | the Rapier worlds |
 //! | 3 scenario | [`scenario`] | schema, loading, validation, input files, cost |
 //! | 4 scenes | [`scenes`] (and the writers of [`output`] moving into them) | one folder per kind, and the scene API ([`scenes::Prepared`], [`scenes::RunContext`], [`scenes::SceneReport`]) |
-//! | 5 application | [`run`], [`sweep`], [`bench`], [`cli`] | the commands |
+//! | 5 application | [`run`], [`sweep`], [`bench`](mod@bench), [`cli`] | the commands |
 
 pub mod bench;
 pub mod checkpoint;
