@@ -2,12 +2,13 @@
 //! run on one machine: our integrator step against the analytic floor, large against small dt.
 
 use crate::dynamics::{advance, Integrator};
+use crate::error::Error;
 use crate::fluid::{sphere_mass_kg, DragLaw, SphereDrag};
 use crate::run::{prepare, Prepared};
 use crate::scenes::free_settling::{self, RunOptions};
 use nalgebra::Vector3;
 use std::hint::black_box;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// One benchmark figure.
@@ -32,7 +33,32 @@ fn fig(b: &str, q: &str, v: f64, u: &str) -> Figure {
     }
 }
 
-fn valentik(root: &Path) -> Result<Vec<Prepared>, String> {
+/// The project folder holding `scenarios/` (the benchmarks run its scenario files): the current
+/// directory if it holds them, else the folder this binary was built from. An I/O or
+/// environment error naming both if neither does.
+pub fn project_root() -> Result<PathBuf, Error> {
+    let probe = Path::new("scenarios/valentik_susp1.toml");
+    let cwd = std::env::current_dir().unwrap_or_else(|_| PathBuf::from("."));
+    let built = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    for root in [&cwd, &built] {
+        if root.join(probe).is_file() {
+            return Ok(root.clone());
+        }
+    }
+    Err(Error::Io(
+        cwd.join(probe),
+        std::io::Error::new(
+            std::io::ErrorKind::NotFound,
+            format!(
+                "the benchmark scenarios are neither here nor in {} (the source folder settle \
+                 was built from)",
+                built.display()
+            ),
+        ),
+    ))
+}
+
+fn valentik(root: &Path) -> Result<Vec<Prepared>, Error> {
     (1..=6)
         .map(|n| {
             prepare(
@@ -40,7 +66,7 @@ fn valentik(root: &Path) -> Result<Vec<Prepared>, String> {
                 None,
                 &[],
             )
-            .map_err(|e| e.to_string())
+            .map_err(Error::Scenario)
         })
         .collect()
 }
@@ -61,7 +87,7 @@ fn run_all(ps: &[Prepared], dt: f64, integ: Integrator) -> (f64, u64) {
 }
 
 /// Runs the benchmarks; `root` is the project folder (for the scenario files).
-pub fn run(root: &Path, quick: bool) -> Result<Vec<Figure>, String> {
+pub fn run(root: &Path, quick: bool) -> Result<Vec<Figure>, Error> {
     let mut out = Vec::new();
 
     // 1. Integrator step cost against the analytic floor (Stokes sphere of f-EDEM Table 1).
@@ -164,8 +190,8 @@ pub fn run(root: &Path, quick: bool) -> Result<Vec<Figure>, String> {
     ));
 
     // 4. Paste drops: 18 balls, dt = 1e-3 s (the recommended step) against f-EDEM's 5e-6 s.
-    let paste = prepare(&root.join("scenarios/paste_single_ball.toml"), None, &[])
-        .map_err(|e| e.to_string())?;
+    let paste_file = root.join("scenarios/paste_single_ball.toml");
+    let paste = prepare(&paste_file, None, &[]).map_err(Error::Scenario)?;
     for dt in [1e-3, 5e-6] {
         let t0 = Instant::now();
         let opts = RunOptions {
@@ -173,8 +199,8 @@ pub fn run(root: &Path, quick: bool) -> Result<Vec<Figure>, String> {
             integrator: Integrator::Exponential,
             timeseries: false,
         };
-        let r =
-            free_settling::run(&paste.scenario, &paste.spheres, opts).map_err(|e| e.to_string())?;
+        let r = free_settling::run(&paste.scenario, &paste.spheres, opts)
+            .map_err(|u| Error::Unstable(paste_file.clone(), u))?;
         let steps: u64 = r.iter().map(|x| x.steps).sum();
         out.push(fig(
             "paste_18_drops",
@@ -206,8 +232,8 @@ pub fn run(root: &Path, quick: bool) -> Result<Vec<Figure>, String> {
             None,
             &ov,
         )
-        .map_err(|e| e.to_string())?;
-        let su = crate::scenes::sedimentation::setup(&p.scenario, &p.path)?;
+        .map_err(Error::Scenario)?;
+        let su = crate::scenes::sedimentation::setup(&p.scenario, &p.path).map_err(Error::Other)?;
         let t0 = Instant::now();
         let st = crate::scenes::sedimentation::simulate(&p.scenario, &su, |_| {}, |_| {});
         let name = format!("sedimentation_sample5_{physics}");
@@ -245,11 +271,13 @@ pub fn run(root: &Path, quick: bool) -> Result<Vec<Figure>, String> {
         let t0 = Instant::now();
         let mut cases = 0;
         for p in &ps {
-            let sw = p
-                .scenario
-                .sweep
-                .as_ref()
-                .ok_or("valentik scenario without [sweep]")?;
+            let sw = p.scenario.sweep.as_ref().ok_or_else(|| {
+                Error::bad_input(
+                    &p.path,
+                    Some("sweep"),
+                    "missing: the benchmark sweeps its dt",
+                )
+            })?;
             let grid = crate::sweep::grid(&Integrator::ALL, &sw.dt_s);
             cases += grid.len();
             let mut rows = crate::sweep::run_cases(p, &grid).map_err(|e| e.to_string())?;

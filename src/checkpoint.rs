@@ -21,6 +21,7 @@
 //!
 //! Format: bincode 1 (compact and exact for f64, as Rapier's own testbed snapshots use it).
 
+use crate::error::Error;
 use serde::{de::DeserializeOwned, Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -47,7 +48,7 @@ pub struct Header {
 /// The request of a checkpointed run (`OUT/checkpoint/request.toml`).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct SavedRequest {
-    /// Scenario files, as given.
+    /// Scenario files, as absolute paths (so that `--resume` works from any directory).
     pub files: Vec<PathBuf>,
     /// `--set` overrides.
     pub overrides: Vec<String>,
@@ -124,30 +125,27 @@ impl Checkpoints {
         };
         let mut bytes = bincode::serialize(&header).map_err(std::io::Error::other)?;
         bincode::serialize_into(&mut bytes, state).map_err(std::io::Error::other)?;
-        crate::output::write_atomic(&self.file(scenario, part), &bytes)
+        crate::io::write_atomic(&self.file(scenario, part), &bytes)
     }
 
-    /// Reads the state of part `part` of scenario `scenario`: `Ok(None)` if there is none, an
-    /// error naming the file if it is unreadable or was written by another format, settle
-    /// version or scenario.
+    /// Reads the state of part `part` of scenario `scenario`: `Ok(None)` if there is none; an
+    /// I/O error if it is unreadable; bad input naming the file if it was written by another
+    /// format, settle version or scenario.
     pub fn load<T: DeserializeOwned>(
         &self,
         scenario: &str,
         part: &str,
-    ) -> Result<Option<T>, String> {
+    ) -> Result<Option<T>, Error> {
         let path = self.file(scenario, part);
         let bytes = match std::fs::read(&path) {
             Ok(b) => b,
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
-            Err(e) => {
-                return Err(format!(
-                    "{}: cannot read the checkpoint: {e}",
-                    path.display()
-                ))
-            }
+            Err(e) => return Err(Error::Io(path, e)),
         };
         let mut reader = bytes.as_slice();
-        let bad = |what: String| format!("{}: {what}; delete it to start afresh", path.display());
+        let bad = |what: String| {
+            Error::bad_input(&path, None, format!("{what}; delete it to start afresh"))
+        };
         let header: Header = bincode::deserialize_from(&mut reader)
             .map_err(|e| bad(format!("not a settle checkpoint ({e})")))?;
         if header.format_version != FORMAT_VERSION
@@ -176,24 +174,47 @@ impl Checkpoints {
     pub fn save_request(&self, req: &SavedRequest) -> std::io::Result<()> {
         std::fs::create_dir_all(&self.dir)?;
         let text = toml::to_string(req).map_err(std::io::Error::other)?;
-        crate::output::write_atomic(&self.dir.join("request.toml"), text.as_bytes())
+        crate::io::write_atomic(&self.dir.join("request.toml"), text.as_bytes())
     }
 
-    /// Reads the request saved in `out_dir/checkpoint/request.toml`.
-    pub fn load_request(out_dir: &Path) -> Result<SavedRequest, String> {
+    /// Reads the request saved in `out_dir/checkpoint/request.toml`; a folder without one is a
+    /// bad `--resume` argument.
+    pub fn load_request(out_dir: &Path) -> Result<SavedRequest, Error> {
         let path = out_dir.join(DIR_NAME).join("request.toml");
         let text = std::fs::read_to_string(&path).map_err(|e| {
-            format!(
-                "{}: cannot resume: no checkpointed run here ({e})",
-                path.display()
+            Error::bad_argument(
+                "--resume",
+                out_dir,
+                format!(
+                    "cannot resume: no checkpointed run here ({}: {e})",
+                    path.display()
+                ),
             )
         })?;
-        toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
+        toml::from_str(&text).map_err(|e| Error::bad_input(&path, None, e.message().to_string()))
     }
 
-    /// Removes the checkpoint folder (the request completed).
+    /// Removes what settle wrote in the checkpoint folder (`request.toml`, `*.bin` and their
+    /// temporary files), then the folder if that leaves it empty: files a user put there stay.
     pub fn clear(&self) -> std::io::Result<()> {
-        match std::fs::remove_dir_all(&self.dir) {
+        let entries = match std::fs::read_dir(&self.dir) {
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
+            r => r?,
+        };
+        for entry in entries.flatten() {
+            let name = entry.file_name();
+            let name = name.to_string_lossy();
+            let ours = name == "request.toml"
+                || name.ends_with(".bin")
+                || name.ends_with(".bin.tmp")
+                || name == "request.toml.tmp";
+            if ours && entry.file_type().is_ok_and(|t| t.is_file()) {
+                std::fs::remove_file(entry.path())?;
+            }
+        }
+        match std::fs::remove_dir(&self.dir) {
+            // Not empty: a user's file is in it; keep it.
+            Err(e) if e.kind() == std::io::ErrorKind::DirectoryNotEmpty => Ok(()),
             Err(e) if e.kind() != std::io::ErrorKind::NotFound => Err(e),
             _ => Ok(()),
         }
@@ -247,14 +268,20 @@ mod tests {
             dir.path().join("checkpoint/other.state.bin"),
         )
         .unwrap();
-        let err = c.load::<(Vec<f64>, u64)>("other", "state").unwrap_err();
+        let err = c
+            .load::<(Vec<f64>, u64)>("other", "state")
+            .unwrap_err()
+            .to_string();
         assert!(
             err.contains("other.state.bin") && err.contains("expected `other`"),
             "{err}"
         );
         // Garbage is refused, not a panic.
         std::fs::write(dir.path().join("checkpoint/bad.state.bin"), b"\x01\x02").unwrap();
-        let err = c.load::<(Vec<f64>, u64)>("bad", "state").unwrap_err();
+        let err = c
+            .load::<(Vec<f64>, u64)>("bad", "state")
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("not a settle checkpoint"), "{err}");
         c.clear().unwrap();
         assert!(!dir.path().join("checkpoint").exists());

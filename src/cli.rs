@@ -6,8 +6,13 @@ use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 
 /// Simulate solid particles settling in Newtonian and Bingham fluids.
+///
+/// Exit codes: 0 success; 2 bad input (a scenario, an input file or a command-line argument;
+/// nothing was run or written); 3 unstable run (nothing was written); 4 I/O or environment (a
+/// file or folder could not be read or written); 130 interrupted by Ctrl-C or SIGTERM (what was
+/// done is in the output folder).
 #[derive(Parser, Debug)]
-#[command(name = "settle", version, about, long_about = None)]
+#[command(name = "settle", version, about)]
 pub struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -21,7 +26,12 @@ enum Command {
     /// (velocities at [measure].velocity_at_s), metrics.csv and terminal_velocity.svg (when
     /// measured velocities exist), and run.toml (effective parameters, version, dt, steps, wall
     /// time). With several files, OUT/combined/ holds the joint summary and metrics.
-    /// Exit codes: 0 success, 2 bad input (nothing written), 3 unstable run (nothing written).
+    /// Exit codes: 0 success, 2 bad input (nothing written), 3 unstable run (nothing written),
+    /// 4 I/O or environment, 130 interrupted.
+    ///
+    /// OUT/NAME/ is settle's: a rerun replaces the files settle wrote there (listed in its
+    /// .settle-run file) and keeps any other; a folder settle did not create is never replaced
+    /// (exit 2). The names `checkpoint` and `combined` are reserved.
     ///
     /// Long runs: --checkpoint-every SECONDS saves the state of the sedimentation cylinder and of
     /// each funnel-pour repeat to OUT/checkpoint/ (also on Ctrl-C/SIGTERM, exit 130), and
@@ -50,7 +60,8 @@ enum Command {
         /// and options come from DIR/checkpoint/request.toml).
         #[arg(long, value_name = "DIR", conflicts_with_all = ["scenarios", "out", "dt", "set"])]
         resume: Option<PathBuf>,
-        /// Run even if the cost estimate exceeds 24 h of wall time or 8 GB of memory.
+        /// Run even if the cost estimate exceeds 24 h of wall time, 8 GB of memory or 4 GB of
+        /// outputs.
         #[arg(long)]
         force: bool,
     },
@@ -93,7 +104,7 @@ pub fn main() -> i32 {
                 eprintln!(
                     "error: --checkpoint-every {every} is out of range: allowed > 0 s of wall time"
                 );
-                return 2;
+                return crate::error::EXIT_BAD_INPUT;
             }
             let req = RunRequest {
                 files: scenarios,
@@ -124,11 +135,12 @@ pub fn main() -> i32 {
             }
         }
         Command::Bench { out, quick } => {
-            let figs = match crate::bench::run(std::path::Path::new("."), quick) {
+            let figs = match crate::bench::project_root().and_then(|r| crate::bench::run(&r, quick))
+            {
                 Ok(f) => f,
                 Err(e) => {
                     eprintln!("error: {e}");
-                    return 1;
+                    return e.exit_code();
                 }
             };
             for f in &figs {
@@ -141,8 +153,9 @@ pub fn main() -> i32 {
             if let Err(e) =
                 std::fs::create_dir_all(&out).and_then(|_| crate::bench::write(&path, &figs))
             {
-                eprintln!("error: {}: {e}", path.display());
-                return 1;
+                let e = crate::error::Error::Io(path, e);
+                eprintln!("error: {e}");
+                return e.exit_code();
             }
             println!("-> {}", path.display());
             0

@@ -3,6 +3,19 @@
 //! Solid particles settling in Newtonian and Bingham fluids. Fluid forces (buoyancy, drag,
 //! yield-stress drag) act as body forces on the particles of a DEM scene, after f-EDEM
 //! (Zhang & Li 2024) and the one-way coupled hydrometer DEM of seed 000.
+//!
+//! # Layers
+//!
+//! Each layer imports only from the layers above it in this table:
+//!
+//! | layer | modules | what |
+//! |---|---|---|
+//! | 0 infrastructure | [`error`], [`io`], [`checkpoint`], [`interrupt`], [`progress`] | the error type and exit codes, staged output folders, atomic writes, charts, checkpoints, interruption, progress bars; no domain types |
+//! | 1 physics | [`fluid`], [`contact`], [`dynamics`], [`sample`], [`instruments`] | pure functions with their equations: no I/O, no Rapier |
+//! | 2 engine | [`engine`] | the Rapier worlds |
+//! | 3 scenario | [`scenario`] | schema, loading, validation, input files, cost |
+//! | 4 scenes | [`scenes`] (and the writers of [`output`] moving into them) | one folder per kind, and the scene API ([`scenes::Prepared`], [`scenes::RunContext`], [`scenes::SceneReport`]) |
+//! | 5 application | [`run`], [`sweep`], [`bench`](mod@bench), [`cli`] | the commands |
 
 pub mod bench;
 pub mod checkpoint;
@@ -10,9 +23,11 @@ pub mod cli;
 pub mod contact;
 pub mod dynamics;
 pub mod engine;
+pub mod error;
 pub mod fluid;
 pub mod instruments;
 pub mod interrupt;
+pub mod io;
 pub mod output;
 pub mod progress;
 pub mod run;

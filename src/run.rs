@@ -1,14 +1,28 @@
 //! Running scenario files: load and validate all of them first (so bad input writes nothing),
-//! run each, stage its outputs and move them into place only on success.
+//! check that every destination folder may be written (settle's own, or new) and estimate the
+//! cost, then run each, stage its outputs and move them into place only on success.
 
-use crate::dynamics::Unstable;
-use crate::output::{self, StagedDir};
+use crate::error::Error;
+use crate::io::{self as output, StagedDir};
 use crate::scenario::{self, EngineChoice, Kind, Scenario, ScenarioError};
 use crate::scenes::free_settling::{self, output as out_fs};
 use crate::scenes::spheres;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
+
+pub use crate::scenes::{Prepared, RunContext, SceneReport};
+
+/// Why a run failed: the crate's one error type (kept under this name for the scenes).
+pub type RunError = Error;
+
+/// Scenario names refused because the layout of the output folder uses them: `checkpoint`
+/// (the checkpoints of a long run) and `combined` (the joint summary of a several-file run).
+pub const RESERVED_NAMES: &[&str] = &[crate::checkpoint::DIR_NAME, "combined"];
+
+/// Longest scenario name, bytes: the name is a folder name, and its staging folder
+/// `.NAME.partial-PID` must stay within the 255 bytes a file name may have.
+pub const MAX_NAME_BYTES: usize = 200;
 
 /// What `settle run` was asked to do.
 #[derive(Clone, Debug, Default)]
@@ -26,80 +40,42 @@ pub struct RunRequest {
     /// Continue the checkpointed run in `out_dir` (`--resume`); files, overrides, dt and period
     /// then come from its `checkpoint/request.toml`.
     pub resume: bool,
-    /// Run even if the cost estimate exceeds the time or soft memory limit (`--force`).
+    /// Run even if the cost estimate exceeds the time, memory or disk limit (`--force`).
     pub force: bool,
-    /// No progress bars.
+    /// No progress bars and no cost line.
     pub quiet: bool,
 }
 
-/// How a run is carried out beyond its scenario: checkpoints, resumption, progress display.
-#[derive(Clone, Debug, Default)]
-pub struct RunContext {
-    /// Where and how often to write checkpoints (None: never, not even on interruption).
-    pub checkpoints: Option<crate::checkpoint::Checkpoints>,
-    /// Continue from the checkpoints found there (`--resume`).
-    pub resume: bool,
-    /// No progress bar.
-    pub quiet: bool,
-}
-
-/// Why a run failed; [`RunError::exit_code`] maps it to the process exit code.
-#[derive(Debug)]
-pub enum RunError {
-    /// Bad input (exit 2).
-    Scenario(ScenarioError),
-    /// The run went unstable (exit 3).
-    Unstable(PathBuf, Unstable),
-    /// Could not write outputs (exit 1).
-    Io(PathBuf, std::io::Error),
-    /// Stopped by Ctrl-C/SIGTERM; what was done is in the folder (exit 130).
-    Interrupted(PathBuf),
-    /// Anything else (exit 1).
-    Other(String),
-}
-
-impl RunError {
-    /// Process exit code: 2 bad input, 3 unstable, 1 other.
-    pub fn exit_code(&self) -> i32 {
-        match self {
-            Self::Scenario(_) => 2,
-            Self::Unstable(..) => 3,
-            Self::Interrupted(_) => 130,
-            _ => 1,
-        }
-    }
-}
-
-impl std::fmt::Display for RunError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            Self::Scenario(e) => write!(f, "{e}"),
-            Self::Unstable(p, u) => write!(f, "{}: {u}; nothing was written", p.display()),
-            Self::Io(p, e) => write!(f, "{}: cannot write outputs: {e}", p.display()),
-            Self::Interrupted(p) => write!(
-                f,
-                "interrupted: what was simulated so far is in {} (run.toml status = \"interrupted\")",
-                p.display()
+/// Refuses names the output layout reserves ([`RESERVED_NAMES`]) and names too long for a
+/// folder ([`MAX_NAME_BYTES`]).
+fn check_name(s: &Scenario, path: &Path) -> Result<(), ScenarioError> {
+    if RESERVED_NAMES.contains(&s.name.as_str()) {
+        return Err(ScenarioError::new(
+            path,
+            Some("name"),
+            format!(
+                "`{}` is reserved (settle writes OUT/{}/ itself): choose another name; reserved: {}",
+                s.name,
+                s.name,
+                RESERVED_NAMES.join(", ")
             ),
-            Self::Other(m) => write!(f, "{m}"),
-        }
+        ));
     }
+    if s.name.len() > MAX_NAME_BYTES {
+        return Err(ScenarioError::new(
+            path,
+            Some("name"),
+            format!(
+                "{} bytes long: allowed at most {MAX_NAME_BYTES} (it names the output folder)",
+                s.name.len()
+            ),
+        ));
+    }
+    Ok(())
 }
 
-impl std::error::Error for RunError {}
-
-/// A loaded scenario ready to run.
-#[derive(Clone, Debug)]
-pub struct Prepared {
-    /// The file.
-    pub path: PathBuf,
-    /// The effective scenario (overrides applied).
-    pub scenario: Scenario,
-    /// Its spheres.
-    pub spheres: Vec<spheres::SphereCase>,
-}
-
-/// Loads and validates a scenario with the request's overrides (`--dt` is `time.dt_s`).
+/// Loads and validates a scenario with the request's overrides (`--dt` is `time.dt_s`), and
+/// refuses reserved and over-long names.
 pub fn prepare(
     path: &Path,
     dt_s: Option<f64>,
@@ -117,6 +93,7 @@ pub fn prepare(
         ov.push(format!("time.dt_s={dt:e}"));
     }
     let scenario = scenario::load(path, &ov)?;
+    check_name(&scenario, path)?;
     let spheres = spheres::spheres(&scenario, path)?;
     Ok(Prepared {
         path: path.to_path_buf(),
@@ -165,29 +142,13 @@ struct RunToml<'a> {
     scenario: &'a Scenario,
 }
 
-/// Which engine a scenario runs on after `auto` is resolved.
+/// Which engine a scenario runs on after `auto` is resolved: `free` or `rapier`.
 pub fn engine_name(s: &Scenario) -> &'static str {
     match (s.kind, s.engine) {
         (_, EngineChoice::Rapier) => "rapier",
         (Kind::FreeSettling | Kind::Drop | Kind::Sedimentation, _) => "free",
         (Kind::RestitutionDrop | Kind::TiltFriction | Kind::FunnelPour, _) => "rapier",
     }
-}
-
-/// What a scene of a contact kind (restitution drop, tilt, funnel pour) reports to `run_one`
-/// after writing its own files into the staging folder.
-#[derive(Clone, Debug, Default)]
-pub struct SceneReport {
-    /// Total steps over all worlds.
-    pub steps: u64,
-    /// Number of bodies (over all worlds).
-    pub bodies: usize,
-    /// Rapier settings used (recorded in run.toml).
-    pub engine_settings: Option<crate::engine::EngineSettings>,
-    /// Lines printed after the run (a short human-readable summary).
-    pub lines: Vec<String>,
-    /// The run stopped early on Ctrl-C/SIGTERM (outputs hold what was done).
-    pub interrupted: bool,
 }
 
 /// Runs one prepared scenario and writes its outputs under `out_dir` (no checkpoints, no
@@ -210,9 +171,10 @@ pub fn run_one_with(
     ctx: &RunContext,
 ) -> Result<FileReport, RunError> {
     let s = &p.scenario;
-    let io = |e: std::io::Error| RunError::Io(p.path.clone(), e);
     let t0 = Instant::now();
-    let stage = StagedDir::new(out_dir, &s.name).map_err(io)?;
+    let stage =
+        StagedDir::new(out_dir, &s.name).map_err(|e| RunError::Io(out_dir.join(&s.name), e))?;
+    let io = |e: std::io::Error| RunError::Io(stage.dest().to_path_buf(), e);
     let (results, report) = match s.kind {
         Kind::FreeSettling | Kind::Drop => free_settling::run_scene(p, &stage)?,
         Kind::RestitutionDrop => (Vec::new(), crate::scenes::restitution_drop::run(p, &stage)?),
@@ -244,9 +206,9 @@ pub fn run_one_with(
         engine_settings: report.engine_settings,
         scenario: s,
     };
-    let text = toml::to_string(&meta).map_err(|e| RunError::Other(e.to_string()))?;
+    let text = toml::to_string(&meta).map_err(|e| io(std::io::Error::other(e)))?;
     output::write_atomic(&stage.path("run.toml"), text.as_bytes()).map_err(io)?;
-    let out = stage.commit().map_err(io)?;
+    let out = commit(stage, &p.path)?;
     if report.interrupted {
         return Err(RunError::Interrupted(out));
     }
@@ -259,44 +221,33 @@ pub fn run_one_with(
     })
 }
 
-/// Runs every file of a request. All files are validated, and their cost estimated
-/// ([`crate::scenario::cost`]), before any runs; with several files a combined `summary.csv` and
-/// `metrics.csv` go to `out_dir/combined/`. Checkpoints go to `out_dir/checkpoint/` (every
-/// `checkpoint_every_s`, and when interrupted) and are removed once every file has completed.
+/// Moves a staged folder into place; a destination settle may not replace (a folder it did not
+/// create, or a user's file in the way) is bad input naming the scenario file's key `name`.
+fn commit(stage: StagedDir, file: &Path) -> Result<PathBuf, RunError> {
+    let dest = stage.dest().to_path_buf();
+    stage.commit().map_err(|e| {
+        if e.kind() == std::io::ErrorKind::AlreadyExists {
+            RunError::bad_input(
+                file,
+                Some("name"),
+                format!("{e}; choose another --out or another name"),
+            )
+        } else {
+            RunError::Io(dest, e)
+        }
+    })
+}
+
+/// Runs every file of a request. All files are validated, their destinations checked
+/// ([`check_destinations`]) and their cost estimated ([`crate::scenario::cost`]) before any
+/// runs; with several files a combined `summary.csv` and `metrics.csv` go to
+/// `out_dir/combined/`. Checkpoints go to `out_dir/checkpoint/` (every `checkpoint_every_s`, and
+/// when interrupted) and are removed once every file has completed.
 pub fn run_files(req: &RunRequest) -> Result<Vec<FileReport>, RunError> {
     use crate::checkpoint::{Checkpoints, SavedRequest};
-    let mut req = req.clone();
-    let saved = if req.resume {
-        let saved = Checkpoints::load_request(&req.out_dir).map_err(RunError::Other)?;
-        req.files = saved.files.clone();
-        req.overrides = saved.overrides.clone();
-        req.dt_s = saved.dt_s;
-        req.checkpoint_every_s = req.checkpoint_every_s.or(saved.checkpoint_every_s);
-        req.force |= saved.force;
-        Some(saved)
-    } else {
-        None
-    };
-    let prepared: Vec<Prepared> = req
-        .files
-        .iter()
-        .map(|f| prepare(f, req.dt_s, &req.overrides))
-        .collect::<Result<_, _>>()
-        .map_err(RunError::Scenario)?;
-    let mut names = std::collections::HashSet::new();
-    for p in &prepared {
-        if !names.insert(p.scenario.name.clone()) {
-            return Err(RunError::Scenario(ScenarioError::new(
-                &p.path,
-                Some("name"),
-                format!(
-                    "`{}` is used by another scenario of this run: names must be unique",
-                    p.scenario.name
-                ),
-            )));
-        }
-        scenario::cost::check(&p.scenario, &p.path, req.force).map_err(RunError::Scenario)?;
-    }
+    let (req, saved) = resolve_resume(req)?;
+    let prepared = prepare_all(&req)?;
+    check_destinations(&req.out_dir, &prepared)?;
     let fingerprints: Vec<String> = prepared
         .iter()
         .map(|p| toml::to_string(&p.scenario).unwrap_or_default())
@@ -307,17 +258,23 @@ pub fn run_files(req: &RunRequest) -> Result<Vec<FileReport>, RunError> {
     match &saved {
         Some(saved) => {
             if saved.scenarios != fingerprints {
-                return Err(RunError::Other(format!(
-                    "{}: cannot resume: the scenario files changed since the checkpoint (run them \
+                return Err(RunError::bad_input(
+                    &ck_dir.join("request.toml"),
+                    None,
+                    "cannot resume: the scenario files changed since the checkpoint (run them \
                      afresh, without --resume)",
-                    ck_dir.join("request.toml").display()
-                )));
+                ));
             }
         }
         None => {
             checkpoints.clear().map_err(io_ck)?;
+            let files = req
+                .files
+                .iter()
+                .map(|f| std::path::absolute(f).unwrap_or_else(|_| f.clone()))
+                .collect();
             checkpoints = checkpoints.with_request(SavedRequest {
-                files: req.files.clone(),
+                files,
                 overrides: req.overrides.clone(),
                 dt_s: req.dt_s,
                 checkpoint_every_s: req.checkpoint_every_s,
@@ -353,9 +310,97 @@ pub fn run_files(req: &RunRequest) -> Result<Vec<FileReport>, RunError> {
     Ok(reports)
 }
 
+/// The request itself, or with `--resume` the request saved in `OUT/checkpoint/request.toml`
+/// (scenario files as absolute paths, so a resume works from any directory).
+fn resolve_resume(
+    req: &RunRequest,
+) -> Result<(RunRequest, Option<crate::checkpoint::SavedRequest>), RunError> {
+    let mut req = req.clone();
+    if !req.resume {
+        return Ok((req, None));
+    }
+    let saved = crate::checkpoint::Checkpoints::load_request(&req.out_dir)?;
+    req.files = saved.files.clone();
+    req.overrides = saved.overrides.clone();
+    req.dt_s = saved.dt_s;
+    req.checkpoint_every_s = req.checkpoint_every_s.or(saved.checkpoint_every_s);
+    req.force |= saved.force;
+    Ok((req, Some(saved)))
+}
+
+/// Prepares every file, refuses duplicate names, and checks each cost (printing the estimate of
+/// a long run on stderr unless quiet).
+fn prepare_all(req: &RunRequest) -> Result<Vec<Prepared>, RunError> {
+    let prepared: Vec<Prepared> = req
+        .files
+        .iter()
+        .map(|f| prepare(f, req.dt_s, &req.overrides))
+        .collect::<Result<_, _>>()
+        .map_err(RunError::Scenario)?;
+    let mut names = std::collections::HashSet::new();
+    for p in &prepared {
+        if !names.insert(p.scenario.name.clone()) {
+            return Err(RunError::Scenario(ScenarioError::new(
+                &p.path,
+                Some("name"),
+                format!(
+                    "`{}` is used by another scenario of this run: names must be unique",
+                    p.scenario.name
+                ),
+            )));
+        }
+        let cost = scenario::cost::estimate(&p.scenario);
+        if !req.quiet && cost.is_long() {
+            eprintln!("{}: {}", p.path.display(), cost.describe());
+        }
+        scenario::cost::check(&p.scenario, &p.path, req.force).map_err(RunError::Scenario)?;
+    }
+    Ok(prepared)
+}
+
+/// Refuses, before anything runs, an output folder that is a file, and a destination
+/// `OUT/NAME/` (or `OUT/combined/`) that settle did not create: settle never deletes or replaces
+/// a folder it did not make.
+pub fn check_destinations(out_dir: &Path, prepared: &[Prepared]) -> Result<(), RunError> {
+    if out_dir.exists() && !out_dir.is_dir() {
+        return Err(RunError::bad_argument(
+            "--out",
+            out_dir,
+            "exists and is not a folder: give a folder (it is created if absent)",
+        ));
+    }
+    let mut dests: Vec<(PathBuf, &Path)> = prepared
+        .iter()
+        .map(|p| (out_dir.join(&p.scenario.name), p.path.as_path()))
+        .collect();
+    if prepared.len() > 1 {
+        dests.push((out_dir.join("combined"), Path::new("<command line>")));
+    }
+    for (dest, file) in dests {
+        let why = match output::check_destination(&dest) {
+            Ok(()) => continue,
+            Err(output::Refusal::NotAFolder) => "exists and is not a folder",
+            Err(output::Refusal::NotOurs) => {
+                "is a folder settle did not create (it has no .settle-run marker), so settle \
+                 will not delete or replace it"
+            }
+        };
+        return Err(RunError::bad_input(
+            file,
+            Some("name"),
+            format!(
+                "the output folder {} {why}: choose another --out or another name (if it holds \
+                 the outputs of an older settle, delete or rename it)",
+                dest.display()
+            ),
+        ));
+    }
+    Ok(())
+}
+
 fn write_combined(out_dir: &Path, reports: &[FileReport]) -> Result<(), RunError> {
-    let p = Path::new("combined");
-    let io = |e: std::io::Error| RunError::Io(p.to_path_buf(), e);
+    let dest = out_dir.join("combined");
+    let io = |e: std::io::Error| RunError::Io(dest.clone(), e);
     let stage = StagedDir::new(out_dir, "combined").map_err(io)?;
     let mut rows = Vec::new();
     let mut all = Vec::new();
@@ -382,9 +427,22 @@ fn write_combined(out_dir: &Path, reports: &[FileReport]) -> Result<(), RunError
         .map(|r| r.out.as_path())
         .collect();
     if !sed.is_empty() {
-        output::granulometry::write_combined_errors(&stage.path("instrument_errors.csv"), &sed)
-            .map_err(io)?;
+        crate::output::granulometry::write_combined_errors(
+            &stage.path("instrument_errors.csv"),
+            &sed,
+        )
+        .map_err(io)?;
     }
-    stage.commit().map_err(io)?;
+    commit(stage, Path::new("<command line>"))?;
     Ok(())
+}
+
+impl From<ScenarioError> for crate::error::BadInput {
+    fn from(e: ScenarioError) -> Self {
+        Self {
+            file: e.file,
+            key: e.key,
+            message: e.message,
+        }
+    }
 }

@@ -3,71 +3,7 @@
 //! dt > 2 m/(dF/dv)). Rapier's speed cap hides such a blow-up as a bounded flip-flop, so this
 //! check looks at the growth of the deviation, not at a speed bound alone.
 
-use std::fmt;
-
-/// A run that went unstable: which body, when, what quantity, and a step that would be stable.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Unstable {
-    /// Identifier of the body.
-    pub body: String,
-    /// Simulated time at which the instability was detected, s.
-    pub time_s: f64,
-    /// Step index at detection.
-    pub step: u64,
-    /// What went wrong (`velocity is NaN`, `velocity oscillates with growing amplitude`, …).
-    pub what: String,
-    /// The time step in use, s.
-    pub dt_s: f64,
-    /// Largest time step expected to be stable for this body, s (infinite if unknown; 0 when no
-    /// step is stable for the scheme in use, e.g. explicit drag at a yield-stress stop).
-    pub stable_dt_s: f64,
-    /// How `stable_dt_s` was found, which sets the advice printed.
-    pub dt_basis: DtBasis,
-}
-
-/// How the suggested step of an [`Unstable`] report was found.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum DtBasis {
-    /// The explicit drag update's limit 2 m/(dF/dv) (0: no step holds a yield-stress stop).
-    #[default]
-    ExplicitDrag,
-    /// Half the step in use: a fault of the contacts, the speed cap or the domain, which a
-    /// body travelling a smaller fraction of its diameter per step avoids.
-    Halved,
-}
-
-impl fmt::Display for Unstable {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "unstable: body `{}` at t = {:.6e} s (step {}): {} with dt = {:.3e} s",
-            self.body, self.time_s, self.step, self.what, self.dt_s
-        )?;
-        if self.dt_basis == DtBasis::Halved {
-            write!(
-                f,
-                "; try dt ≤ {:.3e} s (half the step: contacts and the speed cap hold when a body \
-                 travels a small fraction of its diameter per step), or check the initial \
-                 positions and the scene's settings",
-                self.stable_dt_s
-            )?;
-        } else if self.stable_dt_s == 0.0 {
-            write!(
-                f,
-                "; no time step makes the explicit scheme hold a body at rest against a yield stress: use integrator = \"implicit\" or \"exponential\""
-            )?;
-        } else if self.stable_dt_s.is_finite() {
-            write!(
-                f,
-                "; largest stable dt for this body ≈ {:.3e} s (2m/(dF/dv)): use dt < {:.3e} s or integrator = \"exponential\"",
-                self.stable_dt_s, self.stable_dt_s
-            )?;
-        }
-        Ok(())
-    }
-}
-
-impl std::error::Error for Unstable {}
+pub use crate::error::{DtBasis, Unstable};
 
 /// Watches one body's velocity deviation from its equilibrium velocity step after step.
 #[derive(Clone, Debug, Default)]

@@ -1,10 +1,12 @@
-//! What a scenario will cost before it runs: steps, bodies, memory and wall time, so that a run
-//! that would take days or more memory than the machine has is refused up front with the
-//! estimate (the guard of `settle run`; `--force` lifts the time limit and the soft memory
-//! limit, never the machine's physical memory).
+//! What a scenario will cost before it runs: steps, bodies, time-series rows, memory, disk and
+//! wall time, so that a run that would take days, more memory than the machine has or more disk
+//! than a results folder should is refused up front with the estimate (the guard of
+//! `settle run`; `--force` lifts the time limit and the soft memory and disk limits, never the
+//! machine's physical memory). A run estimated to be long is announced on stderr before it
+//! starts ([`Cost::is_long`], [`Cost::describe`]).
 
 use super::load::ScenarioError;
-use super::schema::{Kind, Scenario};
+use super::schema::{EngineChoice, Kind, Scenario};
 use std::path::Path;
 
 /// Wall time above which a run is refused without `--force`, s (24 h).
@@ -13,12 +15,40 @@ pub const MAX_WALL_S: f64 = 24.0 * 3600.0;
 /// Memory above which a run is refused without `--force`, bytes (8 GB).
 pub const MAX_MEMORY_BYTES: f64 = 8e9;
 
+/// Disk above which a run is refused without `--force`, bytes (4 GB).
+pub const MAX_DISK_BYTES: f64 = 4e9;
+
+/// Wall time above which the estimate is printed before the run, s.
+pub const ANNOUNCE_WALL_S: f64 = 30.0;
+
+/// Memory or disk above which the estimate is printed before the run, bytes (1 GB).
+pub const ANNOUNCE_BYTES: f64 = 1e9;
+
+/// One row of `timeseries.csv` (free settling and drops): in memory (a time, a depth, a speed and
+/// two optional analytic values, plus vector growth) and on disk (CSV text, measured on the
+/// scenarios of `scenarios/`: 53–110 bytes), bytes.
+const TIMESERIES_ROW_MEMORY_BYTES: f64 = 64.0;
+const TIMESERIES_ROW_DISK_BYTES: f64 = 100.0;
+/// Time-series rows per body without `record.every_s` (as the free-settling scene records).
+const DEFAULT_ROWS_PER_BODY: f64 = 2000.0;
+/// One grain in one sedimentation snapshot (a CSV row and a VTK point, ≈ 86 bytes each), and the
+/// profiles, instruments and charts of a sedimentation run (≈ 20 MB whatever the grains), bytes.
+const SNAPSHOT_GRAIN_DISK_BYTES: f64 = 180.0;
+const SEDIMENTATION_FIXED_DISK_BYTES: f64 = 3e7;
+/// Per-body files of the other kinds (summary rows, per-repeat census), bytes per body.
+const BODY_DISK_BYTES: f64 = 200.0;
+
 /// Cost of one body-step, s, by engine: measured by `settle bench` on the 2-core machine and
 /// rounded up (exact free update ≈ 2–20 ns, Rapier ≈ 350–750 ns per body and step).
 const FREE_BODY_STEP_S: f64 = 2e-8;
 const RAPIER_BODY_STEP_S: f64 = 1e-6;
-/// State per body, bytes (grain, velocity, flags, recorded profiles amortised; Rapier body).
-const FREE_BODY_BYTES: f64 = 64.0;
+/// Cost of one grain-step of the sedimentation cylinder with its contacts, s: 20 000 grains of
+/// sample 1 over 1440 min (8654 steps) took 85 s on the shared 2-core machine (ideal Stokes
+/// physics, no contacts: 8 s).
+const SEDIMENTATION_GRAIN_STEP_S: f64 = 5e-7;
+/// Memory per grain of the sedimentation cylinder, bytes: 3 million grains of sample 1 held
+/// 7.7 GB (the grains, the voidage grid, the contact search and what is recorded).
+const SEDIMENTATION_GRAIN_BYTES: f64 = 2600.0;
 const RAPIER_BODY_BYTES: f64 = 2048.0;
 
 /// The estimate for one scenario.
@@ -28,10 +58,62 @@ pub struct Cost {
     pub steps: f64,
     /// Bodies over all worlds.
     pub bodies: f64,
+    /// Rows of the time series (free settling and drops; 0 for the other kinds).
+    pub rows: f64,
     /// Memory, bytes.
     pub memory_bytes: f64,
+    /// Outputs on disk, bytes.
+    pub disk_bytes: f64,
     /// Wall time on one core, s.
     pub wall_s: f64,
+}
+
+impl Cost {
+    /// True if the run is worth announcing before it starts: at least [`ANNOUNCE_WALL_S`] of
+    /// wall time, or [`ANNOUNCE_BYTES`] of memory or disk.
+    pub fn is_long(&self) -> bool {
+        self.wall_s >= ANNOUNCE_WALL_S
+            || self.memory_bytes >= ANNOUNCE_BYTES
+            || self.disk_bytes >= ANNOUNCE_BYTES
+    }
+
+    /// One line: bodies × steps, rows, memory, disk and wall time.
+    pub fn describe(&self) -> String {
+        format!(
+            "estimate: {:.3e} bodies × {:.3e} steps, {:.3e} time-series rows, {:.2} GB of memory, \
+             {:.2} GB on disk, {} of wall time on one core",
+            self.bodies,
+            self.steps,
+            self.rows,
+            self.memory_bytes / 1e9,
+            self.disk_bytes / 1e9,
+            hours(self.wall_s)
+        )
+    }
+}
+
+fn hours(s: f64) -> String {
+    if s < 60.0 {
+        format!("{s:.0} s")
+    } else if s < 3600.0 {
+        format!("{:.0} min", s / 60.0)
+    } else {
+        format!("{:.1} h", s / 3600.0)
+    }
+}
+
+/// Time-series rows of one body of a free-settling or drop scenario, as the scene records them:
+/// every `record.every_s`, or every step up to [`DEFAULT_ROWS_PER_BODY`] rows.
+fn rows_per_body(s: &Scenario, steps: f64) -> f64 {
+    if !s.record.timeseries {
+        return 0.0;
+    }
+    let steps = steps.round().max(1.0);
+    let every = match s.record.every_s {
+        Some(e) => (e / s.time.dt_s).round().max(1.0),
+        None => (steps / DEFAULT_ROWS_PER_BODY).floor().max(1.0),
+    };
+    (steps / every).floor() + 1.0
 }
 
 /// Estimates the cost of a scenario (see the module doc).
@@ -44,8 +126,8 @@ pub fn estimate(s: &Scenario) -> Cost {
             (
                 s.time.end_s / max_step,
                 n,
-                FREE_BODY_STEP_S,
-                FREE_BODY_BYTES,
+                SEDIMENTATION_GRAIN_STEP_S,
+                SEDIMENTATION_GRAIN_BYTES,
             )
         }
         Kind::FunnelPour => {
@@ -75,10 +157,29 @@ pub fn estimate(s: &Scenario) -> Cost {
             RAPIER_BODY_BYTES,
         ),
     };
+    let (rows, disk_bytes) = match s.kind {
+        Kind::FreeSettling | Kind::Drop => {
+            let rows = bodies * rows_per_body(s, steps);
+            (
+                rows,
+                rows * TIMESERIES_ROW_DISK_BYTES + bodies * BODY_DISK_BYTES,
+            )
+        }
+        Kind::Sedimentation => {
+            let snaps = s.sample.as_ref().map_or(0, |m| m.snapshot_times_s.len()) as f64;
+            (
+                0.0,
+                snaps * bodies * SNAPSHOT_GRAIN_DISK_BYTES + SEDIMENTATION_FIXED_DISK_BYTES,
+            )
+        }
+        _ => (0.0, bodies * BODY_DISK_BYTES),
+    };
     Cost {
         steps,
         bodies,
-        memory_bytes: bodies * per_body,
+        rows,
+        memory_bytes: bodies * per_body + rows * TIMESERIES_ROW_MEMORY_BYTES,
+        disk_bytes,
         wall_s: steps * bodies * per_step,
     }
 }
@@ -101,10 +202,21 @@ pub fn check(s: &Scenario, file: &Path, force: bool) -> Result<Cost, ScenarioErr
         Kind::FunnelPour => "repeats.count",
         _ => "time.dt_s",
     };
+    let key = match s.kind {
+        Kind::FreeSettling | Kind::Drop if c.rows > 0.0 => {
+            if s.spheres.len() > 1 {
+                "spheres"
+            } else {
+                "record.every_s"
+            }
+        }
+        _ => key,
+    };
     let memory = format!(
-        "about {:.3e} bodies × {:.3e} steps: {:.1} GB of state",
+        "about {:.3e} bodies × {:.3e} steps and {:.3e} time-series rows: {:.1} GB of memory",
         c.bodies,
         c.steps,
+        c.rows,
         c.memory_bytes / 1e9
     );
     if let Some(ram) = physical_memory_bytes() {
@@ -129,6 +241,21 @@ pub fn check(s: &Scenario, file: &Path, force: bool) -> Result<Cost, ScenarioErr
             format!(
                 "{memory} (limit {:.0} GB): lower it, or run with --force",
                 MAX_MEMORY_BYTES / 1e9
+            ),
+        ));
+    }
+    if c.disk_bytes > MAX_DISK_BYTES {
+        return Err(ScenarioError::new(
+            file,
+            Some(key),
+            format!(
+                "about {:.3e} bodies and {:.3e} time-series rows would write {:.1} GB of outputs \
+                 (limit {:.0} GB): fewer bodies, a longer record.every_s, record.timeseries = \
+                 false, fewer snapshots, or run with --force",
+                c.bodies,
+                c.rows,
+                c.disk_bytes / 1e9,
+                MAX_DISK_BYTES / 1e9
             ),
         ));
     }

@@ -11,6 +11,44 @@ pub mod tilt_friction;
 
 use crate::fluid::{DragLaw, SphereDrag};
 use crate::scenario::{DragLawName, Physics, Rheology, Scenario};
+use std::path::PathBuf;
+
+/// A loaded scenario ready to run: the effective scenario and its input files, read and checked.
+#[derive(Clone, Debug)]
+pub struct Prepared {
+    /// The scenario file.
+    pub path: PathBuf,
+    /// The effective scenario (overrides applied).
+    pub scenario: Scenario,
+    /// Its spheres (free settling and drops; read from `spheres_csv` when given).
+    pub spheres: Vec<spheres::SphereCase>,
+}
+
+/// How a run is carried out beyond its scenario: checkpoints, resumption, progress display.
+#[derive(Clone, Debug, Default)]
+pub struct RunContext {
+    /// Where and how often to write checkpoints (None: never, not even on interruption).
+    pub checkpoints: Option<crate::checkpoint::Checkpoints>,
+    /// Continue from the checkpoints found there (`--resume`).
+    pub resume: bool,
+    /// No progress bar.
+    pub quiet: bool,
+}
+
+/// What a scene reports to the runner after writing its own files into the staging folder.
+#[derive(Clone, Debug, Default)]
+pub struct SceneReport {
+    /// Total steps over all worlds.
+    pub steps: u64,
+    /// Number of bodies (over all worlds).
+    pub bodies: usize,
+    /// Rapier settings used (recorded in run.toml).
+    pub engine_settings: Option<crate::engine::EngineSettings>,
+    /// Lines printed after the run (a short human-readable summary).
+    pub lines: Vec<String>,
+    /// The run stopped early on Ctrl-C/SIGTERM (outputs hold what was done).
+    pub interrupted: bool,
+}
 
 /// The drag law a scenario asks for, after the `physics` switch (`ideal-stokes` turns every law
 /// into Stokes drag with the fluid's viscosity, or its plastic viscosity for a Bingham fluid).

@@ -1,0 +1,198 @@
+//! The one error type of settle and its exit codes (infrastructure layer: no domain types).
+//!
+//! Every failure falls into one class, and each class has one process exit code:
+//!
+//! | class | exit | what |
+//! |---|---|---|
+//! | success | 0 | |
+//! | bad input | 2 | a scenario file, an input file or a command-line argument is wrong: the message names the file (or argument), the key or row, and what is allowed; nothing was run or written |
+//! | unstable run | 3 | the simulation went numerically unstable: the message names the body, the time and a step that would hold; nothing was written |
+//! | I/O or environment | 4 | a file could not be read or written, a folder is missing or not a folder, or the machine refused (disk, permissions, `/proc`) |
+//! | interrupted | 130 | Ctrl-C or SIGTERM: what was done is in the output folder, marked `interrupted` |
+//!
+//! [`Error::Unclassified`] (built by [`Error::Other`]) is a transitional variant for messages not yet given a class (classed as I/O
+//! or environment, exit 4); it is to be removed once the scenes return typed errors.
+
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+/// Exit code of a bad input (scenario, input file or command line).
+pub const EXIT_BAD_INPUT: i32 = 2;
+/// Exit code of an unstable run.
+pub const EXIT_UNSTABLE: i32 = 3;
+/// Exit code of an I/O or environment failure.
+pub const EXIT_IO: i32 = 4;
+/// Exit code of an interrupted run (128 + SIGINT).
+pub const EXIT_INTERRUPTED: i32 = 130;
+
+/// Bad input: one line naming the file (or `<command line>` argument), the key or row/column,
+/// and what is wrong and what is allowed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BadInput {
+    /// The file at fault (a scenario, an input CSV, an output folder given on the command line).
+    pub file: PathBuf,
+    /// The offending key (`spheres[0].diameter_m`, `name`), row/column or option (`--out`).
+    pub key: Option<String>,
+    /// What is wrong and what is allowed.
+    pub message: String,
+}
+
+impl BadInput {
+    /// A bad input naming `file` and, if known, `key`.
+    pub fn new(file: &Path, key: Option<&str>, message: impl Into<String>) -> Self {
+        Self {
+            file: file.to_path_buf(),
+            key: key.map(|k| k.replace('\n', " ")),
+            message: message.into().replace('\n', " "),
+        }
+    }
+}
+
+impl fmt::Display for BadInput {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match &self.key {
+            Some(k) => write!(f, "{}: key `{}`: {}", self.file.display(), k, self.message),
+            None => write!(f, "{}: {}", self.file.display(), self.message),
+        }
+    }
+}
+
+impl std::error::Error for BadInput {}
+
+/// Why a command failed; [`Error::exit_code`] maps it to the process exit code (see the module
+/// doc for the classes).
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// Bad input (exit 2).
+    #[error("{0}")]
+    BadInput(BadInput),
+    /// The run of the scenario file went unstable (exit 3).
+    #[error("{path}: {report}; nothing was written", path = .0.display(), report = .1)]
+    Unstable(PathBuf, Unstable),
+    /// A file or folder could not be read or written (exit 4).
+    #[error("{path}: {cause}", path = .0.display(), cause = .1)]
+    Io(PathBuf, std::io::Error),
+    /// Stopped by Ctrl-C/SIGTERM; what was done is in the folder (exit 130).
+    #[error(
+        "interrupted: what was simulated so far is in {path} (run.toml status = \"interrupted\")",
+        path = .0.display()
+    )]
+    Interrupted(PathBuf),
+    /// Transitional: a message without a class yet, treated as I/O or environment (exit 4).
+    /// Built by [`Error::Other`]; to be removed once every scene returns a typed error.
+    #[error("{0}")]
+    Unclassified(String),
+}
+
+impl Error {
+    /// Bad input (exit 2): `RunError::Scenario(e)` for any error convertible to [`BadInput`]
+    /// (the scenario layer's `ScenarioError` is).
+    #[allow(non_snake_case)]
+    pub fn Scenario(e: impl Into<BadInput>) -> Self {
+        Self::BadInput(e.into())
+    }
+
+    /// Transitional (to be removed with [`Error::Unclassified`]): a message without a class
+    /// (`String`, classed I/O or environment, exit 4), or any error that converts into this type
+    /// (kept as it is).
+    #[allow(non_snake_case)]
+    pub fn Other(e: impl Into<Error>) -> Self {
+        e.into()
+    }
+
+    /// Bad input naming `file`, `key` and the message.
+    pub fn bad_input(file: &Path, key: Option<&str>, message: impl Into<String>) -> Self {
+        Self::BadInput(BadInput::new(file, key, message))
+    }
+
+    /// A bad command-line argument `option` (e.g. `--out`) whose value is `value`.
+    pub fn bad_argument(option: &str, value: &Path, message: impl Into<String>) -> Self {
+        Self::BadInput(BadInput::new(value, Some(option), message))
+    }
+
+    /// Process exit code of this error's class.
+    pub fn exit_code(&self) -> i32 {
+        match self {
+            Self::BadInput(_) => EXIT_BAD_INPUT,
+            Self::Unstable(..) => EXIT_UNSTABLE,
+            Self::Io(..) | Self::Unclassified(_) => EXIT_IO,
+            Self::Interrupted(_) => EXIT_INTERRUPTED,
+        }
+    }
+}
+
+impl From<String> for Error {
+    fn from(m: String) -> Self {
+        Self::Unclassified(m)
+    }
+}
+
+impl From<BadInput> for Error {
+    fn from(e: BadInput) -> Self {
+        Self::BadInput(e)
+    }
+}
+
+/// A run that went unstable: which body, when, what quantity, and a step that would be stable.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Unstable {
+    /// Identifier of the body.
+    pub body: String,
+    /// Simulated time at which the instability was detected, s.
+    pub time_s: f64,
+    /// Step index at detection.
+    pub step: u64,
+    /// What went wrong (`velocity is NaN`, `velocity oscillates with growing amplitude`, …).
+    pub what: String,
+    /// The time step in use, s.
+    pub dt_s: f64,
+    /// Largest time step expected to be stable for this body, s (infinite if unknown; 0 when no
+    /// step is stable for the scheme in use, e.g. explicit drag at a yield-stress stop).
+    pub stable_dt_s: f64,
+    /// How `stable_dt_s` was found, which sets the advice printed.
+    pub dt_basis: DtBasis,
+}
+
+/// How the suggested step of an [`Unstable`] report was found.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum DtBasis {
+    /// The explicit drag update's limit 2 m/(dF/dv) (0: no step holds a yield-stress stop).
+    #[default]
+    ExplicitDrag,
+    /// Half the step in use: a fault of the contacts, the speed cap or the domain, which a
+    /// body travelling a smaller fraction of its diameter per step avoids.
+    Halved,
+}
+
+impl fmt::Display for Unstable {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "unstable: body `{}` at t = {:.6e} s (step {}): {} with dt = {:.3e} s",
+            self.body, self.time_s, self.step, self.what, self.dt_s
+        )?;
+        if self.dt_basis == DtBasis::Halved {
+            write!(
+                f,
+                "; try dt ≤ {:.3e} s (half the step: contacts and the speed cap hold when a body \
+                 travels a small fraction of its diameter per step), or check the initial \
+                 positions and the scene's settings",
+                self.stable_dt_s
+            )?;
+        } else if self.stable_dt_s == 0.0 {
+            write!(
+                f,
+                "; no time step makes the explicit scheme hold a body at rest against a yield stress: use integrator = \"implicit\" or \"exponential\""
+            )?;
+        } else if self.stable_dt_s.is_finite() {
+            write!(
+                f,
+                "; largest stable dt for this body ≈ {:.3e} s (2m/(dF/dv)): use dt < {:.3e} s or integrator = \"exponential\"",
+                self.stable_dt_s, self.stable_dt_s
+            )?;
+        }
+        Ok(())
+    }
+}
+
+impl std::error::Error for Unstable {}

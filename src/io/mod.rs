@@ -1,0 +1,229 @@
+//! Infrastructure for outputs (no domain types): a staging folder renamed into place only when
+//! a run succeeds (never a half-written result), that replaces only what settle wrote before;
+//! atomic writes; number formatting for CSV; charts; error statistics.
+//!
+//! # Ownership of output folders
+//!
+//! settle marks each folder it creates (`OUT/NAME/`) with a file [`MARKER`] that lists the
+//! entries settle wrote there, one name a line. A later run into the same folder removes only
+//! those entries and keeps anything the user added (notes, plots). A folder without the marker
+//! was not made by settle (or by a settle before the marker existed) and is never deleted or
+//! replaced: [`check_destination`] refuses it before anything runs.
+
+pub mod chart;
+pub mod metrics;
+
+use std::fs;
+use std::io;
+use std::path::{Path, PathBuf};
+
+/// Name of the file that marks a folder as settle's and lists the entries settle wrote in it.
+pub const MARKER: &str = ".settle-run";
+
+/// Why an output destination cannot be used.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Refusal {
+    /// The destination exists and is not a folder.
+    NotAFolder,
+    /// The destination is a folder that settle did not create (no [`MARKER`]).
+    NotOurs,
+}
+
+/// Checks that `dest` may receive a run's outputs: absent, or a folder settle created (it holds
+/// [`MARKER`]).
+pub fn check_destination(dest: &Path) -> Result<(), Refusal> {
+    match fs::symlink_metadata(dest) {
+        Err(_) => Ok(()),
+        Ok(m) if !m.is_dir() => Err(Refusal::NotAFolder),
+        Ok(_) if dest.join(MARKER).is_file() => Ok(()),
+        Ok(_) => Err(Refusal::NotOurs),
+    }
+}
+
+/// The entries listed in the marker of `dir` (empty if there is none).
+pub fn owned_entries(dir: &Path) -> Vec<String> {
+    fs::read_to_string(dir.join(MARKER))
+        .map(|t| {
+            t.lines()
+                .filter(|l| !l.is_empty() && !l.starts_with('#'))
+                .filter(|l| !l.contains('/') && *l != ".." && *l != ".")
+                .map(str::to_string)
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+/// Removes the staging folders (`.NAME.partial-PID`) of processes that no longer run, whatever
+/// their name (Linux: a process runs if `/proc/<pid>` exists; elsewhere nothing is removed).
+pub fn clean_stale_staging(out_dir: &Path) {
+    if !Path::new("/proc/self").exists() {
+        return;
+    }
+    let Ok(entries) = fs::read_dir(out_dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let file = entry.file_name();
+        let Some(pid) = file
+            .to_str()
+            .filter(|f| f.starts_with('.'))
+            .and_then(|f| f.rsplit_once(".partial-"))
+            .map(|(_, pid)| pid)
+        else {
+            continue;
+        };
+        let Ok(pid) = pid.parse::<u32>() else {
+            continue;
+        };
+        if pid != std::process::id() && !Path::new("/proc").join(pid.to_string()).exists() {
+            let _ = fs::remove_dir_all(entry.path());
+        }
+    }
+}
+
+/// A results folder written under a temporary name and moved to its final name by
+/// [`StagedDir::commit`]. Dropped without commit, it removes itself.
+pub struct StagedDir {
+    tmp: PathBuf,
+    dest: PathBuf,
+    committed: bool,
+}
+
+impl StagedDir {
+    /// Stages `out_dir/name` as `out_dir/.name.partial-<pid>`, after removing the staging folders
+    /// of dead processes ([`clean_stale_staging`]).
+    pub fn new(out_dir: &Path, name: &str) -> io::Result<Self> {
+        fs::create_dir_all(out_dir)?;
+        clean_stale_staging(out_dir);
+        let tmp = out_dir.join(format!(".{name}.partial-{}", std::process::id()));
+        if tmp.exists() {
+            fs::remove_dir_all(&tmp)?;
+        }
+        fs::create_dir_all(&tmp)?;
+        Ok(Self {
+            tmp,
+            dest: out_dir.join(name),
+            committed: false,
+        })
+    }
+
+    /// Path of a file inside the staging folder.
+    pub fn path(&self, file: &str) -> PathBuf {
+        self.tmp.join(file)
+    }
+
+    /// Final location of the folder.
+    pub fn dest(&self) -> &Path {
+        &self.dest
+    }
+
+    /// Moves the staged entries into place. A destination settle made before loses only the
+    /// entries its marker lists; a destination settle did not make is refused (error kind
+    /// `AlreadyExists`, nothing touched), as is a user's file in the way of a staged one.
+    pub fn commit(mut self) -> io::Result<PathBuf> {
+        let mut names: Vec<String> = fs::read_dir(&self.tmp)?
+            .flatten()
+            .filter_map(|e| e.file_name().to_str().map(str::to_string))
+            .filter(|n| n != MARKER)
+            .collect();
+        names.sort();
+        let marker = format!(
+            "# written by settle: a rerun replaces the entries listed here and keeps the others\n{}\n",
+            names.join("\n")
+        );
+        write_atomic(&self.tmp.join(MARKER), marker.as_bytes())?;
+        match check_destination(&self.dest) {
+            Err(r) => {
+                return Err(io::Error::new(
+                    io::ErrorKind::AlreadyExists,
+                    format!(
+                        "{}: {}; settle never replaces it",
+                        self.dest.display(),
+                        if r == Refusal::NotAFolder {
+                            "exists and is not a folder"
+                        } else {
+                            "this folder was not created by settle"
+                        }
+                    ),
+                ))
+            }
+            Ok(()) if !self.dest.exists() => fs::rename(&self.tmp, &self.dest)?,
+            Ok(()) => self.merge_into_dest(&names)?,
+        }
+        self.committed = true;
+        Ok(self.dest.clone())
+    }
+
+    /// Replaces the entries settle wrote in an existing destination by the staged ones.
+    fn merge_into_dest(&self, names: &[String]) -> io::Result<()> {
+        let old = owned_entries(&self.dest);
+        for n in names {
+            let target = self.dest.join(n);
+            if target.symlink_metadata().is_ok() && !old.contains(n) {
+                return Err(io::Error::new(
+                    io::ErrorKind::AlreadyExists,
+                    format!(
+                        "{}: not written by settle, and this run writes a file of that name: \
+                         move it away and run again",
+                        target.display()
+                    ),
+                ));
+            }
+        }
+        for n in &old {
+            remove_entry(&self.dest.join(n))?;
+        }
+        for n in names {
+            fs::rename(self.tmp.join(n), self.dest.join(n))?;
+        }
+        fs::rename(self.tmp.join(MARKER), self.dest.join(MARKER))?;
+        fs::remove_dir_all(&self.tmp)
+    }
+}
+
+/// Removes a file or a folder; absent is fine.
+fn remove_entry(path: &Path) -> io::Result<()> {
+    let r = match path.symlink_metadata() {
+        Err(_) => return Ok(()),
+        Ok(m) if m.is_dir() => fs::remove_dir_all(path),
+        Ok(_) => fs::remove_file(path),
+    };
+    match r {
+        Err(e) if e.kind() != io::ErrorKind::NotFound => Err(e),
+        _ => Ok(()),
+    }
+}
+
+impl Drop for StagedDir {
+    fn drop(&mut self) {
+        if !self.committed {
+            let _ = fs::remove_dir_all(&self.tmp);
+        }
+    }
+}
+
+/// Writes a file atomically: to `path.tmp`, then renamed.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> io::Result<()> {
+    let tmp = path.with_extension(format!(
+        "{}.tmp",
+        path.extension().and_then(|e| e.to_str()).unwrap_or("")
+    ));
+    fs::write(&tmp, bytes)?;
+    fs::rename(&tmp, path)
+}
+
+/// Formats a number for CSV: shortest round-trip form, in exponent notation when very small or
+/// very large.
+pub fn num(x: f64) -> String {
+    let a = x.abs();
+    if a != 0.0 && a.is_finite() && !(1e-4..1e7).contains(&a) {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
+    }
+}
+
+/// Formats an optional number for CSV (empty when absent).
+pub fn opt(x: Option<f64>) -> String {
+    x.map(num).unwrap_or_default()
+}
