@@ -6,7 +6,7 @@
 //! starts ([`Cost::is_long`], [`Cost::describe`]).
 
 use super::load::ScenarioError;
-use super::schema::{EngineChoice, Kind, Scenario};
+use super::schema::{Kind, Scenario};
 use std::path::Path;
 
 /// Wall time above which a run is refused without `--force`, s (24 h).
