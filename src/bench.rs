@@ -209,7 +209,13 @@ pub fn run(root: &Path, quick: bool) -> Result<Vec<Figure>, String> {
         .map_err(|e| e.to_string())?;
         let su = crate::scenes::sedimentation::setup(&p.scenario, &p.path)?;
         let t0 = Instant::now();
-        let st = crate::scenes::sedimentation::simulate(&p.scenario, &su, |_| {}, |_| {});
+        let st = crate::scenes::sedimentation::simulate(
+            &p.scenario,
+            &su,
+            crate::scenes::sedimentation::State::initial(&su),
+            &[],
+            &mut (),
+        );
         let name = format!("sedimentation_sample5_{physics}");
         out.push(fig(&name, "grains", su.grains.len() as f64, "grains"));
         out.push(fig(

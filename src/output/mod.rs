@@ -5,7 +5,7 @@ pub mod chart;
 pub mod drop;
 pub mod free_settling;
 pub mod funnel;
-pub mod granulometry;
+pub use crate::scenes::sedimentation::output::granulometry;
 pub mod metrics;
 
 use std::fs;

@@ -720,3 +720,47 @@ pub struct SweepSpec {
     #[serde(default)]
     pub tol: Option<f64>,
 }
+
+impl Fluid {
+    /// The viscosity the drag uses, Pa s: η (`viscosity_pa_s`) of a Newtonian fluid, the plastic
+    /// viscosity η_B (`plastic_viscosity_pa_s`) of a Bingham one. None if the scenario lacks it
+    /// (validation requires it).
+    pub fn drag_viscosity_pa_s(&self) -> Option<f64> {
+        match self.rheology {
+            Rheology::Newtonian => self.viscosity_pa_s,
+            Rheology::Bingham => self.plastic_viscosity_pa_s,
+        }
+    }
+}
+
+impl InstrumentsSpec {
+    /// The hydrometer figures of this `[instruments]` table.
+    pub fn hydrometer(&self) -> crate::instruments::hydrometer::HydrometerSpec {
+        crate::instruments::hydrometer::HydrometerSpec {
+            bulb_volume_m3: self.hydrometer_bulb_volume_m3,
+            bulb_length_m: self.hydrometer_bulb_length_m,
+            taper_m: self.hydrometer_taper_m,
+            stem_length_m: self.hydrometer_stem_length_m,
+            effective_depth_zero_m: self.hydrometer_effective_depth_zero_m,
+            effective_depth_slope_m: self.hydrometer_effective_depth_slope_m,
+            full_scale: self.hydrometer_full_scale,
+            astm_cylinder_area_m2: self.hydrometer_astm_cylinder_area_m2,
+            calibration_specific_gravity: self.hydrometer_calibration_specific_gravity,
+        }
+    }
+}
+
+/// Thickness of the 2D projection of a wedge fraction f of a cylinder of diameter B, m:
+/// h_z = π B f / 4 (so that B H h_z = f π B² H / 4; two opposing 1° wedges, f = 1/180, give
+/// h_z = π B / 720).
+pub fn projection_thickness_m(width_m: f64, wedge_fraction: f64) -> f64 {
+    std::f64::consts::PI * width_m * wedge_fraction / 4.0
+}
+
+impl SampleSpec {
+    /// Thickness h_z of the 2D projection of this sample's wedges in a cylinder of width
+    /// `width_m`, m ([`projection_thickness_m`]).
+    pub fn projection_thickness_m(&self, width_m: f64) -> f64 {
+        projection_thickness_m(width_m, self.wedge_fraction)
+    }
+}

@@ -596,7 +596,7 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
                     "",
                 )?;
                 let hy = crate::instruments::hydrometer::Hydrometer::new(
-                    crate::scenes::sedimentation::hydrometer_spec(ins),
+                    ins.hydrometer(),
                     s.fluid.density_kg_m3,
                 );
                 if !(hy.stem_radius_m > 0.0
@@ -618,7 +618,7 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
                     1.0 - rs,
                     "of H (the whole sphere in the suspension)",
                 )?;
-                let hz = crate::scenes::sedimentation::projection_thickness_m(b, sm.wedge_fraction);
+                let hz = sm.projection_thickness_m(b);
                 let rp = (sm.wedge_fraction * ins.pipette_volume_m3 / (hz * std::f64::consts::PI))
                     .sqrt();
                 if rp > 0.5 * b {
