@@ -235,7 +235,13 @@ pub fn run(root: &Path, quick: bool) -> Result<Vec<Figure>, Error> {
         .map_err(Error::Scenario)?;
         let su = crate::scenes::sedimentation::setup(&p.scenario, &p.path).map_err(Error::Other)?;
         let t0 = Instant::now();
-        let st = crate::scenes::sedimentation::simulate(&p.scenario, &su, |_| {}, |_| {});
+        let st = crate::scenes::sedimentation::simulate(
+            &p.scenario,
+            &su,
+            crate::scenes::sedimentation::State::initial(&su),
+            &[],
+            &mut (),
+        );
         let name = format!("sedimentation_sample5_{physics}");
         out.push(fig(&name, "grains", su.grains.len() as f64, "grains"));
         out.push(fig(

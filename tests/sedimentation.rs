@@ -6,7 +6,7 @@
 
 use settle::fluid::sphere_volume_m3;
 use settle::run::prepare;
-use settle::scenes::sedimentation::{limiting_diameter_m, setup, simulate, State};
+use settle::scenes::sedimentation::{limiting_diameter_m, setup, simulate, OnRecord, State};
 use std::path::Path;
 
 const H: f64 = 0.457;
@@ -40,7 +40,13 @@ fn run(sample: u32, extra: &[&str]) -> (Vec<Snap>, settle::scenes::sedimentation
                 .collect(),
         })
     };
-    simulate(&p.scenario, &su, rec, |_| {});
+    simulate(
+        &p.scenario,
+        &su,
+        State::initial(&su),
+        &[],
+        &mut OnRecord(rec),
+    );
     let c0 = su.model_mass_kg / 2500.0 / (su.width_m * su.height_m * su.thickness_m);
     (snaps, su, c0)
 }

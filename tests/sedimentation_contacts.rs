@@ -1,11 +1,11 @@
 //! Contacts and squeeze-film lubrication between representative grains of the sedimentation
-//! cylinder (`physics = "full"`): the cluster solve of `scenes::grain_contacts` on two-grain
+//! cylinder (`physics = "full"`): the cluster solve of `scenes::sedimentation::contacts` on two-grain
 //! cases with known answers, and the full run with contacts on. Each test states its tolerance.
 
 use settle::dynamics::Integrator;
 use settle::fluid::lubrication::{damping_n_s_m, effective_radius_m, Cutoffs};
 use settle::fluid::{DragLaw, SphereDrag};
-use settle::scenes::grain_contacts::{
+use settle::scenes::sedimentation::contacts::{
     resolve, ClusterGrain, ContactScene, PairFinder, Probe, Resolved,
 };
 use settle::scenes::sedimentation::{CONTACT_FILM_CHANGE_PER_STEP, CONTACT_TRAVEL_PER_SUBSTEP};
@@ -29,6 +29,8 @@ fn scene(lubrication: bool, travel: f64, film: f64) -> ContactScene {
         integrator: Integrator::Exponential,
         travel_per_substep: travel,
         film_change_per_step: film,
+        friction: 0.0,
+        restitution: settle::contact::RestitutionLaw::constant(0.0),
     }
 }
 
@@ -277,7 +279,7 @@ fn overlaps(st: &settle::scenes::sedimentation::State, width_m: f64) -> (f64, us
 fn full_physics_with_contacts_accounts_for_every_grain() {
     use settle::fluid::sphere_volume_m3;
     use settle::run::prepare;
-    use settle::scenes::sedimentation::{setup, simulate, State};
+    use settle::scenes::sedimentation::{setup, simulate, OnRecord, State};
     use std::path::Path;
     // Sample 1, 20 000 grains, full physics with contacts and lubrication, 120 s. Tolerances:
     // at every record time the suspended plus deposited solid volume equals the sample's to
@@ -310,7 +312,9 @@ fn full_physics_with_contacts_accounts_for_every_grain() {
     let st = simulate(
         &p.scenario,
         &su,
-        |st: &State| {
+        State::initial(&su),
+        &[],
+        &mut OnRecord(|st: &State| {
             records += 1;
             let mut volume = 0.0;
             for (g, _) in st.grains.iter().zip(&st.settled) {
@@ -323,8 +327,7 @@ fn full_physics_with_contacts_accounts_for_every_grain() {
             let (w, d) = overlaps(st, su.width_m);
             worst = worst.max(w);
             deep += d;
-        },
-        |_| {},
+        }),
     );
     assert_eq!(records, 4);
     let c = st.contacts;
@@ -352,8 +355,9 @@ fn full_physics_with_contacts_accounts_for_every_grain() {
     let st = simulate(
         &p.scenario,
         &su,
-        |st: &State| deep_off += overlaps(st, su.width_m).1,
-        |_| {},
+        State::initial(&su),
+        &[],
+        &mut OnRecord(|st: &State| deep_off += overlaps(st, su.width_m).1),
     );
     assert_eq!(st.contacts.pairs, 0);
     assert!(deep_off > 10, "without contacts: {deep_off} deep overlaps");
@@ -385,4 +389,77 @@ fn a_cluster_that_starts_overlapping_is_pushed_apart_not_dropped() {
         dist > 0.99 * d,
         "still overlapping: centres {dist:.3e} m apart, d = {d:e}"
     );
+}
+
+/// Two 1 mm grains in air-like fluid (Stokes number ≫ 1, so that the contact, not the drag,
+/// decides the outcome), head-on: the upper one falls at 1 m/s onto the lower one at rest,
+/// 1 mm below, within one step of 3 ms. The step's contact world takes `friction` and
+/// `restitution` from the scene (`[contacts]`).
+fn head_on(restitution: f64, friction: f64, offset_m: f64) -> [Resolved; 2] {
+    let (mu, rho_f, d) = (1.8e-5, 1.2, 1e-3);
+    let drag = SphereDrag::new(DragLaw::Stokes { viscosity_pa_s: mu }, d, rho_f);
+    let sc = ContactScene {
+        fluid_density_kg_m3: rho_f,
+        viscosity_pa_s: mu,
+        friction,
+        restitution: settle::contact::RestitutionLaw::constant(restitution),
+        ..scene(
+            false,
+            CONTACT_TRAVEL_PER_SUBSTEP,
+            CONTACT_FILM_CHANGE_PER_STEP,
+        )
+    };
+    let g = [
+        ClusterGrain {
+            x_m: 0.03 + offset_m,
+            y_m: 0.01 + 2.0 * d,
+            vy_m_s: -1.0,
+            diameter_m: d,
+            drag,
+        },
+        ClusterGrain {
+            x_m: 0.03,
+            y_m: 0.01,
+            vy_m_s: 0.0,
+            diameter_m: d,
+            drag,
+        },
+    ];
+    let (r, solve) = resolve(&g, &[(0, 1)], &sc, 3e-3);
+    assert!(!solve.fallback && solve.rapier_steps > 0, "{solve:?}");
+    [r[0], r[1]]
+}
+
+#[test]
+fn restitution_of_the_scene_makes_a_head_on_pair_separate_after_impact() {
+    // Equal masses, head-on, 1 m/s: with e = 0 (no [contacts], as before) the pair moves on
+    // together (gap ≈ 0: below 2 % of d); with e = 1 the velocities swap at impact (after 1 ms),
+    // so the lower grain leaves at ~1 m/s and the gap opens by ~2 mm over the 2 ms left (at
+    // least 1.5 mm: gravity and drag change both grains alike to within 1 %), and with e = 0.5
+    // by about half that (0.6–1.4 mm).
+    let gap = |r: [Resolved; 2]| r[0].y_m - r[1].y_m - 1e-3;
+    let inelastic = gap(head_on(0.0, 0.0, 0.0));
+    let elastic = gap(head_on(1.0, 0.0, 0.0));
+    let half = gap(head_on(0.5, 0.0, 0.0));
+    println!(
+        "gap after the step: e = 0 {inelastic:.3e} m, e = 0.5 {half:.3e} m, e = 1 {elastic:.3e} m"
+    );
+    assert!(inelastic.abs() < 2e-5, "e = 0: gap {inelastic:e} m");
+    assert!(elastic > 1.5e-3, "e = 1: gap {elastic:e} m");
+    assert!(half > 0.6e-3 && half < 1.4e-3, "e = 0.5: gap {half:e} m");
+}
+
+#[test]
+fn friction_of_the_scene_changes_an_oblique_impact() {
+    // The same impact 0.3 d off axis with e = 1: without friction the contact impulse lies along
+    // the line of centres; with μ = 1 a tangential impulse is added, which changes where the
+    // lower grain goes (its x differs by more than 1 µm).
+    let base = head_on(1.0, 0.0, 0.3e-3);
+    let rough = head_on(1.0, 1.0, 0.3e-3);
+    let dx = (rough[1].x_m - base[1].x_m).abs() + (rough[0].x_m - base[0].x_m).abs();
+    println!(
+        "lower grain x: μ = 0 {:.6e} m, μ = 1 {:.6e} m",
+        base[1].x_m, rough[1].x_m
+    );
+    assert!(dx > 1e-6, "friction changed nothing: Δx = {dx:e} m");
 }

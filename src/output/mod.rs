@@ -4,6 +4,6 @@
 
 pub mod drop;
 pub mod free_settling;
-pub mod granulometry;
+pub use crate::scenes::sedimentation::output::granulometry;
 
 pub use crate::io::*;

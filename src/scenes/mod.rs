@@ -3,7 +3,6 @@
 pub mod calibration;
 pub mod free_settling;
 pub mod funnel;
-pub mod grain_contacts;
 pub mod restitution_drop;
 pub mod sedimentation;
 pub mod spheres;

@@ -4,12 +4,80 @@
 //! Figs. 15–17), `bulb_density.csv` (seed Fig. 13), `instrument_errors.csv` (each instrument
 //! against the input curve) and the combined `instrument_errors.csv` of several runs.
 
-use super::chart::{scatter_svg, Scale, Series};
-use super::{num, opt};
+use crate::output::chart::{scatter_svg, Scale, Series};
+use crate::output::{num, opt, StagedDir};
 use crate::sample::Distribution;
-use crate::scenes::sedimentation::{BulbRow, InstrumentKind, InstrumentReading};
+use crate::scenario::{SampleSpec, Scenario};
+use crate::scenes::sedimentation::instruments::{
+    BulbRow, InstrumentKind, InstrumentReading, InstrumentSet,
+};
+use crate::scenes::sedimentation::setup::Setup;
 use std::io;
 use std::path::Path;
+
+/// Why an instrument file could not be written.
+#[derive(Debug)]
+pub enum WriteError {
+    /// A CSV file.
+    Io(io::Error),
+    /// A chart (the plotting library's message).
+    Chart(String),
+}
+
+/// Writes every instrument file of a run into `stage`: `granulometry.csv`/`.svg`,
+/// `instruments.csv`/`.svg`, `bulb_density.csv`/`.svg` and `instrument_errors.csv`; returns the
+/// error rows (each instrument against the input curve).
+pub fn write_all(
+    stage: &StagedDir,
+    s: &Scenario,
+    sm: &SampleSpec,
+    setup: &Setup,
+    instruments: &InstrumentSet,
+    readings: &[InstrumentReading],
+    bulb: &[BulbRow],
+) -> Result<Vec<ErrorRow>, WriteError> {
+    let instrument_errors = errors(&setup.distribution, readings);
+    let full = super::physics_label(s, true);
+    write_granulometry(
+        &stage.path("granulometry.csv"),
+        sm.sample,
+        &setup.distribution,
+        readings,
+    )
+    .map_err(WriteError::Io)?;
+    write_instruments(&stage.path("instruments.csv"), readings).map_err(WriteError::Io)?;
+    write_bulb_density(&stage.path("bulb_density.csv"), bulb).map_err(WriteError::Io)?;
+    write_chart(
+        &stage.path("granulometry.svg"),
+        &format!("{}: percent finer, input and instruments ({full})", s.name),
+        &setup.distribution,
+        readings,
+    )
+    .map_err(WriteError::Chart)?;
+    write_time_chart(
+        &stage.path("instruments.svg"),
+        &format!("{}: percent finer read against time", s.name),
+        readings,
+    )
+    .map_err(WriteError::Chart)?;
+    write_bulb_chart(
+        &stage.path("bulb_density.svg"),
+        &format!("{}: suspension density along the hydrometer bulb", s.name),
+        bulb,
+        instruments.hydrometer.spec.bulb_length_m,
+    )
+    .map_err(WriteError::Chart)?;
+    write_errors(
+        &stage.path("instrument_errors.csv"),
+        &s.name,
+        sm.sample,
+        super::physics_label(s, false),
+        setup.grains.len(),
+        &instrument_errors,
+    )
+    .map_err(WriteError::Io)?;
+    Ok(instrument_errors)
+}
 
 fn csv_err(e: csv::Error) -> io::Error {
     io::Error::other(e)

@@ -1,191 +1,14 @@
-//! Contacts and squeeze-film lubrication between representative grains of the sedimentation
-//! cylinder ([`crate::scenes::sedimentation`], `physics = "full"`): the pair search
-//! ([`PairFinder`]), the clusters of linked pairs ([`clusters`]) and their contact solve in a
-//! Rapier 2D world ([`resolve`]).
-//!
-//! The pair search is a cell list (columns in x, sorted by height) that finds, for one step,
-//! every pair of suspended grains whose surface gap can fall below the lubrication cut-off
-//! within the step. Grains move only vertically between
-//! contacts, so a pair can meet only if their discs overlap horizontally (|Δx| < r₁ + r₂ + h_out),
-//! and their vertical separation, monotone over the step, is then smallest at one of its ends
-//! (or zero if they cross): the test is exact for the free update of the step, with no travel
-//! bound to guess.
+//! The contact solve of one cluster of grains over one step, in a Rapier 2D world (see
+//! [`resolve`]).
 
+use super::pairs::{may_meet, may_meet_within, Probe};
+use crate::contact::RestitutionLaw;
 use crate::dynamics::{advance, Integrator};
 use crate::engine::dim2::{FluidBody, Vector, World};
 use crate::engine::{BodyId, EngineSettings};
 use crate::fluid::lubrication::{damping_n_s_m, Cutoffs};
 use crate::fluid::{sphere_mass_kg, SphereDrag};
 use nalgebra::SVector;
-
-/// One grain as the pair search sees it: centre x, height at the start and at the end of the
-/// free step, radius (real), all in m.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Probe {
-    /// Horizontal position, m.
-    pub x_m: f64,
-    /// Height of the centre at the start of the step, m.
-    pub y_start_m: f64,
-    /// Height of the centre at the end of the free (contact-less) step, m.
-    pub y_end_m: f64,
-    /// Radius, m.
-    pub radius_m: f64,
-}
-
-/// Outer lubrication cut-off of a pair, m: `outer_fraction` × a_eff, a_eff = a₁a₂/(a₁ + a₂).
-fn reach_m(a1: f64, a2: f64, outer_fraction: f64) -> f64 {
-    outer_fraction * a1 * a2 / (a1 + a2)
-}
-
-/// True if the pair's surface gap is below `outer_fraction` × a_eff at some time of the step,
-/// for grains moving vertically and monotonically from `y_start_m` to `y_end_m`.
-pub fn may_meet(p: &Probe, q: &Probe, outer_fraction: f64) -> bool {
-    may_meet_within(p, q, outer_fraction, 0.0)
-}
-
-/// [`may_meet`] with the cut-off widened by `extra_m`.
-pub fn may_meet_within(p: &Probe, q: &Probe, outer_fraction: f64, extra_m: f64) -> bool {
-    let contact =
-        p.radius_m + q.radius_m + reach_m(p.radius_m, q.radius_m, outer_fraction) + extra_m;
-    let dx = (p.x_m - q.x_m).abs();
-    if dx >= contact {
-        return false;
-    }
-    let dy0 = q.y_start_m - p.y_start_m;
-    let dy1 = q.y_end_m - p.y_end_m;
-    let closest = if dy0 * dy1 <= 0.0 {
-        0.0
-    } else {
-        dy0.abs().min(dy1.abs())
-    };
-    closest * closest + dx * dx < contact * contact
-}
-
-/// Cell list of the pair search: columns of width `column_m` over [0, `width_m`], each holding
-/// the indices of its grains sorted by starting height. Rebuilt every step (O(N) binning, and
-/// sorting that is nearly linear because grains keep their order from step to step).
-#[derive(Clone, Debug, Default)]
-pub struct PairFinder {
-    columns: Vec<Vec<u32>>,
-}
-
-impl PairFinder {
-    /// Every pair (i < j) of `probes` (None: grain not in suspension) that may meet within the
-    /// step ([`may_meet`]), sorted. `outer_fraction` is the lubrication cut-off h_out/a_eff.
-    pub fn pairs(
-        &mut self,
-        probes: &[Option<Probe>],
-        width_m: f64,
-        outer_fraction: f64,
-    ) -> Vec<(usize, usize)> {
-        let (mut r_max, mut travel_max): (f64, f64) = (0.0, 0.0);
-        for p in probes.iter().flatten() {
-            r_max = r_max.max(p.radius_m);
-            travel_max = travel_max.max((p.y_end_m - p.y_start_m).abs());
-        }
-        if r_max <= 0.0 {
-            return Vec::new();
-        }
-        // A column is at least as wide as the largest possible horizontal reach of a pair, so a
-        // grain meets only grains of its own and the neighbouring columns.
-        let column = 2.0 * r_max * (1.0 + 0.5 * outer_fraction);
-        let n_col = ((width_m / column).floor() as usize).max(1);
-        let column = width_m / n_col as f64;
-        self.columns.resize_with(n_col, Vec::new);
-        self.columns.iter_mut().for_each(Vec::clear);
-        for (i, p) in probes.iter().enumerate() {
-            if let Some(p) = p {
-                let c = ((p.x_m / column).max(0.0) as usize).min(n_col - 1);
-                self.columns[c].push(i as u32);
-            }
-        }
-        let y0 = |i: u32| probes[i as usize].expect("binned").y_start_m;
-        for col in &mut self.columns {
-            col.sort_by(|a, b| y0(*a).total_cmp(&y0(*b)));
-        }
-        // Vertical reach: touching (2 r_max + cut-off) plus the largest relative travel.
-        let reach = 2.0 * r_max * (1.0 + 0.5 * outer_fraction) + 2.0 * travel_max;
-        let mut out = Vec::new();
-        for c in 0..n_col {
-            let here = &self.columns[c];
-            for (k, &i) in here.iter().enumerate() {
-                let p = probes[i as usize].expect("binned");
-                // Same column: grains above i in the sorted order.
-                for &j in &here[k + 1..] {
-                    let q = probes[j as usize].expect("binned");
-                    if q.y_start_m - p.y_start_m > reach {
-                        break;
-                    }
-                    if may_meet(&p, &q, outer_fraction) {
-                        out.push((i.min(j) as usize, i.max(j) as usize));
-                    }
-                }
-                // Right-hand column: grains within the reach either way.
-                if let Some(next) = self.columns.get(c + 1) {
-                    let lo = next.partition_point(|&j| y0(j) < p.y_start_m - reach);
-                    for &j in &next[lo..] {
-                        let q = probes[j as usize].expect("binned");
-                        if q.y_start_m - p.y_start_m > reach {
-                            break;
-                        }
-                        if may_meet(&p, &q, outer_fraction) {
-                            out.push((i.min(j) as usize, i.max(j) as usize));
-                        }
-                    }
-                }
-            }
-        }
-        out.sort_unstable();
-        out
-    }
-}
-
-/// Groups of grains linked by pairs (connected components), each sorted, the groups ordered by
-/// their first grain.
-pub fn clusters(pairs: &[(usize, usize)]) -> Vec<Vec<usize>> {
-    use std::collections::HashMap;
-    let mut parent: HashMap<usize, usize> = HashMap::new();
-    fn find(parent: &mut HashMap<usize, usize>, i: usize) -> usize {
-        let mut r = i;
-        while let Some(&p) = parent.get(&r) {
-            if p == r {
-                break;
-            }
-            r = p;
-        }
-        // Path compression.
-        let mut k = i;
-        while k != r {
-            let next = parent[&k];
-            parent.insert(k, r);
-            k = next;
-        }
-        r
-    }
-    for &(i, j) in pairs {
-        parent.entry(i).or_insert(i);
-        parent.entry(j).or_insert(j);
-        let (a, b) = (find(&mut parent, i), find(&mut parent, j));
-        if a != b {
-            parent.insert(a.max(b), a.min(b));
-        }
-    }
-    let keys: Vec<usize> = parent.keys().copied().collect();
-    let mut groups: HashMap<usize, Vec<usize>> = HashMap::new();
-    for k in keys {
-        let r = find(&mut parent, k);
-        groups.entry(r).or_default().push(k);
-    }
-    let mut out: Vec<Vec<usize>> = groups
-        .into_values()
-        .map(|mut g| {
-            g.sort_unstable();
-            g
-        })
-        .collect();
-    out.sort_unstable_by_key(|g| g[0]);
-    out
-}
 
 /// A grain handed to the contact solve, at the start of the step. SI units.
 #[derive(Clone, Copy, Debug)]
@@ -229,6 +52,12 @@ pub struct ContactScene {
     /// Largest relative change of a squeeze film's gap over one Rapier step (the damper uses
     /// the gap at the start of the step: a first-order error in this fraction).
     pub film_change_per_step: f64,
+    /// Coulomb friction coefficient of every collider (grains, walls, bed); `[contacts]`
+    /// `friction`, 0 without it.
+    pub friction: f64,
+    /// Restitution of every contact; `[contacts]` `restitution` (and its speed dependence), 0
+    /// without it.
+    pub restitution: RestitutionLaw,
 }
 
 /// What the contact solve of one cluster did.
@@ -239,7 +68,14 @@ pub struct Solve {
     /// The engine reported an unstable step (speed above half its cap, or non-finite): the
     /// cluster was advanced by the free update for this step instead.
     pub fallback: bool,
+    /// An interrupt was requested during the solve ([`crate::interrupt::requested`], checked
+    /// every [`RAPIER_STEPS_PER_INTERRUPT_CHECK`] Rapier steps): the solve stopped early and its
+    /// result is incomplete; the caller must discard the step.
+    pub interrupted: bool,
 }
+
+/// Rapier steps of one cluster's contact solve between two checks for an interrupt request.
+pub const RAPIER_STEPS_PER_INTERRUPT_CHECK: u64 = 64;
 
 /// A grain at the end of the step.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -289,8 +125,9 @@ fn stokes_speed_m_s(g: &ClusterGrain, sc: &ContactScene) -> f64 {
 ///    Rapier steps of travel (bisection on the
 ///    exact free paths, [`may_meet`]).
 /// 2. **Contact window**: from t_c the cluster is a Rapier 2D world ([`World`]: effective-mass
-///    drag inside the contact solve, frictionless discs, walls at x = 0 and B, the bed surface
-///    as floor) stepped so that the fastest grain moves at most `travel_per_substep` of the
+///    drag inside the contact solve, discs with the scene's Coulomb friction and restitution
+///    (`[contacts]`; frictionless and perfectly inelastic without it), walls at x = 0 and B,
+///    the bed surface as floor) stepped so that the fastest grain moves at most `travel_per_substep` of the
 ///    smallest diameter per Rapier step. Before every Rapier step, each pair with a gap below
 ///    h_out gets the squeeze-film damper c = 6πμ a_eff²/max(h, h_in) along its line of centres
 ///    ([`World::add_pair_damper`], implicit in the solve), and the step is also cut so that
@@ -383,7 +220,7 @@ pub fn resolve(
         .map(|(g, s)| s.vy_m_s.abs().max(stokes_speed_m_s(g, sc)))
         .fold(0.0, f64::max);
     let mut settings = EngineSettings::for_scene(d_min, v_max);
-    settings.friction = 0.0;
+    settings.friction = sc.friction;
     // A small grain squeezed by a large one may move faster than its own terminal speed: the
     // cap (an instability detector) is set well above the cluster's largest terminal speed.
     settings.max_linear_velocity_m_s = settings.max_linear_velocity_m_s.max(40.0 * v_max);
@@ -409,6 +246,10 @@ pub fn resolve(
             world.add_sphere(b)
         })
         .collect();
+    // Every collider exists now (the world's default restitution is 0).
+    if sc.restitution != RestitutionLaw::constant(0.0) {
+        world.set_restitution_law(sc.restitution);
+    }
     let radius = |k: usize| 0.5 * grains[k].diameter_m;
     let gap = |w: &World, i: usize, j: usize| {
         (w.position_m(ids[j]) - w.position_m(ids[i])).norm() - radius(i) - radius(j)
@@ -502,11 +343,22 @@ pub fn resolve(
                 Solve {
                     rapier_steps: steps,
                     fallback: true,
+                    interrupted: false,
                 },
             );
         }
         t += h_try;
         steps += 1;
+        if steps.is_multiple_of(RAPIER_STEPS_PER_INTERRUPT_CHECK) && crate::interrupt::requested() {
+            return (
+                state,
+                Solve {
+                    rapier_steps: steps,
+                    fallback: false,
+                    interrupted: true,
+                },
+            );
+        }
         // 3. Release once no pair is close or may meet on the free paths for the rest.
         let rest = dt_s - t;
         let now: Vec<(f64, f64, f64)> = ids
@@ -564,76 +416,7 @@ pub fn resolve(
         Solve {
             rapier_steps: steps,
             fallback: false,
+            interrupted: false,
         },
     )
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn probe(x: f64, y0: f64, y1: f64, r: f64) -> Option<Probe> {
-        Some(Probe {
-            x_m: x,
-            y_start_m: y0,
-            y_end_m: y1,
-            radius_m: r,
-        })
-    }
-
-    #[test]
-    fn finds_exactly_the_pairs_of_a_brute_force_search() {
-        // Pseudo-random grains in a 2 mm × 20 mm box, moving down by up to 0.5 mm.
-        let mut s = 12345u64;
-        let mut rnd = || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        };
-        let probes: Vec<Option<Probe>> = (0..3000)
-            .map(|k| {
-                if k % 17 == 0 {
-                    return None;
-                }
-                let r = 2e-6 + 33e-6 * rnd();
-                let y0 = 0.02 * rnd();
-                probe(2e-3 * rnd(), y0, y0 - 5e-4 * rnd(), r)
-            })
-            .collect();
-        let mut brute = Vec::new();
-        for i in 0..probes.len() {
-            for j in i + 1..probes.len() {
-                if let (Some(p), Some(q)) = (probes[i], probes[j]) {
-                    if may_meet(&p, &q, 0.1) {
-                        brute.push((i, j));
-                    }
-                }
-            }
-        }
-        let found = PairFinder::default().pairs(&probes, 2e-3, 0.1);
-        assert!(
-            brute.len() > 10,
-            "the case must have pairs: {}",
-            brute.len()
-        );
-        assert_eq!(found, brute);
-    }
-
-    #[test]
-    fn crossing_paths_meet_and_side_by_side_grains_do_not() {
-        // Big grain above a small one, overtaking it within the step.
-        let big = probe(0.0, 1e-3, 0.0, 35e-6).unwrap();
-        let small = probe(10e-6, 6e-4, 5.9e-4, 2.5e-6).unwrap();
-        assert!(may_meet(&big, &small, 0.1));
-        // Same, but horizontally 40 µm apart: they pass each other.
-        let small = probe(40e-6, 6e-4, 5.9e-4, 2.5e-6).unwrap();
-        assert!(!may_meet(&big, &small, 0.1));
-    }
-
-    #[test]
-    fn clusters_are_connected_components() {
-        let c = clusters(&[(1, 5), (5, 9), (2, 3), (9, 1)]);
-        assert_eq!(c, vec![vec![1, 5, 9], vec![2, 3]]);
-    }
 }

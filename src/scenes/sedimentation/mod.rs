@@ -1,0 +1,220 @@
+//! The sedimentation cylinder of seed 000 (ASTM D422), in its 2D projection: two opposing 1°
+//! wedges (1/180 of the cylinder) projected on a B × H rectangle of thickness
+//! h_z = π B / 720 (so that B H h_z is 1/180 of the cylinder's volume π B² H / 4; the seed
+//! prints 2.26e-4 m, which does not follow from its own formula: for B = 0.0635 m it is
+//! 2.771e-4 m).
+//!
+//! # Design: model no more than the scene needs
+//!
+//! - **N representative grains** ([`crate::sample`]) with statistical weights stand for the
+//!   10⁶–10⁹ real grains; every concentration, density and mass is reported in real units.
+//! - **Suspension**: in a still fluid each grain only settles vertically; it is advanced by the
+//!   exponential integrator of [`crate::dynamics`] (exact for Stokes drag at any dt) outside any
+//!   contact pipeline, in parallel. With `physics = "full"` the drag is Dallavalle's with the
+//!   Di Felice voidage factor, ε taken from a grid of the local solid fraction (square cells of
+//!   `voidage_cell_m`); the step then keeps the fastest suspended grain within half a cell per
+//!   step (so ε is never stale by more than that), lands on every record time, and grows as the
+//!   large grains leave the suspension (seed §4.6).
+//! - **Bed**: a grain reaching the bottom leaves the suspension and joins the bed, whose height
+//!   grows with the deposited volume at packing fraction `bed_packing` (full physics; the
+//!   `ideal-stokes` reference stops grains at the floor). Nothing reads the bed's inner structure,
+//!   so it costs nothing per step.
+//! - **Instruments** ([`crate::instruments`], seed §4.5): the 152H hydrometer and the buoyancy
+//!   sphere read the layered suspension density of the profile at their reading times (real
+//!   densities, applied to the full axisymmetric bodies); the pipette weighs the grains in its
+//!   disc. The run lands on every reading time ([`simulate`]) and writes
+//!   `granulometry.csv`/`.svg`, `instruments.csv`/`.svg`, `bulb_density.csv`/`.svg` and
+//!   `instrument_errors.csv`.
+//! - **Contacts and lubrication** (`physics = "full"`, `sample.contacts` and
+//!   `sample.lubrication`, both on by default; never in `ideal-stokes`): after the free update
+//!   of a step, a cell list ([`contacts::PairFinder`]: columns in x as wide
+//!   as the largest pair reach, sorted by height; real diameters) finds every pair of suspended
+//!   grains whose gap falls below the lubrication cut-off h_out = 0.1 a_eff at some time of the
+//!   step on their free (vertical) paths, exactly. Linked pairs form clusters; each cluster is
+//!   re-done from the start of the step in its own Rapier 2D world
+//!   ([`contacts::resolve`]: [`crate::engine::dim2::World`] with its
+//!   effective-mass drag, discs with the Coulomb friction and restitution of `[contacts]` (frictionless and perfectly inelastic without it), walls at x = 0 and B, the bed surface as floor),
+//!   only over the window in which the pair is close, with the squeeze film
+//!   F = 6πμ a_eff² v_n / max(h, h_in) ([`crate::fluid::lubrication`], h_in = 1e-3 a_eff) as an
+//!   implicit damper along the line of centres. Grains then leave with the horizontal position
+//!   the contact gave them (x changes) and a vertical velocity only: their horizontal velocity
+//!   relaxes within the Stokes time (≤ 0.7 ms) and is dropped. Every other grain keeps the exact
+//!   update. A lone grain reaching the bed joins it, as before (contact with a flat bed that
+//!   absorbs it; the film against the bed, which would delay arrival by ~(a/v_t) ln(h_out/h_in)
+//!   ≤ 40 ms, is not modelled). Representative grains are sparse (area fraction ~1e-3), but they
+//!   fall through each other's columns: sample 1 (N = 100 000) has ~2 300 close pairs per step
+//!   while the 70 µm grains settle (1.7 million in the first 300 s) — see the README for the
+//!   cost and the effect on the readings.
+//!
+//! # Layout
+//!
+//! | file | stage |
+//! |---|---|
+//! | `setup.rs` | the typed setup: geometry, representative grains, viscosity, contact properties |
+//! | `state.rs` | the state a checkpoint saves, profiles, contact statistics |
+//! | `schedule.rs` | record, snapshot and reading times and their cursors; the next event |
+//! | `voidage.rs` | the voidage grid and the drag it gives |
+//! | `step.rs` | step size, free update, deposition, clock, fault scan |
+//! | `contacts/` | pair search, clusters, the Rapier solve of each cluster, the contact stage |
+//! | `simulate.rs` | the step loop, a short sequence of the stages above |
+//! | `observer.rs` | what the loop tells its caller (records, snapshots, readings, steps) |
+//! | `instruments.rs` | the instruments read on the state |
+//! | `output/` | every file the run writes |
+
+pub mod contacts;
+pub mod instruments;
+pub mod observer;
+pub mod output;
+pub mod schedule;
+pub mod setup;
+pub mod simulate;
+pub mod state;
+pub mod step;
+pub mod voidage;
+
+pub use instruments::{
+    hydrometer_spec, initial_bulb_profile, layered_field, read_instruments, BulbRow,
+    InstrumentKind, InstrumentReading, InstrumentSet,
+};
+pub use observer::{Observer, OnRecord};
+pub use setup::{
+    default_record_times, limiting_diameter_m, projection_thickness_m, setup, GrainContacts, Setup,
+    CONTACT_FILM_CHANGE_PER_STEP, CONTACT_TRAVEL_PER_SUBSTEP,
+};
+pub use simulate::simulate;
+pub use state::{band_mass_fractions, ContactStats, Profile, State, PICTURE_BANDS};
+
+use crate::checkpoint::Timer;
+use crate::output::StagedDir;
+use crate::run::{Prepared, RunContext, RunError, SceneReport};
+use output::Recorded;
+
+/// Runs a sedimentation scenario and writes `profiles.csv`, `bed.csv`, `max_diameter.csv`,
+/// `snapshots/`, `summary.csv` and the instruments' files (see the module doc). With
+/// checkpoints in `ctx` it saves its state and what it recorded every period and when
+/// interrupted (part `state`, see [`crate::checkpoint`]); with `ctx.resume` it continues from
+/// the saved state.
+pub fn run(p: &Prepared, stage: &StagedDir, ctx: &RunContext) -> Result<SceneReport, RunError> {
+    let s = &p.scenario;
+    let sm = s.sample.as_ref().expect("validated");
+    let setup = setup(s, &p.path)
+        .map_err(|e| RunError::Other(format!("{}: key `sample.csv`: {e}", p.path.display())))?;
+    let instruments = InstrumentSet::new(s, &setup);
+    let (start, recorded) = match (&ctx.checkpoints, ctx.resume) {
+        (Some(c), true) => c
+            .load::<(State, Recorded)>(&s.name, "state")
+            .map_err(RunError::Other)?,
+        _ => None,
+    }
+    .unwrap_or_else(|| {
+        let recorded = Recorded {
+            bulb: initial_bulb_profile(&instruments, &setup),
+            ..Recorded::default()
+        };
+        (State::initial(&setup), recorded)
+    });
+    let t0 = std::time::Instant::now();
+    let mut obs = RunObserver {
+        setup: &setup,
+        instruments: &instruments,
+        layers: sm.layers,
+        grain_density_kg_m3: sm.density_kg_m3,
+        rec: recorded,
+        ctx,
+        name: &s.name,
+        timer: ctx.checkpoints.as_ref().map(|c| c.timer()),
+        save_err: None,
+        bar: crate::progress::bar(
+            s.time.end_s.ceil() as u64,
+            &s.name,
+            "s simulated,",
+            ctx.quiet,
+        ),
+        t0,
+    };
+    let st = simulate(s, &setup, start, &instruments.all_times_s(), &mut obs);
+    obs.bar.finish_and_clear();
+    if let Some(u) = st.fault.clone() {
+        // Nothing to resume from a run that went unstable.
+        return Err(RunError::Unstable(p.path.clone(), u));
+    }
+    if st.interrupted {
+        obs.save(&st);
+    }
+    if let Some(e) = obs.save_err.take() {
+        return Err(RunError::Io(p.path.clone(), e));
+    }
+    let wall = t0.elapsed().as_secs_f64();
+    output::write_all(
+        stage,
+        &p.path,
+        s,
+        sm,
+        &setup,
+        &instruments,
+        &st,
+        obs.rec,
+        wall,
+    )
+}
+
+/// The observer of [`run`]: records profiles, pictures, snapshots and instrument readings, moves
+/// the progress bar and saves checkpoints when due.
+struct RunObserver<'a> {
+    setup: &'a Setup,
+    instruments: &'a InstrumentSet,
+    layers: usize,
+    grain_density_kg_m3: f64,
+    rec: Recorded,
+    ctx: &'a RunContext,
+    name: &'a str,
+    timer: Option<Timer>,
+    save_err: Option<std::io::Error>,
+    bar: indicatif::ProgressBar,
+    t0: std::time::Instant,
+}
+
+impl RunObserver<'_> {
+    /// Saves the state and the records (with checkpoints on); keeps the first error.
+    fn save(&mut self, st: &State) {
+        if let Some(c) = &self.ctx.checkpoints {
+            if let Err(e) = c.save(self.name, "state", &(st, &self.rec)) {
+                self.save_err.get_or_insert(e);
+            }
+        }
+    }
+}
+
+impl Observer for RunObserver<'_> {
+    fn record(&mut self, st: &State) {
+        let pr = state::profile(st, self.setup, self.layers, self.grain_density_kg_m3);
+        self.rec.profiles.push(pr);
+    }
+
+    fn snapshot(&mut self, st: &State) {
+        let bands = band_mass_fractions(st, self.setup, PICTURE_BANDS);
+        self.rec.pictures.push((st.time_s, bands));
+        self.rec.snapshots.push(st.clone());
+    }
+
+    fn reading(&mut self, st: &State) {
+        let r = &mut self.rec;
+        r.readings.extend(read_instruments(
+            self.instruments,
+            st,
+            self.setup,
+            &mut r.bulb,
+        ));
+    }
+
+    fn step(&mut self, st: &State) {
+        if st.steps.is_multiple_of(256) {
+            self.bar.set_position(st.time_s as u64);
+            self.bar
+                .set_message(crate::progress::step_message(st.steps, self.t0));
+        }
+        if self.timer.as_mut().is_some_and(|t| t.due()) {
+            self.save(st);
+        }
+    }
+}

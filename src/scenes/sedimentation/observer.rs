@@ -1,0 +1,28 @@
+//! What a sedimentation run tells its caller while it steps: the records, snapshots and
+//! instrument readings it lands on, and every step (progress, checkpoints).
+
+use super::state::State;
+
+/// Receives the state of a run at its events. Every method does nothing by default.
+pub trait Observer {
+    /// At every record time (`sample.record_times_s`, or the defaults).
+    fn record(&mut self, _st: &State) {}
+    /// At every snapshot time (`sample.snapshot_times_s`).
+    fn snapshot(&mut self, _st: &State) {}
+    /// At every instrument reading time passed to [`super::simulate`].
+    fn reading(&mut self, _st: &State) {}
+    /// After every step, events included (decides itself whether to save a checkpoint).
+    fn step(&mut self, _st: &State) {}
+}
+
+/// Observes nothing.
+impl Observer for () {}
+
+/// Calls the closure at every record time, and does nothing else.
+pub struct OnRecord<F: FnMut(&State)>(pub F);
+
+impl<F: FnMut(&State)> Observer for OnRecord<F> {
+    fn record(&mut self, st: &State) {
+        (self.0)(st)
+    }
+}

@@ -1,0 +1,357 @@
+//! Every file a sedimentation run writes: `profiles.csv`, `bed.csv`, `max_diameter.csv`,
+//! `summary.csv`, `snapshots/` and `cylinder.png` ([`pictures`]), and the instruments' files
+//! ([`granulometry`]).
+
+pub mod granulometry;
+pub mod pictures;
+
+use super::instruments::{BulbRow, InstrumentReading, InstrumentSet};
+use super::setup::{limiting_diameter_m, Setup};
+use super::state::{concentration, Profile, State};
+use crate::output::{num, StagedDir};
+use crate::run::{RunError, SceneReport};
+use crate::scenario::{Physics, SampleSpec, Scenario};
+use std::io;
+use std::path::Path;
+
+/// What a run has recorded: saved with the state in a checkpoint, written at the end.
+#[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
+pub struct Recorded {
+    /// The profiles at the record times.
+    pub profiles: Vec<Profile>,
+    /// (time, band mass fractions) of each snapshot, for `cylinder.png`.
+    pub pictures: Vec<(f64, Vec<f64>)>,
+    /// The states at the snapshot times (written to `snapshots/` at the end).
+    pub snapshots: Vec<State>,
+    /// The instruments' readings.
+    pub readings: Vec<InstrumentReading>,
+    /// Suspension density along the hydrometer bulb at its readings.
+    pub bulb: Vec<BulbRow>,
+}
+
+fn csv_err(e: csv::Error) -> io::Error {
+    io::Error::other(e)
+}
+
+/// Writes every file of a run of `s` that ended in `st` with what it `rec`orded into `stage`,
+/// and returns its report (`wall_s`: wall time of the simulation, s). I/O errors name the
+/// scenario file `path`.
+#[allow(clippy::too_many_arguments)]
+pub fn write_all(
+    stage: &StagedDir,
+    path: &Path,
+    s: &Scenario,
+    sm: &SampleSpec,
+    setup: &Setup,
+    instruments: &InstrumentSet,
+    st: &State,
+    rec: Recorded,
+    wall_s: f64,
+) -> Result<SceneReport, RunError> {
+    let io = |e: io::Error| RunError::Io(path.to_path_buf(), e);
+    let Recorded {
+        profiles,
+        pictures,
+        snapshots,
+        readings,
+        bulb,
+    } = rec;
+    let snap_dir = stage.path("snapshots");
+    for snap in &snapshots {
+        pictures::write_snapshot(&snap_dir, snap).map_err(io)?;
+    }
+    let instrument_errors =
+        granulometry::write_all(stage, s, sm, setup, instruments, &readings, &bulb).map_err(
+            |e| match e {
+                granulometry::WriteError::Io(e) => io(e),
+                granulometry::WriteError::Chart(m) => RunError::Other(m),
+            },
+        )?;
+    if !pictures.is_empty() {
+        pictures::draw_cylinder(&stage.path("cylinder.png"), &pictures).map_err(RunError::Other)?;
+    }
+    let k = Densities {
+        grain_kg_m3: sm.density_kg_m3,
+        fluid_kg_m3: s.fluid.density_kg_m3,
+    };
+    write_profiles(&stage.path("profiles.csv"), &profiles, setup, sm.layers, k).map_err(io)?;
+    write_bed(&stage.path("bed.csv"), &profiles, setup).map_err(io)?;
+    write_max_diameter(
+        &stage.path("max_diameter.csv"),
+        &profiles,
+        setup,
+        sm.layers,
+        k,
+        s.gravity_m_s2,
+    )
+    .map_err(io)?;
+    let summary = Summary::of(st);
+    write_summary(&stage.path("summary.csv"), sm, setup, st, &summary).map_err(io)?;
+    Ok(report(sm, setup, st, &summary, wall_s, &instrument_errors))
+}
+
+/// Grain and fluid densities, kg/m³.
+#[derive(Clone, Copy, Debug)]
+struct Densities {
+    grain_kg_m3: f64,
+    fluid_kg_m3: f64,
+}
+
+/// `profiles.csv`: per record time and layer (top first) the solid volume, concentration,
+/// suspension density, grain count, the count's relative uncertainty 1/√n and the largest and
+/// smallest diameter.
+fn write_profiles(
+    path: &Path,
+    profiles: &[Profile],
+    setup: &Setup,
+    layers: usize,
+    k: Densities,
+) -> io::Result<()> {
+    let h_ly = setup.height_m / layers as f64;
+    let layer_volume = setup.width_m * h_ly * setup.thickness_m;
+    let (rho_p, rho_f) = (k.grain_kg_m3, k.fluid_kg_m3);
+    let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
+    w.write_record([
+        "time_s",
+        "layer",
+        "depth_m",
+        "solid_volume_m3",
+        "concentration",
+        "suspension_density_kg_m3",
+        "grains",
+        "concentration_rel_uncertainty",
+        "d_max_m",
+        "d_min_m",
+    ])
+    .map_err(csv_err)?;
+    for pr in profiles {
+        for k in 0..layers {
+            let c = concentration(pr.solid_m3[k], layer_volume);
+            let n = pr.count[k];
+            w.write_record([
+                num(pr.time_s),
+                k.to_string(),
+                num((k as f64 + 0.5) * h_ly),
+                num(pr.solid_m3[k]),
+                num(c),
+                num(rho_f + c * (rho_p - rho_f)),
+                n.to_string(),
+                if n > 0 {
+                    num(1.0 / (n as f64).sqrt())
+                } else {
+                    String::new()
+                },
+                if n > 0 {
+                    num(pr.d_max_m[k])
+                } else {
+                    String::new()
+                },
+                if n > 0 {
+                    num(pr.d_min_m[k])
+                } else {
+                    String::new()
+                },
+            ])
+            .map_err(csv_err)?;
+        }
+    }
+    w.flush()
+}
+
+/// `bed.csv`: bed height, mass and mass fraction at every record time.
+fn write_bed(path: &Path, profiles: &[Profile], setup: &Setup) -> io::Result<()> {
+    let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
+    w.write_record(["time_s", "bed_height_m", "bed_mass_kg", "bed_mass_fraction"])
+        .map_err(csv_err)?;
+    for pr in profiles {
+        w.write_record([
+            num(pr.time_s),
+            num(pr.bed_height_m),
+            num(pr.bed_mass_kg),
+            num(pr.bed_mass_kg / setup.model_mass_kg),
+        ])
+        .map_err(csv_err)?;
+    }
+    w.flush()
+}
+
+/// `max_diameter.csv`: at 60, 120, 300 and 900 s, the largest grain above each depth (every
+/// hundredth of the layers) against the limiting diameter of seed eq. 16.
+fn write_max_diameter(
+    path: &Path,
+    profiles: &[Profile],
+    setup: &Setup,
+    layers: usize,
+    k: Densities,
+    gravity_m_s2: f64,
+) -> io::Result<()> {
+    let h_ly = setup.height_m / layers as f64;
+    let (rho_p, rho_f, mu) = (k.grain_kg_m3, k.fluid_kg_m3, setup.viscosity_pa_s);
+    let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
+    w.write_record([
+        "time_s",
+        "depth_m",
+        "d_max_above_m",
+        "limiting_diameter_eq16_m",
+    ])
+    .map_err(csv_err)?;
+    for pr in profiles.iter().filter(|pr| {
+        [60.0, 120.0, 300.0, 900.0]
+            .iter()
+            .any(|t| (pr.time_s - t).abs() < 1e-6)
+    }) {
+        let mut dmax: f64 = 0.0;
+        for k in 0..layers {
+            dmax = dmax.max(pr.d_max_m[k]);
+            if (k + 1) % (layers / 100).max(1) == 0 {
+                let depth = (k as f64 + 1.0) * h_ly;
+                w.write_record([
+                    num(pr.time_s),
+                    num(depth),
+                    num(dmax),
+                    num(limiting_diameter_m(
+                        depth,
+                        pr.time_s,
+                        mu,
+                        rho_p,
+                        rho_f,
+                        gravity_m_s2,
+                    )),
+                ])
+                .map_err(csv_err)?;
+            }
+        }
+    }
+    w.flush()
+}
+
+/// Figures of the final state shared by `summary.csv` and the report.
+struct Summary {
+    /// Real grains the representative ones stand for.
+    real: f64,
+    /// Smallest and largest statistical weight.
+    weight_min: f64,
+    weight_max: f64,
+    /// Grains in the bed at the end.
+    settled: usize,
+}
+
+impl Summary {
+    fn of(st: &State) -> Self {
+        let real: f64 = st.grains.iter().map(|g| g.weight).sum();
+        let (weight_min, weight_max) = st.grains.iter().fold((f64::INFINITY, 0.0f64), |a, g| {
+            (a.0.min(g.weight), a.1.max(g.weight))
+        });
+        Self {
+            real,
+            weight_min,
+            weight_max,
+            settled: st.settled.iter().filter(|x| **x).count(),
+        }
+    }
+}
+
+/// `summary.csv`: `quantity, value` rows of the run (sample, grains, steps, bed, contacts).
+fn write_summary(
+    path: &Path,
+    sm: &SampleSpec,
+    setup: &Setup,
+    st: &State,
+    su: &Summary,
+) -> io::Result<()> {
+    let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
+    let rows: [(&str, String); 18] = [
+        ("sample", sm.sample.to_string()),
+        ("representative_grains", st.grains.len().to_string()),
+        ("real_grains_modelled", num(su.real)),
+        ("weight_min", num(su.weight_min)),
+        ("weight_max", num(su.weight_max)),
+        ("model_mass_kg", num(setup.model_mass_kg)),
+        ("projection_thickness_m", num(setup.thickness_m)),
+        ("steps", st.steps.to_string()),
+        ("dt_min_s", num(st.dt_range_s.0)),
+        ("dt_max_s", num(st.dt_range_s.1)),
+        ("grains_settled_at_end", su.settled.to_string()),
+        ("bed_height_m", num(st.bed_height_m)),
+        ("contact_pairs", st.contacts.pairs.to_string()),
+        (
+            "contact_steps_with_pairs",
+            st.contacts.steps_with_pairs.to_string(),
+        ),
+        (
+            "contact_max_pairs_per_step",
+            st.contacts.max_pairs_per_step.to_string(),
+        ),
+        ("contact_grains_handed", st.contacts.grains.to_string()),
+        ("contact_rapier_steps", st.contacts.rapier_steps.to_string()),
+        ("contact_fallbacks", st.contacts.fallbacks.to_string()),
+    ];
+    w.write_record(["quantity", "value"]).map_err(csv_err)?;
+    for (k, v) in &rows {
+        w.write_record([k.to_string(), v.clone()])
+            .map_err(csv_err)?;
+    }
+    w.flush()
+}
+
+/// The run's report: its console lines and counts.
+fn report(
+    sm: &SampleSpec,
+    setup: &Setup,
+    st: &State,
+    su: &Summary,
+    wall: f64,
+    instrument_errors: &[granulometry::ErrorRow],
+) -> SceneReport {
+    SceneReport {
+        steps: st.steps,
+        bodies: st.grains.len(),
+        engine_settings: None,
+        lines: vec![
+            format!(
+                "sample {}: {} representative grains for {:.3e} real ones (weights {:.3e}–{:.3e}), h_z = {:.4e} m",
+                sm.sample,
+                st.grains.len(),
+                su.real,
+                su.weight_min,
+                su.weight_max,
+                setup.thickness_m
+            ),
+            format!(
+                "{} steps (dt {:.3e}–{:.3e} s) to t = {} s in {:.2} s wall; {} grains settled, bed {:.3e} m",
+                st.steps, st.dt_range_s.0, st.dt_range_s.1, st.time_s, wall, su.settled, st.bed_height_m
+            ),
+            format!(
+                "contacts: {} close pairs over {} steps (at most {} in one step), {} grains handed to the contact solve, {} Rapier steps, {} fallbacks, {:.2} s wall",
+                st.contacts.pairs,
+                st.contacts.steps_with_pairs,
+                st.contacts.max_pairs_per_step,
+                st.contacts.grains,
+                st.contacts.rapier_steps,
+                st.contacts.fallbacks,
+                st.contacts.wall_s
+            ),
+            format!(
+                "instruments against the input curve (largest / mean |Δ percent finer|): {}",
+                instrument_errors
+                    .iter()
+                    .map(|e| format!(
+                        "{} {:.1} / {:.1} %",
+                        e.instrument, e.max_abs_error, e.mean_abs_error
+                    ))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        ],
+        interrupted: st.interrupted,
+    }
+}
+
+/// Name of the physics in the instruments' files and chart titles.
+fn physics_label(s: &Scenario, long: bool) -> &'static str {
+    match (s.physics, long) {
+        (Physics::IdealStokes, _) => "ideal-stokes",
+        (_, true) => "full physics",
+        (_, false) => "full",
+    }
+}

@@ -1,0 +1,75 @@
+//! The times a run lands on exactly: records, snapshots and instrument readings, with their
+//! cursors (saved in the state, so that a resumed run continues where it stopped).
+
+use super::observer::Observer;
+use super::setup::default_record_times;
+use super::state::State;
+use crate::scenario::{SampleSpec, Scenario};
+
+/// Sorted record, snapshot and reading times, and the end time, s.
+#[derive(Clone, Debug)]
+pub struct Schedule {
+    records: Vec<f64>,
+    snapshots: Vec<f64>,
+    readings: Vec<f64>,
+    end_s: f64,
+}
+
+impl Schedule {
+    /// The times of scenario `s` (sample `sm`) and the instruments' `reading_times_s`.
+    pub fn new(s: &Scenario, sm: &SampleSpec, reading_times_s: &[f64]) -> Self {
+        let mut records: Vec<f64> = if sm.record_times_s.is_empty() {
+            default_record_times(s.time.end_s)
+        } else {
+            sm.record_times_s.clone()
+        };
+        records.sort_by(f64::total_cmp);
+        let mut snapshots = sm.snapshot_times_s.clone();
+        snapshots.sort_by(f64::total_cmp);
+        let mut readings = reading_times_s.to_vec();
+        readings.sort_by(f64::total_cmp);
+        readings.dedup();
+        Self {
+            records,
+            snapshots,
+            readings,
+            end_s: s.time.end_s,
+        }
+    }
+
+    /// True while `st` has not reached the end time.
+    pub fn running(&self, st: &State) -> bool {
+        st.time_s < self.end_s * (1.0 - 1e-12)
+    }
+
+    /// The next time to land on from the cursors of `st`: the earliest pending record, snapshot
+    /// or reading, or the end.
+    pub fn next_event_s(&self, st: &State) -> f64 {
+        let [ti, si, ri] = st.cursor;
+        let at = |v: &[f64], i: usize| v.get(i).copied().unwrap_or(f64::INFINITY);
+        at(&self.records, ti)
+            .min(at(&self.snapshots, si))
+            .min(at(&self.readings, ri))
+            .min(self.end_s)
+    }
+
+    /// Hands `st` to `obs` for every event it has reached, in the order records, snapshots,
+    /// readings, and advances the cursors of `st`.
+    pub fn dispatch(&self, st: &mut State, obs: &mut impl Observer) {
+        let reached = |x: f64, t: f64| x <= t * (1.0 + 1e-12);
+        let [mut ti, mut si, mut ri] = st.cursor;
+        while ti < self.records.len() && reached(self.records[ti], st.time_s) {
+            obs.record(st);
+            ti += 1;
+        }
+        while si < self.snapshots.len() && reached(self.snapshots[si], st.time_s) {
+            obs.snapshot(st);
+            si += 1;
+        }
+        while ri < self.readings.len() && reached(self.readings[ri], st.time_s) {
+            obs.reading(st);
+            ri += 1;
+        }
+        st.cursor = [ti, si, ri];
+    }
+}

@@ -1,0 +1,147 @@
+//! The state of a sedimentation run (what a checkpoint saves), its profiles and contact
+//! statistics.
+
+use super::setup::Setup;
+use crate::fluid::sphere_volume_m3;
+use crate::sample::Grain;
+
+/// One profile: per layer (top first) the solid volume of suspended grains (real units), their
+/// count, and the largest and smallest diameter present.
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
+pub struct Profile {
+    /// Time, s.
+    pub time_s: f64,
+    /// Solid volume per layer, m³ (real grains).
+    pub solid_m3: Vec<f64>,
+    /// Representative grains per layer.
+    pub count: Vec<usize>,
+    /// Largest diameter per layer, m (0 if empty).
+    pub d_max_m: Vec<f64>,
+    /// Smallest diameter per layer, m (∞ if empty).
+    pub d_min_m: Vec<f64>,
+    /// Bed height, m.
+    pub bed_height_m: f64,
+    /// Mass in the bed (real units, modelled wedges), kg.
+    pub bed_mass_kg: f64,
+}
+
+/// State of the simulation: everything a resumed run needs (see [`crate::checkpoint`]).
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
+pub struct State {
+    /// Grains (positions updated in place).
+    pub grains: Vec<Grain>,
+    /// Vertical velocity of each grain (negative downwards), m/s.
+    pub velocity_m_s: Vec<f64>,
+    /// Grain has joined the bed (or stopped on the floor).
+    pub settled: Vec<bool>,
+    /// Bed height, m.
+    pub bed_height_m: f64,
+    /// Time, s.
+    pub time_s: f64,
+    /// Steps taken.
+    pub steps: u64,
+    /// Step sizes taken: (min, max), s.
+    pub dt_range_s: (f64, f64),
+    /// The run stopped early on Ctrl-C/SIGTERM.
+    pub interrupted: bool,
+    /// Next record, snapshot and reading time to land on (indices into the sorted times).
+    pub cursor: [usize; 3],
+    /// Contact statistics of the run (full physics with contacts or lubrication).
+    pub contacts: ContactStats,
+    /// The numerical fault that stopped the run, if any (not checkpointed: a faulted run writes
+    /// nothing).
+    #[serde(skip)]
+    pub fault: Option<crate::dynamics::Unstable>,
+}
+
+impl State {
+    /// The state at t = 0: every grain of `setup` at rest in suspension.
+    pub fn initial(setup: &Setup) -> Self {
+        let n = setup.grains.len();
+        Self {
+            grains: setup.grains.clone(),
+            velocity_m_s: vec![0.0; n],
+            settled: vec![false; n],
+            bed_height_m: 0.0,
+            time_s: 0.0,
+            steps: 0,
+            dt_range_s: (f64::INFINITY, 0.0),
+            interrupted: false,
+            cursor: [0; 3],
+            contacts: ContactStats::default(),
+            fault: None,
+        }
+    }
+}
+
+/// How much the contact and lubrication pipeline did over a run.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct ContactStats {
+    /// Close pairs found, summed over the steps.
+    pub pairs: u64,
+    /// Grains handed to the contact solve, summed over the steps.
+    pub grains: u64,
+    /// Most close pairs in one step.
+    pub max_pairs_per_step: usize,
+    /// Steps with at least one close pair.
+    pub steps_with_pairs: u64,
+    /// Rapier steps taken by the contact solve (all clusters, all substeps).
+    pub rapier_steps: u64,
+    /// Cluster-steps the engine found unstable, advanced by the free update instead.
+    pub fallbacks: u64,
+    /// Wall time spent finding pairs and resolving them, s (this process's part of the run).
+    pub wall_s: f64,
+}
+
+/// The profile of `st` over `layers` layers of the suspension height (grains of density
+/// `rho_p`, kg/m³).
+pub fn profile(st: &State, setup: &Setup, layers: usize, rho_p: f64) -> Profile {
+    let h_ly = setup.height_m / layers as f64;
+    let mut p = Profile {
+        time_s: st.time_s,
+        solid_m3: vec![0.0; layers],
+        count: vec![0; layers],
+        d_max_m: vec![0.0; layers],
+        d_min_m: vec![f64::INFINITY; layers],
+        bed_height_m: st.bed_height_m,
+        bed_mass_kg: 0.0,
+    };
+    for (g, &settled) in st.grains.iter().zip(&st.settled) {
+        let v = g.weight * sphere_volume_m3(g.diameter_m);
+        if settled {
+            p.bed_mass_kg += v * rho_p;
+            continue;
+        }
+        let depth = setup.height_m - g.y_m;
+        let k = ((depth / h_ly) as usize).min(layers - 1);
+        p.solid_m3[k] += v;
+        p.count[k] += 1;
+        p.d_max_m[k] = p.d_max_m[k].max(g.diameter_m);
+        p.d_min_m[k] = p.d_min_m[k].min(g.diameter_m);
+    }
+    p
+}
+
+/// Number of horizontal bands of the cylinder pictures.
+pub const PICTURE_BANDS: usize = 100;
+
+/// Mass fraction of the modelled sample in each of `bands` horizontal bands (top first), bed
+/// included, as in seed Fig. 11.
+pub fn band_mass_fractions(st: &State, setup: &Setup, bands: usize) -> Vec<f64> {
+    let mut f = vec![0.0; bands];
+    let mut total = 0.0;
+    for g in &st.grains {
+        let v = g.weight * sphere_volume_m3(g.diameter_m);
+        let k =
+            (((setup.height_m - g.y_m) / setup.height_m * bands as f64) as usize).min(bands - 1);
+        f[k] += v;
+        total += v;
+    }
+    f.iter_mut().for_each(|x| *x /= total);
+    f
+}
+
+/// Concentration (solid volume fraction) of a profile layer, given the layer volume.
+pub fn concentration(solid_m3: f64, layer_volume_m3: f64) -> f64 {
+    solid_m3 / layer_volume_m3
+}
