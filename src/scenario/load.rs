@@ -2,7 +2,8 @@
 //! file and the key, then validation of ranges.
 
 use super::schema::Scenario;
-use super::validate::{check_tables, validate};
+use super::spec::Parsed;
+use super::validate::check_tables;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
@@ -41,13 +42,23 @@ impl std::error::Error for ScenarioError {}
 /// Reads, overrides, parses and validates a scenario file. `overrides` are `KEY=VALUE` strings
 /// (`fluid.viscosity_pa_s=0.002`, `spheres[0].diameter_m=1e-4`, `physics=ideal-stokes`).
 pub fn load(path: &Path, overrides: &[String]) -> Result<Scenario, ScenarioError> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| ScenarioError::new(path, None, format!("cannot read the file: {e}")))?;
-    load_str(&text, path, overrides)
+    parse(path, overrides).map(|p| p.scenario)
 }
 
 /// As [`load`], from the text of a file; `path` names it in errors.
 pub fn load_str(text: &str, path: &Path, overrides: &[String]) -> Result<Scenario, ScenarioError> {
+    parse_str(text, path, overrides).map(|p| p.scenario)
+}
+
+/// As [`load`], with the typed parts of the scenario: the spec of its kind and its rheology.
+pub fn parse(path: &Path, overrides: &[String]) -> Result<Parsed, ScenarioError> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| ScenarioError::new(path, None, format!("cannot read the file: {e}")))?;
+    parse_str(&text, path, overrides)
+}
+
+/// As [`parse`], from the text of a file; `path` names it in errors.
+pub fn parse_str(text: &str, path: &Path, overrides: &[String]) -> Result<Parsed, ScenarioError> {
     let mut table: toml::Table = text.parse().map_err(|e: toml::de::Error| {
         let line = e
             .span()
@@ -91,8 +102,7 @@ pub fn load_str(text: &str, path: &Path, overrides: &[String]) -> Result<Scenari
         let key = if key == "." { None } else { Some(key) };
         ScenarioError::new(path, key.as_deref(), msg)
     })?;
-    validate(&scenario, path)?;
-    Ok(scenario)
+    Parsed::new(scenario, path)
 }
 
 /// Applies one `KEY=VALUE` override to a TOML table. The value is parsed as TOML (number,

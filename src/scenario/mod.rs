@@ -11,9 +11,14 @@ pub mod cost;
 pub mod inputs;
 mod load;
 mod schema;
+mod spec;
 mod validate;
 
-pub use load::{apply_override, load, load_str, ScenarioError};
+pub use load::{apply_override, load, load_str, parse, parse_str, ScenarioError};
 pub use schema::*;
+pub use spec::{
+    FreeSettlingSpec, FunnelPourSpec, Parsed, RestitutionSpec, SceneSpec, SedimentationSpec,
+    TiltFrictionSpec,
+};
 pub(crate) use validate::check_sphere;
 pub use validate::{kind_name, MAX_STEPS};

@@ -5,6 +5,7 @@
 use super::check::Check;
 use super::load::ScenarioError;
 use super::schema::*;
+use super::spec::*;
 use std::path::Path;
 
 pub use super::check::MAX_STEPS;
@@ -71,11 +72,12 @@ pub fn check_tables(kind: Kind, present: &[&str], file: &Path) -> Result<(), Sce
     Ok(())
 }
 
-/// Validates ranges and cross-table rules.
-pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
+/// Validates ranges and cross-table rules, and builds the typed parts of the scenario: the
+/// spec of its kind and the rheology of its fluid.
+pub fn validate(s: &Scenario, file: &Path) -> Result<(SceneSpec, RheologyModel), ScenarioError> {
     let c = Check { file };
     s.check_common(&c)?;
-    s.fluid.check(&c)?;
+    let rheology = s.fluid.check(&c)?;
     s.drag.check(&c, &s.fluid, s.physics)?;
     s.time.check(&c)?;
     if let Some(ct) = &s.container {
@@ -85,7 +87,7 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
     if s.kind == Kind::Drop && s.engine == EngineChoice::Rapier {
         return Err(c.err("engine", "`rapier` is not available for kind = \"drop\" yet (no contacts there): allowed `auto`, `free`"));
     }
-    check_kind(&c, s)?;
+    let scene = check_kind(&c, s)?;
     if let Some(ct) = &s.contacts {
         ct.check(&c)?;
     }
@@ -116,11 +118,11 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(), ScenarioError> {
     if let Some(sw) = &s.sweep {
         sw.check(&c, s.time.end_s)?;
     }
-    Ok(())
+    Ok((scene, rheology))
 }
 
-/// The kind's own tables: present, and checked.
-fn check_kind(c: &Check, s: &Scenario) -> Result<(), ScenarioError> {
+/// The kind's own tables: present, and checked; the kind's spec built from them.
+fn check_kind(c: &Check, s: &Scenario) -> Result<SceneSpec, ScenarioError> {
     let missing = |key: &str, what: &str| {
         c.err(
             key,
@@ -135,14 +137,20 @@ fn check_kind(c: &Check, s: &Scenario) -> Result<(), ScenarioError> {
                     "a [restitution_drop] table with drop_heights_m",
                 )
             })?;
-            contact_scene_3d(c, s)?;
-            if s.spheres.len() != 1 || s.spheres_csv.is_some() {
-                return Err(c.err(
+            let contacts = contact_scene_3d(c, s)?;
+            let ball = match (s.spheres.as_slice(), &s.spheres_csv) {
+                ([ball], None) => ball,
+                _ => return Err(c.err(
                     "spheres",
                     "kind = \"restitution_drop\" drops one ball: give exactly one [[spheres]] table (no [spheres_csv])",
-                ));
-            }
-            rd.check(c)
+                )),
+            };
+            rd.check(c)?;
+            Ok(SceneSpec::RestitutionDrop(RestitutionSpec {
+                drop: rd.clone(),
+                ball: ball.clone(),
+                contacts,
+            }))
         }
         Kind::TiltFriction => {
             let t = s.tilt.as_ref().ok_or_else(|| {
@@ -151,54 +159,105 @@ fn check_kind(c: &Check, s: &Scenario) -> Result<(), ScenarioError> {
                     "a [tilt] table (block_size_m, block_density_kg_m3, angles_deg, duration_s)",
                 )
             })?;
-            contact_scene_3d(c, s)?;
-            t.check(c, s)
+            let contacts = contact_scene_3d(c, s)?;
+            t.check(c, s)?;
+            let block_size_m: [f64; 3] =
+                t.block_size_m.as_slice().try_into().map_err(|_| {
+                    c.err("tilt.block_size_m", "give the three edge lengths [x, y, z]")
+                })?;
+            Ok(SceneSpec::TiltFriction(TiltFrictionSpec {
+                tilt: t.clone(),
+                block_size_m,
+                contacts,
+            }))
         }
         Kind::FunnelPour => {
             let f = s
                 .funnel
                 .as_ref()
                 .ok_or_else(|| missing("funnel", "a [funnel] table (count, geometry)"))?;
-            if s.container.as_ref().is_none_or(|c| c.diameter_m.is_none()) {
-                return Err(missing(
-                    "container.diameter_m",
-                    "a cylindrical [container] with diameter_m",
-                ));
-            }
-            contact_scene_3d(c, s)?;
-            f.check(c, s)
-        }
-        Kind::Sedimentation => {
-            let sm = s.sample.as_ref().ok_or_else(|| {
-                missing(
-                    "sample",
-                    "a [sample] table (csv, sample, mass_kg, density_kg_m3)",
-                )
-            })?;
-            let (h, b) = match &s.container {
+            let (height_m, diameter_m) = match &s.container {
                 Some(Container {
                     height_m,
-                    width_m: Some(b),
+                    diameter_m: Some(d),
                     ..
-                }) => (*height_m, *b),
+                }) => (*height_m, *d),
                 _ => {
                     return Err(missing(
-                        "container.width_m",
-                        "a [container] with width_m (B) and height_m (H)",
+                        "container.diameter_m",
+                        "a cylindrical [container] with diameter_m",
                     ))
                 }
             };
-            if s.dimension != 2 {
-                return Err(c.err("dimension", "kind = \"sedimentation\" is the 2D projection of the cylinder (seed 000 §4.4): allowed 2"));
-            }
-            sm.check(c, s)?;
-            match &s.instruments {
-                Some(ins) => ins.check(c, s, sm, h, b),
-                None => Ok(()),
-            }
+            let contacts = contact_scene_3d(c, s)?;
+            f.check(c, s)?;
+            Ok(SceneSpec::FunnelPour(FunnelPourSpec {
+                funnel: f.clone(),
+                cylinder_radius_m: 0.5 * diameter_m,
+                height_m,
+                contacts,
+                repeats: s.repeats.clone().unwrap_or(Repeats { count: 1, seed: 0 }),
+            }))
         }
-        Kind::FreeSettling | Kind::Drop => Ok(()),
+        Kind::Sedimentation => sedimentation(c, s),
+        Kind::FreeSettling | Kind::Drop => {
+            let spec = FreeSettlingSpec {
+                container: s.container.clone(),
+                release: s.release.clone(),
+                measure: s.measure.clone(),
+            };
+            Ok(if s.kind == Kind::Drop {
+                SceneSpec::Drop(spec)
+            } else {
+                SceneSpec::FreeSettling(spec)
+            })
+        }
     }
+}
+
+/// The tables of kind `sedimentation`: `[sample]`, a `[container]` with its width, dimension 2,
+/// `[instruments]` if given.
+fn sedimentation(c: &Check, s: &Scenario) -> Result<SceneSpec, ScenarioError> {
+    let missing = |key: &str, what: &str| {
+        c.err(
+            key,
+            format!("missing: kind = \"sedimentation\" needs {what}"),
+        )
+    };
+    let sm = s.sample.as_ref().ok_or_else(|| {
+        missing(
+            "sample",
+            "a [sample] table (csv, sample, mass_kg, density_kg_m3)",
+        )
+    })?;
+    let (h, b) = match &s.container {
+        Some(Container {
+            height_m,
+            width_m: Some(b),
+            ..
+        }) => (*height_m, *b),
+        _ => {
+            return Err(missing(
+                "container.width_m",
+                "a [container] with width_m (B) and height_m (H)",
+            ))
+        }
+    };
+    if s.dimension != Dim::Two {
+        return Err(c.err("dimension", "kind = \"sedimentation\" is the 2D projection of the cylinder (seed 000 §4.4): allowed 2"));
+    }
+    sm.check(c, s)?;
+    let instruments = s.instruments.clone().unwrap_or_default();
+    if s.instruments.is_some() {
+        instruments.check(c, s, sm, h, b)?;
+    }
+    Ok(SceneSpec::Sedimentation(SedimentationSpec {
+        sample: sm.clone(),
+        width_m: b,
+        height_m: h,
+        instruments,
+        contacts: s.contacts.clone(),
+    }))
 }
 
 /// Checks one sphere (also used for spheres read from CSV, with `key` naming the row).
@@ -211,17 +270,17 @@ pub(crate) fn check_sphere(
     sp.check(&Check { file }, key, s)
 }
 
-/// Kinds with contacts run in a Rapier 3D world: a [contacts] table, dimension 3, engine `auto`
-/// or `rapier`.
-fn contact_scene_3d(c: &Check, s: &Scenario) -> Result<(), ScenarioError> {
+/// Kinds with contacts run in a Rapier 3D world: a [contacts] table (returned), dimension 3,
+/// engine `auto` or `rapier`.
+fn contact_scene_3d(c: &Check, s: &Scenario) -> Result<Contacts, ScenarioError> {
     let kind = s.kind.name();
-    if s.contacts.is_none() {
+    let Some(contacts) = &s.contacts else {
         return Err(c.err(
             "contacts",
             format!("missing: kind = \"{kind}\" needs a [contacts] table (restitution, friction, rolling_resistance)"),
         ));
-    }
-    if s.dimension != 3 {
+    };
+    if s.dimension != Dim::Three {
         return Err(c.err(
             "dimension",
             format!("kind = \"{kind}\" is 3D-only (Rapier 3D contacts): allowed 3"),
@@ -233,7 +292,7 @@ fn contact_scene_3d(c: &Check, s: &Scenario) -> Result<(), ScenarioError> {
             format!("kind = \"{kind}\" needs contacts: allowed `auto`, `rapier`"),
         ));
     }
-    Ok(())
+    Ok(contacts.clone())
 }
 
 /// The name of a kind as written in scenario files (see [`Kind::name`]).

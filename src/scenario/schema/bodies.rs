@@ -3,7 +3,7 @@
 
 use super::super::check::{cc, oc, Check};
 use super::super::load::ScenarioError;
-use super::{Kind, Scenario};
+use super::{Dim, Kind, Scenario};
 use serde::{Deserialize, Serialize};
 
 /// The container.
@@ -80,10 +80,10 @@ pub struct SpheresCsv {
 
 impl Container {
     /// Height, diameter (3D only) and width within (0, 10 km].
-    pub(crate) fn check(&self, c: &Check, dimension: u8) -> Result<(), ScenarioError> {
+    pub(crate) fn check(&self, c: &Check, dimension: Dim) -> Result<(), ScenarioError> {
         c.range("container.height_m", self.height_m, oc(0.0, 1e4, "m"))?;
         if let Some(dia) = self.diameter_m {
-            if dimension == 2 {
+            if dimension == Dim::Two {
                 return Err(c.err("container.diameter_m", "a cylinder is 3D-only: with dimension = 2 give container.width_m (the 2D projection of the cylinder)"));
             }
             c.range("container.diameter_m", dia, oc(0.0, 1e4, "m"))?;

@@ -110,8 +110,9 @@ impl Fluid {
         })
     }
 
-    /// Density, and the viscosities the rheology needs (and no other).
-    pub(crate) fn check(&self, c: &Check) -> Result<(), ScenarioError> {
+    /// Density, and the viscosities the rheology needs (and no other): the rheology with its
+    /// parameters.
+    pub(crate) fn check(&self, c: &Check) -> Result<RheologyModel, ScenarioError> {
         c.range(
             "fluid.density_kg_m3",
             self.density_kg_m3,
@@ -138,7 +139,8 @@ impl Fluid {
                     self.plastic_viscosity_pa_s,
                     msg,
                 )?;
-                only("fluid.yield_stress_pa", self.yield_stress_pa, msg)
+                only("fluid.yield_stress_pa", self.yield_stress_pa, msg)?;
+                Ok(RheologyModel::Newtonian { viscosity_pa_s: mu })
             }
             Rheology::Bingham => {
                 let eb = present(
@@ -157,8 +159,36 @@ impl Fluid {
                     "fluid.viscosity_pa_s",
                     self.viscosity_pa_s,
                     "only allowed with rheology = \"newtonian\"; a bingham fluid uses plastic_viscosity_pa_s",
-                )
+                )?;
+                Ok(RheologyModel::Bingham {
+                    plastic_viscosity_pa_s: eb,
+                    yield_stress_pa: ty,
+                })
             }
+        }
+    }
+}
+
+impl RheologyModel {
+    /// The viscosity every drag law and every kind takes, Pa s: η of a Newtonian fluid, the
+    /// plastic viscosity η_B of a Bingham fluid.
+    pub fn drag_viscosity_pa_s(&self) -> f64 {
+        match *self {
+            RheologyModel::Newtonian { viscosity_pa_s } => viscosity_pa_s,
+            RheologyModel::Bingham {
+                plastic_viscosity_pa_s,
+                ..
+            } => plastic_viscosity_pa_s,
+        }
+    }
+
+    /// The yield stress τ_y, Pa: 0 for a Newtonian fluid.
+    pub fn yield_stress_pa(&self) -> f64 {
+        match *self {
+            RheologyModel::Newtonian { .. } => 0.0,
+            RheologyModel::Bingham {
+                yield_stress_pa, ..
+            } => yield_stress_pa,
         }
     }
 }

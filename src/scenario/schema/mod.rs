@@ -35,9 +35,9 @@ pub struct Scenario {
     pub name: String,
     /// What kind of scene this is.
     pub kind: Kind,
-    /// 2 or 3. Default 3.
+    /// 2 or 3 (`dimension = 2` in TOML, written back as the number). Default 3.
     #[serde(default = "default_dimension")]
-    pub dimension: u8,
+    pub dimension: Dim,
     /// Free text shown in `run.toml`.
     #[serde(default)]
     pub description: String,
@@ -102,8 +102,8 @@ pub struct Scenario {
     pub instruments: Option<InstrumentsSpec>,
 }
 
-fn default_dimension() -> u8 {
-    3
+fn default_dimension() -> Dim {
+    Dim::Three
 }
 fn default_gravity() -> f64 {
     DEFAULT_GRAVITY_M_S2
@@ -224,7 +224,7 @@ impl std::fmt::Display for Engine {
 /// The dimension of a scene. In TOML it is the number `2` or `3` (`dimension = 2`); any other
 /// number is refused when parsed as a `Dim`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
-#[serde(try_from = "u8", into = "u8")]
+#[serde(try_from = "i64", into = "u8")]
 pub enum Dim {
     /// A 2D scene: gravity along −y.
     Two,
@@ -232,9 +232,9 @@ pub enum Dim {
     Three,
 }
 
-impl TryFrom<u8> for Dim {
+impl TryFrom<i64> for Dim {
     type Error = String;
-    fn try_from(n: u8) -> Result<Self, String> {
+    fn try_from(n: i64) -> Result<Self, String> {
         match n {
             2 => Ok(Dim::Two),
             3 => Ok(Dim::Three),
@@ -265,17 +265,13 @@ impl Scenario {
         }
     }
 
-    /// The dimension as an enum (the field `dimension` keeps the number read from TOML; a
-    /// validated scenario has 2 or 3, anything else reads as 3D here).
+    /// The dimension (the field `dimension`).
     pub fn dim(&self) -> Dim {
-        if self.dimension == 2 {
-            Dim::Two
-        } else {
-            Dim::Three
-        }
+        self.dimension
     }
 
-    /// Checks the top-level keys: `name`, `dimension`, `gravity_m_s2`.
+    /// Checks the top-level keys `name` and `gravity_m_s2` (`dimension` is checked as it is
+    /// parsed: 2 or 3 only).
     pub(crate) fn check_common(&self, c: &Check) -> Result<(), ScenarioError> {
         let name_ok = !self.name.is_empty()
             && !self.name.starts_with('.')
@@ -289,7 +285,6 @@ impl Scenario {
                 format!("`{}` is not allowed: use letters, digits, `_`, `-` and `.`, not starting with `.` (it names the output folder)", self.name),
             ));
         }
-        Dim::try_from(self.dimension).map_err(|m| c.err("dimension", m))?;
         c.range("gravity_m_s2", self.gravity_m_s2, oc(0.0, 1000.0, "m/s²"))
     }
 }

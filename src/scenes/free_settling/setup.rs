@@ -44,7 +44,7 @@ pub enum Dim {
 impl Dim {
     /// The scenario's dimension (validation admits only 2 and 3; anything else reads as 3).
     pub fn of(s: &Scenario) -> Self {
-        if s.dimension == 2 {
+        if s.dimension == crate::scenario::Dim::Two {
             Self::Two
         } else {
             Self::Three
