@@ -32,7 +32,7 @@ pub use report::{charts, write_results, Context};
 pub use table::{finish, from_csv, read_rows, rel, to_csv, write_rows, Row, Status, HEADER};
 pub use targets::{Target, SWEEPABLE, SWEEPABLE_NAMES};
 
-use crate::output::StagedDir;
+use crate::io::StagedDir;
 use crate::run::{prepare, Prepared};
 use std::path::{Path, PathBuf};
 

@@ -5,8 +5,8 @@ use super::analysis::{recommended_dt, summarise, CaseSummary, RAYLEIGH_FRACTION}
 use super::error::Error;
 use super::table::{write_rows, Row};
 use crate::dynamics::Integrator;
-use crate::output::chart::{scatter_svg, Scale, Series};
-use crate::output::{num, write_atomic};
+use crate::io::chart::{scatter_svg, Scale, Series};
+use crate::io::{num, write_atomic};
 use std::collections::BTreeMap;
 use std::io;
 use std::path::Path;

@@ -11,11 +11,12 @@
 
 use super::setup::uses_rapier;
 use super::SphereResult;
-use crate::output::chart::{scatter_svg, Scale, Series};
-use crate::output::metrics::ErrorStats;
-use crate::output::{num, opt, StagedDir};
-use crate::run::{Prepared, RunError, SceneReport};
+use crate::error::Error;
+use crate::io::chart::{scatter_svg, Scale, Series};
+use crate::io::metrics::ErrorStats;
+use crate::io::{num, opt, StagedDir};
 use crate::scenario::{Kind, Submergence};
+use crate::scenes::{Prepared, SceneReport};
 use std::collections::BTreeMap;
 use std::io;
 use std::path::Path;
@@ -27,9 +28,9 @@ pub fn write_all(
     p: &Prepared,
     results: &[SphereResult],
     stage: &StagedDir,
-) -> Result<SceneReport, RunError> {
+) -> Result<SceneReport, Error> {
     let s = &p.scenario;
-    let io = |e: io::Error| RunError::Io(p.path.clone(), e);
+    let io = |e: io::Error| Error::Io(p.path.clone(), e);
     let integ = s.time.integrator.name();
     if s.kind == Kind::Drop {
         let sub = match s.fluid.submergence {
@@ -46,7 +47,7 @@ pub fn write_all(
             ),
             results,
         )
-        .map_err(RunError::Other)?;
+        .map_err(Error::Other)?;
     } else {
         let rows: Vec<Vec<String>> = results
             .iter()
@@ -64,7 +65,7 @@ pub fn write_all(
                 ),
                 results,
             )
-            .map_err(RunError::Other)?;
+            .map_err(Error::Other)?;
         }
     }
     if s.record.timeseries {

@@ -17,8 +17,9 @@
 //!   (f-EDEM Fig. 22, 15 repeats).
 
 use super::{funnel, Geometry, Place, RepeatResult};
-use crate::output::{num, StagedDir};
-use crate::run::{Prepared, RunError};
+use crate::error::Error;
+use crate::io::{num, StagedDir};
+use crate::scenes::Prepared;
 use plotters::prelude::*;
 use std::io;
 use std::path::Path;
@@ -430,15 +431,11 @@ pub fn write_presence_chart(
 }
 
 /// Writes every output file of a funnel pour into the staging folder.
-pub fn write_all(
-    p: &Prepared,
-    results: &[RepeatResult],
-    stage: &StagedDir,
-) -> Result<(), RunError> {
+pub fn write_all(p: &Prepared, results: &[RepeatResult], stage: &StagedDir) -> Result<(), Error> {
     let s = &p.scenario;
     let f = funnel(s);
     let geo = Geometry::of(s);
-    let io = |e: io::Error| RunError::Io(p.path.clone(), e);
+    let io = |e: io::Error| Error::Io(p.path.clone(), e);
     let reps = results.len();
     write_balls(&stage.path("balls.csv"), results).map_err(io)?;
     write_counts(&stage.path("counts.csv"), results, f.count_time_s).map_err(io)?;
@@ -459,7 +456,7 @@ pub fn write_all(
         reps,
         geo.paste_height_m,
     )
-    .map_err(RunError::Other)?;
+    .map_err(Error::Other)?;
     if !f.planes_z_m.is_empty() {
         let cells = presence(results, &f.planes_z_m, geo.cylinder_radius_m, f.grid_cell_m);
         write_presence(&stage.path("presence.csv"), &cells).map_err(io)?;
@@ -474,7 +471,7 @@ pub fn write_all(
             geo.cylinder_radius_m,
             f.grid_cell_m,
         )
-        .map_err(RunError::Other)?;
+        .map_err(Error::Other)?;
     }
     Ok(())
 }

@@ -12,8 +12,8 @@
 use super::fit::heights_within;
 use super::{Comparison, DropOutcome, Setup, Tally};
 use crate::contact::{LawFit, RestitutionLaw};
-use crate::output::chart::{scatter_svg, Scale, Series};
-use crate::output::{num, write_atomic};
+use crate::io::chart::{scatter_svg, Scale, Series};
+use crate::io::{num, write_atomic};
 use std::io;
 use std::path::Path;
 

@@ -78,15 +78,16 @@ pub use instruments::{
 };
 pub use observer::{Observer, OnRecord};
 pub use setup::{
-    default_record_times, limiting_diameter_m, projection_thickness_m, setup, GrainContacts, Setup,
+    default_record_times, limiting_diameter_m, setup, GrainContacts, Setup,
     CONTACT_FILM_CHANGE_PER_STEP, CONTACT_TRAVEL_PER_SUBSTEP,
 };
 pub use simulate::simulate;
 pub use state::{band_mass_fractions, ContactStats, Profile, State, PICTURE_BANDS};
 
 use crate::checkpoint::Timer;
-use crate::output::StagedDir;
-use crate::run::{Prepared, RunContext, RunError, SceneReport};
+use crate::error::Error;
+use crate::io::StagedDir;
+use crate::scenes::{Prepared, RunContext, SceneReport};
 use output::Recorded;
 
 /// Runs a sedimentation scenario and writes `profiles.csv`, `bed.csv`, `max_diameter.csv`,
@@ -94,16 +95,16 @@ use output::Recorded;
 /// checkpoints in `ctx` it saves its state and what it recorded every period and when
 /// interrupted (part `state`, see [`crate::checkpoint`]); with `ctx.resume` it continues from
 /// the saved state.
-pub fn run(p: &Prepared, stage: &StagedDir, ctx: &RunContext) -> Result<SceneReport, RunError> {
+pub fn run(p: &Prepared, stage: &StagedDir, ctx: &RunContext) -> Result<SceneReport, Error> {
     let s = &p.scenario;
     let sm = s.sample.as_ref().expect("validated");
     let setup = setup(s, &p.path)
-        .map_err(|e| RunError::Other(format!("{}: key `sample.csv`: {e}", p.path.display())))?;
+        .map_err(|e| Error::Other(format!("{}: key `sample.csv`: {e}", p.path.display())))?;
     let instruments = InstrumentSet::new(s, &setup);
     let (start, recorded) = match (&ctx.checkpoints, ctx.resume) {
         (Some(c), true) => c
             .load::<(State, Recorded)>(&s.name, "state")
-            .map_err(RunError::Other)?,
+            .map_err(Error::Other)?,
         _ => None,
     }
     .unwrap_or_else(|| {
@@ -136,13 +137,13 @@ pub fn run(p: &Prepared, stage: &StagedDir, ctx: &RunContext) -> Result<SceneRep
     obs.bar.finish_and_clear();
     if let Some(u) = st.fault.clone() {
         // Nothing to resume from a run that went unstable.
-        return Err(RunError::Unstable(p.path.clone(), u));
+        return Err(Error::Unstable(p.path.clone(), u));
     }
     if st.interrupted {
         obs.save(&st);
     }
     if let Some(e) = obs.save_err.take() {
-        return Err(RunError::Io(p.path.clone(), e));
+        return Err(Error::Io(p.path.clone(), e));
     }
     let wall = t0.elapsed().as_secs_f64();
     output::write_all(

@@ -15,14 +15,6 @@ pub const CONTACT_TRAVEL_PER_SUBSTEP: f64 = 1.0;
 /// `tests/sedimentation_contacts.rs` for the measured figures).
 pub const CONTACT_FILM_CHANGE_PER_STEP: f64 = 0.25;
 
-/// Thickness of the 2D projection of two opposing 1° wedges, m: h_z = π B / 720, generalised to a
-/// wedge fraction f of the cylinder as h_z = π B f / 4 (B H h_z = f π B² H / 4). Kept here for
-/// callers of the old path; the formula lives in
-/// [`crate::scenario::SampleSpec::projection_thickness_m`].
-pub fn projection_thickness_m(width_m: f64, wedge_fraction: f64) -> f64 {
-    std::f64::consts::PI * width_m * wedge_fraction / 4.0
-}
-
 /// Limiting diameter of seed eq. 16 (Stokes), m: the largest grain still above depth y at time
 /// t, φ_o = √(18 μ y / ((ρ_p − ρ_f) g t)).
 pub fn limiting_diameter_m(

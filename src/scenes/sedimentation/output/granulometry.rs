@@ -4,8 +4,8 @@
 //! Figs. 15–17), `bulb_density.csv` (seed Fig. 13), `instrument_errors.csv` (each instrument
 //! against the input curve) and the combined `instrument_errors.csv` of several runs.
 
-use crate::output::chart::{scatter_svg, Scale, Series};
-use crate::output::{num, opt, StagedDir};
+use crate::io::chart::{scatter_svg, Scale, Series};
+use crate::io::{num, opt, StagedDir};
 use crate::sample::Distribution;
 use crate::scenario::{SampleSpec, Scenario};
 use crate::scenes::sedimentation::instruments::{

@@ -8,9 +8,10 @@ pub mod pictures;
 use super::instruments::{BulbRow, InstrumentReading, InstrumentSet};
 use super::setup::{limiting_diameter_m, Setup};
 use super::state::{concentration, Profile, State};
-use crate::output::{num, StagedDir};
-use crate::run::{RunError, SceneReport};
+use crate::error::Error;
+use crate::io::{num, StagedDir};
 use crate::scenario::{Physics, SampleSpec, Scenario};
+use crate::scenes::SceneReport;
 use std::io;
 use std::path::Path;
 
@@ -47,8 +48,8 @@ pub fn write_all(
     st: &State,
     rec: Recorded,
     wall_s: f64,
-) -> Result<SceneReport, RunError> {
-    let io = |e: io::Error| RunError::Io(path.to_path_buf(), e);
+) -> Result<SceneReport, Error> {
+    let io = |e: io::Error| Error::Io(path.to_path_buf(), e);
     let Recorded {
         profiles,
         pictures,
@@ -64,11 +65,11 @@ pub fn write_all(
         granulometry::write_all(stage, s, sm, setup, instruments, &readings, &bulb).map_err(
             |e| match e {
                 granulometry::WriteError::Io(e) => io(e),
-                granulometry::WriteError::Chart(m) => RunError::Other(m),
+                granulometry::WriteError::Chart(m) => Error::Other(m),
             },
         )?;
     if !pictures.is_empty() {
-        pictures::draw_cylinder(&stage.path("cylinder.png"), &pictures).map_err(RunError::Other)?;
+        pictures::draw_cylinder(&stage.path("cylinder.png"), &pictures).map_err(Error::Other)?;
     }
     let k = Densities {
         grain_kg_m3: sm.density_kg_m3,

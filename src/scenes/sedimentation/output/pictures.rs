@@ -1,7 +1,7 @@
 //! Pictures and particle files of a sedimentation run: `cylinder.png` (seed Fig. 11) and the
 //! `snapshots/` (CSV and VTK PolyData).
 
-use crate::output::num;
+use crate::io::num;
 use crate::scenes::sedimentation::state::State;
 use std::io::Write;
 use std::path::Path;
