@@ -9,7 +9,7 @@
 //! force hook (`engine = "rapier"`), which must give the same answer (tests/engine_free_settling.rs)
 //! at ~300× the cost per step. A free-settling sphere is released submerged at `release.depth_m`
 //! (one radius when 0) and feels constant forces; a drop starts `fall_height_m` above the free
-//! surface and crosses it, its drag and buoyancy scaled by [`crate::fluid::immersion`].
+//! surface and crosses it, its drag and buoyancy scaled by [`immersion`](fn@crate::fluid::immersion).
 //!
 //! # Equations
 //!

@@ -22,7 +22,7 @@
 //! - **Instruments** ([`crate::instruments`], seed §4.5): the 152H hydrometer and the buoyancy
 //!   sphere read the layered suspension density of the profile at their reading times (real
 //!   densities, applied to the full axisymmetric bodies); the pipette weighs the grains in its
-//!   disc. The run lands on every reading time ([`simulate`]) and writes
+//!   disc. The run lands on every reading time ([`simulate`](fn@simulate)) and writes
 //!   `granulometry.csv`/`.svg`, `instruments.csv`/`.svg`, `bulb_density.csv`/`.svg` and
 //!   `instrument_errors.csv`.
 //! - **Contacts and lubrication** (`physics = "full"`, `sample.contacts` and
@@ -32,7 +32,7 @@
 //!   grains whose gap falls below the lubrication cut-off h_out = 0.1 a_eff at some time of the
 //!   step on their free (vertical) paths, exactly. Linked pairs form clusters; each cluster is
 //!   re-done from the start of the step in its own Rapier 2D world
-//!   ([`contacts::resolve`]: [`crate::engine::dim2::World`] with its
+//!   ([`contacts::resolve`](fn@contacts::resolve): [`crate::engine::dim2::World`] with its
 //!   effective-mass drag, discs with the Coulomb friction and restitution of `[contacts]` (frictionless and perfectly inelastic without it), walls at x = 0 and B, the bed surface as floor),
 //!   only over the window in which the pair is close, with the squeeze film
 //!   F = 6πμ a_eff² v_n / max(h, h_in) ([`crate::fluid::lubrication`], h_in = 1e-3 a_eff) as an
