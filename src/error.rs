@@ -9,9 +9,6 @@
 //! | unstable run | 3 | the simulation went numerically unstable: the message names the body, the time and a step that would hold; nothing was written |
 //! | I/O or environment | 4 | a file could not be read or written, a folder is missing or not a folder, or the machine refused (disk, permissions, `/proc`) |
 //! | interrupted | 130 | Ctrl-C or SIGTERM: what was done is in the output folder, marked `interrupted` |
-//!
-//! [`Error::Unclassified`] (built by [`Error::Other`]) is a transitional variant for messages not yet given a class (classed as I/O
-//! or environment, exit 4); it is to be removed once the scenes return typed errors.
 
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -78,28 +75,9 @@ pub enum Error {
         path = .0.display()
     )]
     Interrupted(PathBuf),
-    /// Transitional: a message without a class yet, treated as I/O or environment (exit 4).
-    /// Built by [`Error::Other`]; to be removed once every scene returns a typed error.
-    #[error("{0}")]
-    Unclassified(String),
 }
 
 impl Error {
-    /// Bad input (exit 2): `RunError::Scenario(e)` for any error convertible to [`BadInput`]
-    /// (the scenario layer's `ScenarioError` is).
-    #[allow(non_snake_case)]
-    pub fn Scenario(e: impl Into<BadInput>) -> Self {
-        Self::BadInput(e.into())
-    }
-
-    /// Transitional (to be removed with [`Error::Unclassified`]): a message without a class
-    /// (`String`, classed I/O or environment, exit 4), or any error that converts into this type
-    /// (kept as it is).
-    #[allow(non_snake_case)]
-    pub fn Other(e: impl Into<Error>) -> Self {
-        e.into()
-    }
-
     /// Bad input naming `file`, `key` and the message.
     pub fn bad_input(file: &Path, key: Option<&str>, message: impl Into<String>) -> Self {
         Self::BadInput(BadInput::new(file, key, message))
@@ -115,15 +93,9 @@ impl Error {
         match self {
             Self::BadInput(_) => EXIT_BAD_INPUT,
             Self::Unstable(..) => EXIT_UNSTABLE,
-            Self::Io(..) | Self::Unclassified(_) => EXIT_IO,
+            Self::Io(..) => EXIT_IO,
             Self::Interrupted(_) => EXIT_INTERRUPTED,
         }
-    }
-}
-
-impl From<String> for Error {
-    fn from(m: String) -> Self {
-        Self::Unclassified(m)
     }
 }
 

@@ -71,8 +71,9 @@ fn check_name(s: &Scenario, path: &Path) -> Result<(), ScenarioError> {
     Ok(())
 }
 
-/// Loads and validates a scenario with the request's overrides (`--dt` is `time.dt_s`), and
-/// refuses reserved and over-long names.
+/// Loads and validates a scenario with the request's overrides (`--dt` is `time.dt_s`), reads
+/// its input files (`spheres_csv`, a sedimentation's `sample.csv`), and refuses reserved and
+/// over-long names: every bad input is found here, before anything runs.
 pub fn prepare(
     path: &Path,
     dt_s: Option<f64>,
@@ -92,10 +93,15 @@ pub fn prepare(
     let scenario = scenario::load(path, &ov)?;
     check_name(&scenario, path)?;
     let spheres = spheres::spheres(&scenario, path)?;
+    let sample = match &scenario.sample {
+        Some(sm) if scenario.kind == Kind::Sedimentation => Some(spheres::read_sample(sm, path)?),
+        _ => None,
+    };
     Ok(Prepared {
         path: path.to_path_buf(),
         scenario,
         spheres,
+        sample,
     })
 }
 
@@ -320,11 +326,11 @@ fn prepare_all(req: &RunRequest) -> Result<Vec<Prepared>, Error> {
         .iter()
         .map(|f| prepare(f, req.dt_s, &req.overrides))
         .collect::<Result<_, _>>()
-        .map_err(Error::Scenario)?;
+        .map_err(Error::BadInput)?;
     let mut names = std::collections::HashSet::new();
     for p in &prepared {
         if !names.insert(p.scenario.name.clone()) {
-            return Err(Error::Scenario(ScenarioError::new(
+            return Err(Error::BadInput(ScenarioError::new(
                 &p.path,
                 Some("name"),
                 format!(
@@ -337,7 +343,7 @@ fn prepare_all(req: &RunRequest) -> Result<Vec<Prepared>, Error> {
         if !req.quiet && cost.is_long() {
             eprintln!("{}: {}", p.path.display(), cost.describe());
         }
-        scenario::cost::check(&p.scenario, &p.path, req.force).map_err(Error::Scenario)?;
+        scenario::cost::check(&p.scenario, &p.path, req.force).map_err(Error::BadInput)?;
     }
     Ok(prepared)
 }
@@ -419,14 +425,4 @@ fn write_combined(out_dir: &Path, reports: &[FileReport]) -> Result<(), Error> {
     }
     commit(stage, Path::new("<command line>"))?;
     Ok(())
-}
-
-impl From<ScenarioError> for crate::error::BadInput {
-    fn from(e: ScenarioError) -> Self {
-        Self {
-            file: e.file,
-            key: e.key,
-            message: e.message,
-        }
-    }
 }

@@ -3,40 +3,11 @@
 
 use super::schema::Scenario;
 use super::validate::{check_tables, validate};
-use std::fmt;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-/// A scenario that cannot be run: one line naming the file, the key and what is allowed.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ScenarioError {
-    /// The scenario file.
-    pub file: PathBuf,
-    /// The offending key as a dotted path (`spheres[0].diameter_m`), if one is known.
-    pub key: Option<String>,
-    /// What is wrong and what is allowed.
-    pub message: String,
-}
-
-impl ScenarioError {
-    pub(crate) fn new(file: &Path, key: Option<&str>, message: impl Into<String>) -> Self {
-        Self {
-            file: file.to_path_buf(),
-            key: key.map(|k| k.replace('\n', " ")),
-            message: message.into().replace('\n', " "),
-        }
-    }
-}
-
-impl fmt::Display for ScenarioError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match &self.key {
-            Some(k) => write!(f, "{}: key `{}`: {}", self.file.display(), k, self.message),
-            None => write!(f, "{}: {}", self.file.display(), self.message),
-        }
-    }
-}
-
-impl std::error::Error for ScenarioError {}
+/// A scenario that cannot be run: one line naming the file, the key and what is allowed. The
+/// crate's one bad-input type (exit 2), [`crate::error::BadInput`].
+pub type ScenarioError = crate::error::BadInput;
 
 /// Reads, overrides, parses and validates a scenario file. `overrides` are `KEY=VALUE` strings
 /// (`fluid.viscosity_pa_s=0.002`, `spheres[0].diameter_m=1e-4`, `physics=ideal-stokes`).

@@ -19,6 +19,9 @@ pub struct Prepared {
     pub scenario: Scenario,
     /// Its spheres (free settling and drops; read from `spheres_csv` when given).
     pub spheres: Vec<crate::scenario::inputs::SphereCase>,
+    /// The particle-size distribution of a sedimentation scenario, read from `sample.csv`
+    /// while the scenario is prepared (None for other kinds).
+    pub sample: Option<crate::sample::Distribution>,
 }
 
 /// How a run is carried out beyond its scenario: checkpoints, resumption, progress display.

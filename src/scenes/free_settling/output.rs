@@ -30,7 +30,7 @@ pub fn write_all(
     stage: &StagedDir,
 ) -> Result<SceneReport, Error> {
     let s = &p.scenario;
-    let io = |e: io::Error| Error::Io(p.path.clone(), e);
+    let io = |e: io::Error| Error::Io(stage.dest().to_path_buf(), e);
     let integ = s.time.integrator.name();
     if s.kind == Kind::Drop {
         let sub = match s.fluid.submergence {
@@ -47,7 +47,7 @@ pub fn write_all(
             ),
             results,
         )
-        .map_err(Error::Other)?;
+        .map_err(io)?;
     } else {
         let rows: Vec<Vec<String>> = results
             .iter()
@@ -65,7 +65,7 @@ pub fn write_all(
                 ),
                 results,
             )
-            .map_err(Error::Other)?;
+            .map_err(io)?;
         }
     }
     if s.record.timeseries {
@@ -274,7 +274,7 @@ pub fn write_metrics(path: &Path, stats: &[ErrorStats]) -> io::Result<()> {
 
 /// Terminal velocity against sphere density, one colour per diameter: measured (hollow) and
 /// simulated (filled), like f-EDEM Fig. 11.
-pub fn write_chart(path: &Path, title: &str, results: &[SphereResult]) -> Result<(), String> {
+pub fn write_chart(path: &Path, title: &str, results: &[SphereResult]) -> io::Result<()> {
     type Points = Vec<(f64, f64)>;
     let mut by_d: BTreeMap<u64, (Points, Points)> = BTreeMap::new();
     for r in results {
@@ -368,7 +368,7 @@ pub fn write_drop_summary(
 
 /// Writes `settling_distance.svg`: settling distance against fall height, one series per
 /// diameter (like f-EDEM Fig. 16).
-pub fn write_drop_chart(path: &Path, title: &str, results: &[SphereResult]) -> Result<(), String> {
+pub fn write_drop_chart(path: &Path, title: &str, results: &[SphereResult]) -> io::Result<()> {
     let mut by_d: BTreeMap<u64, Vec<(f64, f64)>> = BTreeMap::new();
     for r in results {
         let key = (r.case.spec.diameter_m * 1e6).round() as u64;

@@ -63,7 +63,7 @@ pub mod report;
 
 pub use census::{z_range, Ball, Census, Place, RepeatResult, Sample};
 pub use geometry::Geometry;
-pub use placement::place_balls;
+pub use placement::{place_balls, Unplaceable};
 pub use repeat::{run_repeat, run_repeat_with, simulate, simulate_with, RepeatOutcome};
 
 use crate::error::Error;

@@ -280,8 +280,8 @@ pub fn write_presence(path: &Path, cells: &[PresenceCell]) -> io::Result<()> {
     w.flush()
 }
 
-fn err(e: impl std::fmt::Display) -> String {
-    e.to_string()
+fn err(e: impl std::fmt::Display) -> io::Error {
+    io::Error::other(e.to_string())
 }
 
 /// The vertical distribution as horizontal bars (balls per repeat against Z, in cm), with
@@ -292,7 +292,7 @@ pub fn write_z_chart(
     bins: &[ZBin],
     repeats: usize,
     height_m: f64,
-) -> Result<(), String> {
+) -> io::Result<()> {
     let reps = repeats.max(1) as f64;
     let x_max = bins
         .iter()
@@ -370,7 +370,7 @@ pub fn write_presence_chart(
     planes_z_m: &[f64],
     radius_m: f64,
     cell_m: f64,
-) -> Result<(), String> {
+) -> io::Result<()> {
     let cols = planes_z_m.len().clamp(1, 3);
     let rows = planes_z_m.len().div_ceil(3).max(1);
     let root =
@@ -435,7 +435,7 @@ pub fn write_all(p: &Prepared, results: &[RepeatResult], stage: &StagedDir) -> R
     let s = &p.scenario;
     let f = funnel(s);
     let geo = Geometry::of(s);
-    let io = |e: io::Error| Error::Io(p.path.clone(), e);
+    let io = |e: io::Error| Error::Io(stage.dest().to_path_buf(), e);
     let reps = results.len();
     write_balls(&stage.path("balls.csv"), results).map_err(io)?;
     write_counts(&stage.path("counts.csv"), results, f.count_time_s).map_err(io)?;
@@ -456,7 +456,7 @@ pub fn write_all(p: &Prepared, results: &[RepeatResult], stage: &StagedDir) -> R
         reps,
         geo.paste_height_m,
     )
-    .map_err(Error::Other)?;
+    .map_err(io)?;
     if !f.planes_z_m.is_empty() {
         let cells = presence(results, &f.planes_z_m, geo.cylinder_radius_m, f.grid_cell_m);
         write_presence(&stage.path("presence.csv"), &cells).map_err(io)?;
@@ -471,7 +471,7 @@ pub fn write_all(p: &Prepared, results: &[RepeatResult], stage: &StagedDir) -> R
             geo.cylinder_radius_m,
             f.grid_cell_m,
         )
-        .map_err(Error::Other)?;
+        .map_err(io)?;
     }
     Ok(())
 }

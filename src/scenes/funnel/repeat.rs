@@ -74,7 +74,7 @@ fn initial_repeat(p: &Prepared, seed: u64) -> Result<RepeatState, Error> {
     let diameters: Vec<f64> = specs.iter().map(|sp| sp.diameter_m).collect();
     let d_min = diameters.iter().copied().fold(f64::INFINITY, f64::min);
     let centres = place_balls(&geo, &diameters, seed)
-        .map_err(|m| Error::Other(format!("{}: {m}", p.path.display())))?;
+        .map_err(|e| Error::bad_input(&p.path, Some("funnel.column_height_m"), e.to_string()))?;
 
     // Free fall from the top of the column to the bottom bounds every speed of the scene.
     let v_max = (2.0 * g * geo.column_top_z_m).sqrt();
@@ -357,14 +357,10 @@ impl<'a> Checkpoints<'a> {
             return Ok(None);
         };
         let name = &self.p.scenario.name;
-        if let Some(r) = c
-            .load::<RepeatResult>(name, &self.done_part)
-            .map_err(Error::Other)?
-        {
+        if let Some(r) = c.load::<RepeatResult>(name, &self.done_part)? {
             return Ok(Some(Resumed::Done(r)));
         }
-        Ok(c.load::<RepeatState>(name, &self.part)
-            .map_err(Error::Other)?
+        Ok(c.load::<RepeatState>(name, &self.part)?
             .map(|st| Resumed::From(Box::new(st))))
     }
 

@@ -73,20 +73,22 @@ impl<'a> Setup<'a> {
     /// The setup of a prepared `restitution_drop` scenario; errors name a missing table.
     pub fn of(p: &'a Prepared) -> Result<Self, Error> {
         let s = &p.scenario;
-        let missing = |what: &str| Error::Other(format!("{}: missing {what}", p.path.display()));
+        let missing = |what: &str| {
+            Error::bad_input(
+                &p.path,
+                Some(what),
+                "missing: a restitution_drop scenario needs it",
+            )
+        };
         let spec = s
             .restitution_drop
             .as_ref()
-            .ok_or_else(|| missing("[restitution_drop]"))?;
-        let ball = &p
-            .spheres
-            .first()
-            .ok_or_else(|| missing("[[spheres]]"))?
-            .spec;
+            .ok_or_else(|| missing("restitution_drop"))?;
+        let ball = &p.spheres.first().ok_or_else(|| missing("spheres"))?.spec;
         let law = s
             .contacts
             .as_ref()
-            .ok_or_else(|| missing("[contacts]"))?
+            .ok_or_else(|| missing("contacts"))?
             .restitution_law();
         Ok(Self { spec, ball, law })
     }
@@ -110,7 +112,9 @@ fn simulate_all(
         .map(|&h| {
             simulate_drop(&p.scenario, setup.ball, h, settings).map_err(|err| match err {
                 DropError::Unstable(u) => Error::Unstable(p.path.clone(), u),
-                other => Error::Other(format!("{}: {other}", p.path.display())),
+                other @ DropError::NoApex { .. } => {
+                    Error::bad_input(&p.path, Some("time.end_s"), other.to_string())
+                }
             })
         })
         .collect()
@@ -143,7 +147,7 @@ fn fit_lines(tally: &Tally, heights: usize, tolerance: f64, fits: &[LawFit]) -> 
 /// `summary.csv`, `fit.csv` (when measurements are given) and `rebound_height.svg`.
 pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, Error> {
     let s = &p.scenario;
-    let io = |e: std::io::Error| Error::Io(p.path.clone(), e);
+    let io = |e: std::io::Error| Error::Io(stage.dest().to_path_buf(), e);
     let setup = Setup::of(p)?;
     let spec = setup.spec;
     let g = s.gravity_m_s2;
@@ -186,7 +190,7 @@ pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, Error> {
         g,
         &outcomes,
     )
-    .map_err(Error::Other)?;
+    .map_err(io)?;
 
     Ok(SceneReport {
         steps: outcomes.iter().map(|o| o.steps).sum(),

@@ -155,7 +155,7 @@ pub fn write_chart(
     setup: &Setup,
     g_m_s2: f64,
     outcomes: &[DropOutcome],
-) -> Result<(), String> {
+) -> io::Result<()> {
     let (law, spec) = (&setup.law, setup.spec);
     let heights = &spec.drop_heights_m;
     let e_at = |h: f64| law.at((2.0 * g_m_s2 * h).sqrt());

@@ -78,7 +78,7 @@ pub use instruments::{
 };
 pub use observer::{Observer, OnRecord};
 pub use setup::{
-    default_record_times, limiting_diameter_m, setup, GrainContacts, Setup,
+    default_record_times, limiting_diameter_m, setup, setup_of, setup_with, GrainContacts, Setup,
     CONTACT_FILM_CHANGE_PER_STEP, CONTACT_TRAVEL_PER_SUBSTEP,
 };
 pub use simulate::simulate;
@@ -98,13 +98,10 @@ use output::Recorded;
 pub fn run(p: &Prepared, stage: &StagedDir, ctx: &RunContext) -> Result<SceneReport, Error> {
     let s = &p.scenario;
     let sm = s.sample.as_ref().expect("validated");
-    let setup = setup(s, &p.path)
-        .map_err(|e| Error::Other(format!("{}: key `sample.csv`: {e}", p.path.display())))?;
+    let setup = setup_of(p)?;
     let instruments = InstrumentSet::new(s, &setup);
     let (start, recorded) = match (&ctx.checkpoints, ctx.resume) {
-        (Some(c), true) => c
-            .load::<(State, Recorded)>(&s.name, "state")
-            .map_err(Error::Other)?,
+        (Some(c), true) => c.load::<(State, Recorded)>(&s.name, "state")?,
         _ => None,
     }
     .unwrap_or_else(|| {
@@ -146,17 +143,7 @@ pub fn run(p: &Prepared, stage: &StagedDir, ctx: &RunContext) -> Result<SceneRep
         return Err(Error::Io(p.path.clone(), e));
     }
     let wall = t0.elapsed().as_secs_f64();
-    output::write_all(
-        stage,
-        &p.path,
-        s,
-        sm,
-        &setup,
-        &instruments,
-        &st,
-        obs.rec,
-        wall,
-    )
+    output::write_all(stage, s, sm, &setup, &instruments, &st, obs.rec, wall)
 }
 
 /// The observer of [`run`]: records profiles, pictures, snapshots and instrument readings, moves

@@ -82,11 +82,14 @@ fn lines(
 /// `threshold.csv` and `tilt_displacement.svg`.
 pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, Error> {
     let s = &p.scenario;
-    let io = |e: std::io::Error| Error::Io(p.path.clone(), e);
-    let spec = s
-        .tilt
-        .as_ref()
-        .ok_or_else(|| Error::Other(format!("{}: missing [tilt]", p.path.display())))?;
+    let io = |e: std::io::Error| Error::Io(stage.dest().to_path_buf(), e);
+    let spec = s.tilt.as_ref().ok_or_else(|| {
+        Error::bad_input(
+            &p.path,
+            Some("tilt"),
+            "missing: a tilt_friction scenario needs it",
+        )
+    })?;
     let setup = TiltSetup::from_scenario(s, spec);
     let search = tilt_threshold(&setup, &spec.angles_deg, spec.bisection_tolerance_deg)
         .map_err(|u| Error::Unstable(p.path.clone(), u))?;
@@ -113,7 +116,7 @@ pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, Error> {
         &runs,
         expected,
     )
-    .map_err(Error::Other)?;
+    .map_err(io)?;
 
     Ok(SceneReport {
         steps: runs.len() as u64 * setup.steps(),

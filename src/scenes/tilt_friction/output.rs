@@ -80,7 +80,7 @@ pub fn write_chart(
     title: &str,
     runs: &[TiltOutcome],
     expected_deg: f64,
-) -> Result<(), String> {
+) -> io::Result<()> {
     let pts = |slides: bool| -> Vec<(f64, f64)> {
         runs.iter()
             .filter(|r| r.slides == slides)

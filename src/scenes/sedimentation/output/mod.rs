@@ -36,11 +36,10 @@ fn csv_err(e: csv::Error) -> io::Error {
 
 /// Writes every file of a run of `s` that ended in `st` with what it `rec`orded into `stage`,
 /// and returns its report (`wall_s`: wall time of the simulation, s). I/O errors name the
-/// scenario file `path`.
+/// output folder.
 #[allow(clippy::too_many_arguments)]
 pub fn write_all(
     stage: &StagedDir,
-    path: &Path,
     s: &Scenario,
     sm: &SampleSpec,
     setup: &Setup,
@@ -49,7 +48,7 @@ pub fn write_all(
     rec: Recorded,
     wall_s: f64,
 ) -> Result<SceneReport, Error> {
-    let io = |e: io::Error| Error::Io(path.to_path_buf(), e);
+    let io = |e: io::Error| Error::Io(stage.dest().to_path_buf(), e);
     let Recorded {
         profiles,
         pictures,
@@ -62,14 +61,9 @@ pub fn write_all(
         pictures::write_snapshot(&snap_dir, snap).map_err(io)?;
     }
     let instrument_errors =
-        granulometry::write_all(stage, s, sm, setup, instruments, &readings, &bulb).map_err(
-            |e| match e {
-                granulometry::WriteError::Io(e) => io(e),
-                granulometry::WriteError::Chart(m) => Error::Other(m),
-            },
-        )?;
+        granulometry::write_all(stage, s, sm, setup, instruments, &readings, &bulb).map_err(io)?;
     if !pictures.is_empty() {
-        pictures::draw_cylinder(&stage.path("cylinder.png"), &pictures).map_err(Error::Other)?;
+        pictures::draw_cylinder(&stage.path("cylinder.png"), &pictures).map_err(io)?;
     }
     let k = Densities {
         grain_kg_m3: sm.density_kg_m3,
