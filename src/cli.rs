@@ -9,8 +9,9 @@ use std::path::PathBuf;
 ///
 /// Exit codes: 0 success; 2 bad input (a scenario, an input file or a command-line argument;
 /// nothing was run or written); 3 unstable run (nothing was written); 4 I/O or environment (a
-/// file or folder could not be read or written); 130 interrupted by Ctrl-C or SIGTERM (what was
-/// done is in the output folder).
+/// file or folder could not be read or written); 130 interrupted by Ctrl-C or SIGTERM (a
+/// sedimentation or funnel-pour run keeps what it simulated, marked interrupted in run.toml; other
+/// kinds write nothing of the unfinished run).
 #[derive(Parser, Debug)]
 #[command(name = "settle", version, about)]
 pub struct Cli {

@@ -8,7 +8,7 @@
 //! | bad input | 2 | a scenario file, an input file or a command-line argument is wrong: the message names the file (or argument), the key or row, and what is allowed; nothing was run or written |
 //! | unstable run | 3 | the simulation went numerically unstable: the message names the body, the time and a step that would hold; nothing was written |
 //! | I/O or environment | 4 | a file could not be read or written, a folder is missing or not a folder, or the machine refused (disk, permissions, `/proc`) |
-//! | interrupted | 130 | Ctrl-C or SIGTERM: what was done is in the output folder, marked `interrupted` |
+//! | interrupted | 130 | Ctrl-C or SIGTERM: a sedimentation or funnel-pour run keeps what it simulated in its output folder, marked `interrupted` ([`Error::Interrupted`]); the other kinds, and files not yet started, write nothing ([`Error::InterruptedUnwritten`]); files that finished before stay |
 
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -69,12 +69,20 @@ pub enum Error {
     /// A file or folder could not be read or written (exit 4).
     #[error("{path}: {cause}", path = .0.display(), cause = .1)]
     Io(PathBuf, std::io::Error),
-    /// Stopped by Ctrl-C/SIGTERM; what was done is in the folder (exit 130).
+    /// Stopped by Ctrl-C/SIGTERM; what was simulated so far is in the output folder, marked
+    /// `interrupted` in its `run.toml` (exit 130).
     #[error(
         "interrupted: what was simulated so far is in {path} (run.toml status = \"interrupted\")",
         path = .0.display()
     )]
     Interrupted(PathBuf),
+    /// Stopped by Ctrl-C/SIGTERM before the run of the scenario file wrote anything: nothing of
+    /// it was kept (kinds that keep no partial result, or a file not yet started; exit 130).
+    #[error(
+        "interrupted: {path} was stopped before its end and nothing of it was written",
+        path = .0.display()
+    )]
+    InterruptedUnwritten(PathBuf),
 }
 
 impl Error {
@@ -88,13 +96,18 @@ impl Error {
         Self::BadInput(BadInput::new(value, Some(option), message))
     }
 
+    /// Whether the run was stopped by Ctrl-C/SIGTERM (either interrupted variant).
+    pub fn is_interrupted(&self) -> bool {
+        matches!(self, Self::Interrupted(_) | Self::InterruptedUnwritten(_))
+    }
+
     /// Process exit code of this error's class.
     pub fn exit_code(&self) -> i32 {
         match self {
             Self::BadInput(_) => EXIT_BAD_INPUT,
             Self::Unstable(..) => EXIT_UNSTABLE,
             Self::Io(..) => EXIT_IO,
-            Self::Interrupted(_) => EXIT_INTERRUPTED,
+            Self::Interrupted(_) | Self::InterruptedUnwritten(_) => EXIT_INTERRUPTED,
         }
     }
 }

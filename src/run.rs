@@ -281,11 +281,11 @@ pub fn run_files(req: &RunRequest) -> Result<Vec<FileReport>, Error> {
     let mut reports = Vec::new();
     for p in &prepared {
         if crate::interrupt::requested() {
-            return Err(Error::Interrupted(req.out_dir.clone()));
+            return Err(Error::InterruptedUnwritten(p.path.clone()));
         }
         match run_one_with(p, &req.out_dir, &ctx) {
             Ok(r) => reports.push(r),
-            Err(e @ Error::Interrupted(_)) => return Err(e),
+            Err(e) if e.is_interrupted() => return Err(e),
             Err(e) => {
                 // Nothing to resume from a run that failed: leave no checkpoint behind.
                 let _ = checkpoints.clear();

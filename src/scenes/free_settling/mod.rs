@@ -61,21 +61,13 @@ use crate::scenes::{Prepared, SceneReport};
 
 /// Runs the spheres of a free-settling or drop scenario and writes its files into `stage`:
 /// the entry point of `settle run` for these kinds. Interrupted (Ctrl-C/SIGTERM), it writes
-/// nothing and returns [`Error::Interrupted`] with the output folder.
+/// nothing and returns [`Error::InterruptedUnwritten`] with the scenario file.
 pub fn run_scene(
     p: &Prepared,
     stage: &crate::io::StagedDir,
 ) -> Result<(Vec<SphereResult>, SceneReport), Error> {
     let s = &p.scenario;
-    let interrupted = || {
-        Error::Interrupted(
-            stage
-                .dest()
-                .parent()
-                .map(|d| d.to_path_buf())
-                .unwrap_or_default(),
-        )
-    };
+    let interrupted = || Error::InterruptedUnwritten(p.path.clone());
     let results = match run_interruptible(s, &p.spheres, RunOptions::of(s)) {
         Ok(r) => r,
         Err(Halt::Unstable(u)) => return Err(Error::Unstable(p.path.clone(), u)),

@@ -51,7 +51,7 @@ pub enum RepeatOutcome {
 pub fn run_repeat(p: &Prepared, index: usize, seed: u64) -> Result<RepeatResult, Error> {
     match run_repeat_with(p, index, seed, &RunContext::default())? {
         RepeatOutcome::Done(r) => Ok(r),
-        RepeatOutcome::Interrupted => Err(Error::Interrupted(p.path.clone())),
+        RepeatOutcome::Interrupted => Err(Error::InterruptedUnwritten(p.path.clone())),
     }
 }
 
@@ -426,7 +426,7 @@ pub fn run_repeat_with(
 pub fn simulate(p: &Prepared) -> Result<Vec<RepeatResult>, Error> {
     let (results, interrupted) = simulate_with(p, &RunContext::default())?;
     if interrupted {
-        return Err(Error::Interrupted(p.path.clone()));
+        return Err(Error::InterruptedUnwritten(p.path.clone()));
     }
     Ok(results)
 }
