@@ -181,3 +181,24 @@ impl fmt::Display for Unstable {
 }
 
 impl std::error::Error for Unstable {}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The interrupted message says whether anything was kept, and both exit 130.
+    #[test]
+    fn interrupted_messages_say_whether_anything_was_kept() {
+        let kept = Error::Interrupted(PathBuf::from("out/sed"));
+        let none = Error::InterruptedUnwritten(PathBuf::from("scenarios/stokes_single.toml"));
+        assert!(kept.to_string().contains("what was simulated so far is in out/sed"));
+        let m = none.to_string();
+        assert!(m.contains("scenarios/stokes_single.toml"), "{m}");
+        assert!(m.contains("nothing of it was written"), "{m}");
+        assert!(!m.contains("run.toml"), "{m}");
+        for e in [kept, none] {
+            assert!(e.is_interrupted());
+            assert_eq!(e.exit_code(), EXIT_INTERRUPTED);
+        }
+    }
+}
