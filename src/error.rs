@@ -191,7 +191,9 @@ mod tests {
     fn interrupted_messages_say_whether_anything_was_kept() {
         let kept = Error::Interrupted(PathBuf::from("out/sed"));
         let none = Error::InterruptedUnwritten(PathBuf::from("scenarios/stokes_single.toml"));
-        assert!(kept.to_string().contains("what was simulated so far is in out/sed"));
+        assert!(kept
+            .to_string()
+            .contains("what was simulated so far is in out/sed"));
         let m = none.to_string();
         assert!(m.contains("scenarios/stokes_single.toml"), "{m}");
         assert!(m.contains("nothing of it was written"), "{m}");
