@@ -66,7 +66,7 @@ fn valentik(root: &Path) -> Result<Vec<Prepared>, Error> {
                 None,
                 &[],
             )
-            .map_err(Error::Scenario)
+            .map_err(Error::BadInput)
         })
         .collect()
 }
@@ -191,7 +191,7 @@ pub fn run(root: &Path, quick: bool) -> Result<Vec<Figure>, Error> {
 
     // 4. Paste drops: 18 balls, dt = 1e-3 s (the recommended step) against f-EDEM's 5e-6 s.
     let paste_file = root.join("scenarios/paste_single_ball.toml");
-    let paste = prepare(&paste_file, None, &[]).map_err(Error::Scenario)?;
+    let paste = prepare(&paste_file, None, &[]).map_err(Error::BadInput)?;
     for dt in [1e-3, 5e-6] {
         let t0 = Instant::now();
         let opts = RunOptions {
@@ -232,8 +232,8 @@ pub fn run(root: &Path, quick: bool) -> Result<Vec<Figure>, Error> {
             None,
             &ov,
         )
-        .map_err(Error::Scenario)?;
-        let su = crate::scenes::sedimentation::setup(&p.scenario, &p.path).map_err(Error::Other)?;
+        .map_err(Error::BadInput)?;
+        let su = crate::scenes::sedimentation::setup_of(&p)?;
         let t0 = Instant::now();
         let st = crate::scenes::sedimentation::simulate(
             &p.scenario,
@@ -286,7 +286,7 @@ pub fn run(root: &Path, quick: bool) -> Result<Vec<Figure>, Error> {
             })?;
             let grid = crate::sweep::grid(&Integrator::ALL, &sw.dt_s);
             cases += grid.len();
-            let mut rows = crate::sweep::run_cases(p, &grid).map_err(|e| e.to_string())?;
+            let mut rows = crate::sweep::run_cases(p, &grid)?;
             crate::sweep::finish(&mut rows);
         }
         out.push(fig("valentik_sweep", "cases", cases as f64, "cases"));

@@ -261,10 +261,7 @@ fn run_cases_refuses_kinds_it_cannot_sweep() {
     ] {
         let p = prepare(Path::new(f), None, &[]).unwrap();
         let e = run_cases(&p, &grid(&[Integrator::Exponential], &[1e-3])).unwrap_err();
-        assert!(
-            matches!(e, settle::sweep::Error::Unsweepable { .. }),
-            "{f}: {e}"
-        );
+        assert!(matches!(e, settle::error::Error::BadInput(_)), "{f}: {e}");
         assert_eq!(e.exit_code(), 2);
     }
 }

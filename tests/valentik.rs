@@ -184,7 +184,7 @@ fn terminal_velocities_agree_with_the_force_balance_without_chatter() {
 #[test]
 fn overall_error_against_measurements_is_as_documented() {
     let res = run_all(1e-3);
-    let stats = settle::output::free_settling::metrics(&res);
+    let stats = settle::scenes::free_settling::output::metrics(&res);
     let all = stats.last().unwrap();
     assert_eq!(all.group, "all");
     assert_eq!(all.n, 121);

@@ -232,13 +232,23 @@ pub enum Dim {
     Three,
 }
 
+/// A dimension other than 2 or 3 (the number read).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BadDim(pub u8);
+
+impl std::fmt::Display for BadDim {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} is not allowed: 2 or 3", self.0)
+    }
+}
+
 impl TryFrom<u8> for Dim {
-    type Error = String;
-    fn try_from(n: u8) -> Result<Self, String> {
+    type Error = BadDim;
+    fn try_from(n: u8) -> Result<Self, BadDim> {
         match n {
             2 => Ok(Dim::Two),
             3 => Ok(Dim::Three),
-            _ => Err(format!("{n} is not allowed: 2 or 3")),
+            _ => Err(BadDim(n)),
         }
     }
 }
@@ -289,7 +299,7 @@ impl Scenario {
                 format!("`{}` is not allowed: use letters, digits, `_`, `-` and `.`, not starting with `.` (it names the output folder)", self.name),
             ));
         }
-        Dim::try_from(self.dimension).map_err(|m| c.err("dimension", m))?;
+        Dim::try_from(self.dimension).map_err(|m| c.err("dimension", m.to_string()))?;
         c.range("gravity_m_s2", self.gravity_m_s2, oc(0.0, 1000.0, "m/s²"))
     }
 }

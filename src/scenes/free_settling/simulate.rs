@@ -3,15 +3,15 @@
 //! decide whether to stop — and the runners over all spheres (rayon, results in input order),
 //! with one dispatch on the dimension and the engine.
 
-use super::immersion;
 use super::setup::{uses_rapier, Dim, RunOptions, SphereSetup};
 use crate::contact::rayleigh_time_s;
 use crate::dynamics::{advance, explicit_stable_dt_s, Monitor, Motion, Step, Unstable};
 use crate::engine::{dim2, dim3, BodyId, EngineSettings};
 use crate::fluid::bingham::reynolds_bingham;
+use crate::fluid::immersion;
 use crate::fluid::{sphere_mass_kg, DragLaw, DragRegime, SphereDrag};
+use crate::scenario::inputs::SphereCase;
 use crate::scenario::{Scenario, Submergence};
-use crate::scenes::spheres::SphereCase;
 use nalgebra::SVector;
 use std::collections::VecDeque;
 
