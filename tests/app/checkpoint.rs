@@ -4,32 +4,17 @@
 //! checkpoint refuses a scenario changed since, and the cost guard refuses runs that would take
 //! days or more memory than allowed, naming the file, the key and the estimate.
 
-#![cfg(unix)]
-
+use crate::common::{settle, tmp, tree};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-fn settle() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_settle"))
-}
-
 /// Every file under `dir`, relative, sorted.
 fn files(dir: &Path) -> Vec<PathBuf> {
-    let mut out = Vec::new();
-    let mut stack = vec![dir.to_path_buf()];
-    while let Some(d) = stack.pop() {
-        for e in std::fs::read_dir(&d).unwrap() {
-            let p = e.unwrap().path();
-            if p.is_dir() {
-                stack.push(p);
-            } else {
-                out.push(p.strip_prefix(dir).unwrap().to_path_buf());
-            }
-        }
-    }
-    out.sort();
-    out
+    tree(dir)
+        .into_iter()
+        .filter(|p| dir.join(p).is_file())
+        .collect()
 }
 
 /// Asserts that two result folders hold the same files with the same bytes, run.toml aside.
@@ -126,7 +111,7 @@ const SEDIMENTATION: [&str; 4] = [
 /// stale staging folder of the killed process is gone, and so is the checkpoint folder.
 #[test]
 fn sedimentation_killed_and_resumed_matches_an_uninterrupted_run() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let reference = dir.path().join("ref");
     let o = run(&SEDIMENTATION, &reference);
     assert!(o.stderr.is_empty(), "no progress bar when stderr is a pipe");
@@ -156,7 +141,7 @@ fn sedimentation_killed_and_resumed_matches_an_uninterrupted_run() {
 /// exit 130) and a checkpoint; resumed, it ends with the uninterrupted run's files.
 #[test]
 fn sedimentation_interrupted_and_resumed_matches_an_uninterrupted_run() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let reference = dir.path().join("ref");
     run(&SEDIMENTATION, &reference);
     let stopped = dir.path().join("stopped");
@@ -192,7 +177,7 @@ const FUNNEL: [&str; 6] = [
 /// joints), killed at a random moment and resumed: identical files.
 #[test]
 fn funnel_pour_killed_and_resumed_matches_an_uninterrupted_run() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let reference = dir.path().join("ref");
     run(&FUNNEL, &reference);
     let killed = dir.path().join("killed");
@@ -216,7 +201,7 @@ fn funnel_pour_killed_and_resumed_matches_an_uninterrupted_run() {
 /// it.
 #[test]
 fn resume_refuses_a_changed_scenario() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let scenario = dir.path().join("pour.toml");
     std::fs::copy("scenarios/paste_68_balls.toml", &scenario).unwrap();
     let out = dir.path().join("out");
@@ -251,7 +236,7 @@ fn resume_refuses_a_changed_scenario() {
 /// `--resume` on a folder without a checkpoint says so.
 #[test]
 fn resume_without_checkpoint_is_refused() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let o = settle()
         .args(["run", "--resume"])
         .arg(dir.path())
@@ -268,7 +253,7 @@ fn resume_without_checkpoint_is_refused() {
 /// refused for its time. Nothing is written.
 #[test]
 fn cost_guard_refuses_runs_beyond_the_limits() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let cases: [(&[&str], &[&str]); 3] = [
         (
             &[

@@ -1,13 +1,15 @@
 //! Ctrl-C during a long run: the run stops at the end of the current step, writes what it has
 //! with `status = "interrupted"` in run.toml, leaves no partial folder, and exits with 130.
 
+use crate::common::{settle, tmp};
+
 #[cfg(unix)]
 #[test]
 fn sigint_stops_a_long_run_and_keeps_what_was_done() {
     use std::process::{Command, Stdio};
     use std::time::{Duration, Instant};
-    let dir = tempfile::tempdir().unwrap();
-    let child = Command::new(env!("CARGO_BIN_EXE_settle"))
+    let dir = tmp();
+    let child = settle()
         .args([
             "run",
             "scenarios/sedimentation_sample5.toml",

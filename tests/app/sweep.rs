@@ -2,6 +2,7 @@
 //! explicit scheme is reported unstable where theory says, and the stable integrator meets the
 //! accuracy targets at large steps.
 
+use crate::common::tmp;
 use settle::dynamics::Integrator;
 use settle::run::prepare;
 use settle::sweep::{finish, grid, run_cases, shard, summarise, Row, Status};
@@ -42,7 +43,7 @@ fn merged_shards_equal_the_unsharded_sweep_row_for_row() {
     let cases = grid(&Integrator::ALL, &[1e-2, 3e-3, 1e-3, 1e-4, 1e-5]);
     let mut whole = run_cases(&p, &cases).unwrap();
     finish(&mut whole);
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     for i in 1..=4 {
         let part = run_cases(&p, &shard(&cases, i, 4)).unwrap();
         settle::sweep::write_rows(&dir.path().join(format!("sweep_part_{i}_of_4.csv")), &part)

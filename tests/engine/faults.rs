@@ -1,5 +1,5 @@
 //! Numerical faults of the Rapier engine stop the run with the body, the time, the quantity and
-//! a suggested dt (issue 8), beyond the explicit integrator's instability (`engine_rest.rs`):
+//! a suggested dt (issue 8), beyond the explicit integrator's instability (`engine/rest.rs`):
 //! contacts overlapping deeper than a fraction of the diameter, and bodies leaving the domain.
 
 use settle::dynamics::Integrator;

@@ -2,8 +2,9 @@
 //! grains coming to rest on a floor and in a small pile, and the instability report of the explicit
 //! integrator.
 //!
-//! `cargo test --test engine_rest -- --ignored --nocapture` prints the dt survey behind the chosen
-//! steps (penetration, contact force / net weight, residual speed for each grain size and dt).
+//! `cargo test --release --test main engine::rest:: -- --ignored --nocapture` prints the dt
+//! survey behind the chosen steps (penetration, contact force / net weight, residual speed for
+//! each grain size and dt).
 
 use settle::dynamics::Integrator;
 use settle::engine::{dim2, dim3, ContactDrag, EngineSettings};

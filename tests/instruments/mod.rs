@@ -14,6 +14,7 @@
 //! exact reading within 4σ + 0.3 %. The hydrometer's error is its finite bulb: its exact reading
 //! is the bulb-weighted mean of F(φ(y)) over 14 cm of depth.
 
+use crate::common::{read_csv_records, tmp};
 use settle::instruments::buoyancy::BuoyancySphere;
 use settle::instruments::hydrometer::{Hydrometer, HydrometerSpec};
 use settle::instruments::pipette::{GrainSample, Pipette};
@@ -279,24 +280,9 @@ fn the_hydrometer_error_comes_from_its_finite_bulb() {
     );
 }
 
-/// Reads a CSV into rows of named fields.
-fn read_csv(path: &Path) -> Vec<std::collections::HashMap<String, String>> {
-    let mut r = csv::Reader::from_path(path).unwrap();
-    let h = r.headers().unwrap().clone();
-    r.records()
-        .map(|x| {
-            let x = x.unwrap();
-            h.iter()
-                .zip(x.iter())
-                .map(|(a, b)| (a.to_string(), b.to_string()))
-                .collect()
-        })
-        .collect()
-}
-
 #[test]
 fn ideal_stokes_instruments_match_the_input_curve() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     for sample in [1u32, 4, 5] {
         let path = format!("scenarios/sedimentation_sample{sample}.toml");
         let ov: Vec<String> = vec![
@@ -311,7 +297,7 @@ fn ideal_stokes_instruments_match_the_input_curve() {
         let set = InstrumentSet::new(&p.scenario, &su);
         let an = set.analysis;
         let rep = run_one(&p, dir.path()).unwrap();
-        let rows = read_csv(&rep.out.join("granulometry.csv"));
+        let rows = read_csv_records(&rep.out.join("granulometry.csv"));
         let input = &su.distribution;
         // The discretised sample the simulation carries: F_n(d) = mass fraction of classes ≤ d.
         let finer_n = |d: f64| -> f64 {
@@ -404,7 +390,7 @@ fn ideal_stokes_instruments_match_the_input_curve() {
 
 #[test]
 fn several_samples_write_one_error_summary() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let req = settle::run::RunRequest {
         files: vec![
             "scenarios/sedimentation_sample2.toml".into(),
@@ -423,7 +409,7 @@ fn several_samples_write_one_error_summary() {
         ..Default::default()
     };
     settle::run::run_files(&req).unwrap();
-    let rows = read_csv(&dir.path().join("combined/instrument_errors.csv"));
+    let rows = read_csv_records(&dir.path().join("combined/instrument_errors.csv"));
     assert_eq!(rows.len(), 6);
     assert_eq!(rows[0]["sample"], "2");
     assert_eq!(rows[0]["instrument"], "hydrometer");

@@ -11,12 +11,10 @@
 //! Now each is refused with exit 2 before anything is written, naming the file, the key or the
 //! CSV row/column, and what is allowed; `v_measured_m_s` (and `id`) are read as the TOML keys,
 //! the old column names still read. The bad files are in `tests/bad_scenarios/` (also cases of
-//! `tests/bad_input.rs`).
+//! `tests/scenario/bad_input.rs`).
 
+use crate::common::{settle, tmp};
 use std::path::{Path, PathBuf};
-use std::process::Command;
-
-const BIN: &str = env!("CARGO_BIN_EXE_settle");
 
 fn bad(file: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -28,9 +26,9 @@ fn bad(file: &str) -> PathBuf {
 /// `settle run FILE --out TMP` exits 2 with one line naming the file, `key` and `words`, and
 /// writes nothing.
 fn refused(file: &str, key: &str, words: &[&str]) {
-    let tmp = tempfile::tempdir().expect("temp dir");
+    let tmp = tmp();
     let out = tmp.path().join("out");
-    let o = Command::new(BIN)
+    let o = settle()
         .arg("run")
         .arg(bad(file))
         .arg("--out")
@@ -122,7 +120,7 @@ fn unknown_csv_column_is_refused_with_the_known_ones() {
 /// binary dropped the measured velocity of the first (`None`).
 #[test]
 fn csv_columns_named_like_the_toml_keys_are_read() {
-    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = tmp();
     let scenario = |csv: &str| {
         format!(
             "name = \"csv_keys\"\nkind = \"free_settling\"\n\

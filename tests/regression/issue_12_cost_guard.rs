@@ -7,22 +7,14 @@
 //!
 //! Set `SETTLE_BIN` to run these checks against another binary (e.g. the one before the fix).
 
+use crate::common::{settle, tmp};
 use std::io::{BufRead, BufReader};
-use std::path::PathBuf;
-use std::process::{Command, Stdio};
+use std::process::Stdio;
 use std::time::Duration;
-
-fn settle() -> Command {
-    Command::new(
-        std::env::var_os("SETTLE_BIN")
-            .map(PathBuf::from)
-            .unwrap_or_else(|| PathBuf::from(env!("CARGO_BIN_EXE_settle"))),
-    )
-}
 
 #[test]
 fn hundred_thousand_spheres_are_refused_for_their_time_series() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let base = std::fs::read_to_string(concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/scenarios/stokes_single.toml"
@@ -79,7 +71,7 @@ fn hundred_thousand_spheres_are_refused_for_their_time_series() {
 
 #[test]
 fn three_million_particles_show_their_estimate_before_the_run() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let mut child = settle()
         .args(["run", "--out"])
         .arg(dir.path())

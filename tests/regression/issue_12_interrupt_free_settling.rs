@@ -5,6 +5,7 @@
 //! interrupted free-settling run writes nothing (a partial set of spheres is no result) and exits
 //! with 130, leaving neither a result folder nor a staging folder.
 
+use crate::common::{isolated, settle, tmp};
 use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -49,11 +50,11 @@ velocity_m_s = 0.0
 /// folder `many` and no `.many.partial-*` left.
 #[cfg(unix)]
 fn sigterm_stops(engine: &str) {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let file = dir.path().join("many.toml");
     std::fs::write(&file, many_spheres_toml(engine, 20_000)).unwrap();
     let out = dir.path().join("out");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_settle"))
+    let mut child = settle()
         .args(["run", "--force", "--quiet", "--out"])
         .arg(&out)
         .arg(&file)
@@ -117,10 +118,18 @@ fn sigterm_stops_many_spheres_on_rapier() {
 
 /// In the library: with an interruption requested, the interruptible runner returns
 /// `Halt::Interrupted` at once instead of simulating.
+///
+/// The interrupt flag is process-wide, and all tests share one process: the body runs in a process
+/// of its own ([`isolated`]), so that the other tests are not interrupted.
 #[test]
 fn an_interrupted_runner_returns_interrupted() {
+    if !isolated(
+        "regression::issue_12_interrupt_free_settling::an_interrupted_runner_returns_interrupted",
+    ) {
+        return;
+    }
     use settle::scenes::free_settling::{run_interruptible, Halt, RunOptions};
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let file = dir.path().join("many.toml");
     std::fs::write(&file, many_spheres_toml("free", 100)).unwrap();
     let p = settle::run::prepare(&file, None, &[]).unwrap();

@@ -6,13 +6,15 @@
 //! the request every few thousand grains and inside each cluster solve), undo the unfinished
 //! step and still write its resumable state.
 
+use crate::common::{settle, tmp};
+
 #[cfg(unix)]
 #[test]
 fn sigint_stops_a_many_grain_cylinder_within_seconds() {
     use std::process::{Command, Stdio};
     use std::time::{Duration, Instant};
-    let dir = tempfile::tempdir().unwrap();
-    let child = Command::new(env!("CARGO_BIN_EXE_settle"))
+    let dir = tmp();
+    let child = settle()
         .args([
             "run",
             "scenarios/sedimentation_sample1.toml",

@@ -6,20 +6,11 @@
 //!
 //! Set `SETTLE_BIN` to run these checks against another binary (e.g. the one before the fix).
 
-use std::path::PathBuf;
-use std::process::Command;
-
-fn settle() -> Command {
-    Command::new(
-        std::env::var_os("SETTLE_BIN")
-            .map(PathBuf::from)
-            .unwrap_or_else(|| PathBuf::from(env!("CARGO_BIN_EXE_settle"))),
-    )
-}
+use crate::common::{settle, tmp};
 
 #[test]
 fn out_dot_never_replaces_the_folder_of_the_scenario() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let project = dir.path().join("project");
     std::fs::create_dir(&project).unwrap();
     let text = std::fs::read_to_string(concat!(
@@ -57,7 +48,7 @@ fn out_dot_never_replaces_the_folder_of_the_scenario() {
 /// `--out` naming a file is bad input (exit 2), not an unclassified failure.
 #[test]
 fn out_naming_a_file_is_bad_input() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let file = dir.path().join("results");
     std::fs::write(&file, "not a folder").unwrap();
     let o = settle()

@@ -4,16 +4,7 @@
 //!
 //! Set `SETTLE_BIN` to run these checks against another binary (e.g. the one before the fix).
 
-use std::path::PathBuf;
-use std::process::Command;
-
-fn settle() -> Command {
-    Command::new(
-        std::env::var_os("SETTLE_BIN")
-            .map(PathBuf::from)
-            .unwrap_or_else(|| PathBuf::from(env!("CARGO_BIN_EXE_settle"))),
-    )
-}
+use crate::common::{settle, tmp};
 
 fn scenario(name: &str) -> String {
     std::fs::read_to_string(concat!(
@@ -26,7 +17,7 @@ fn scenario(name: &str) -> String {
 
 #[test]
 fn a_rerun_replaces_only_what_settle_wrote() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let file = dir.path().join("run.toml");
     std::fs::write(&file, scenario("stokes")).unwrap();
     let out = dir.path().join("out");

@@ -6,16 +6,9 @@
 //!
 //! Set `SETTLE_BIN` to run these checks against another binary (e.g. the one before the fix).
 
+use crate::common::{settle, tmp};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn settle() -> Command {
-    Command::new(
-        std::env::var_os("SETTLE_BIN")
-            .map(PathBuf::from)
-            .unwrap_or_else(|| PathBuf::from(env!("CARGO_BIN_EXE_settle"))),
-    )
-}
+use std::process::Output;
 
 fn write_scenario(dir: &Path, file: &str, name: &str) -> PathBuf {
     let text = std::fs::read_to_string(concat!(
@@ -40,7 +33,7 @@ fn run(files: &[PathBuf], out: &Path) -> Output {
 
 #[test]
 fn checkpoint_is_refused_as_a_name() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let f = write_scenario(dir.path(), "a.toml", "checkpoint");
     let out = dir.path().join("out");
     let o = run(&[f], &out);
@@ -52,7 +45,7 @@ fn checkpoint_is_refused_as_a_name() {
 
 #[test]
 fn combined_is_refused_as_a_name() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let a = write_scenario(dir.path(), "a.toml", "combined");
     let b = write_scenario(dir.path(), "b.toml", "other");
     let out = dir.path().join("out");

@@ -6,25 +6,16 @@
 //!
 //! Set `SETTLE_BIN` to run these checks against another binary (e.g. the one before the fix).
 
-#![cfg(unix)]
-
-use std::path::{Path, PathBuf};
+use crate::common::{settle, tmp};
+use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
-
-fn settle() -> Command {
-    Command::new(
-        std::env::var_os("SETTLE_BIN")
-            .map(PathBuf::from)
-            .unwrap_or_else(|| PathBuf::from(env!("CARGO_BIN_EXE_settle"))),
-    )
-}
 
 const REPO: &str = env!("CARGO_MANIFEST_DIR");
 
 #[test]
 fn resume_works_from_another_directory() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let out = dir.path().join("out");
     // Started from the repository with a relative scenario path, stopped by SIGINT.
     let child = settle()
@@ -72,7 +63,7 @@ fn resume_works_from_another_directory() {
 
 #[test]
 fn bench_works_from_another_directory() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let o = settle()
         .current_dir(dir.path())
         .args(["bench", "--quick", "--out", "b"])

@@ -4,6 +4,7 @@
 //! results, bit for bit, as one without the table. The cylinder's contact solve now takes
 //! `friction` and `restitution` from `[contacts]` (defaults as before: 0 and 0).
 
+use crate::common::tmp;
 use settle::contact::RestitutionLaw;
 use settle::run::prepare;
 use settle::scenes::sedimentation::{setup, simulate, GrainContacts, State};
@@ -12,7 +13,7 @@ use std::path::Path;
 /// A short run of sample 1 (10 000 grains, 300 s: thousands of close pairs), with an optional
 /// `[contacts]` table written beside the scenario.
 fn run(contacts: Option<&str>) -> (State, GrainContacts) {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let src = std::fs::read_to_string("scenarios/sedimentation_sample1.toml").unwrap();
     let data = std::fs::canonicalize("data/sedimentation_samples.csv").unwrap();
     let mut text = src.replace(

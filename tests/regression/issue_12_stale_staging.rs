@@ -5,16 +5,8 @@
 //!
 //! Set `SETTLE_BIN` to run these checks against another binary (e.g. the one before the fix).
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
-
-fn settle() -> Command {
-    Command::new(
-        std::env::var_os("SETTLE_BIN")
-            .map(PathBuf::from)
-            .unwrap_or_else(|| PathBuf::from(env!("CARGO_BIN_EXE_settle"))),
-    )
-}
+use crate::common::{settle, tmp};
+use std::path::Path;
 
 /// A process id that no process has (above any pid handed out so far on this machine).
 fn dead_pid() -> u32 {
@@ -26,7 +18,7 @@ fn dead_pid() -> u32 {
 #[test]
 #[cfg(target_os = "linux")]
 fn staging_folders_of_dead_processes_are_removed_whatever_their_name() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let out = dir.path().join("out");
     let dead = out.join(format!(".some.other.run.partial-{}", dead_pid()));
     std::fs::create_dir_all(dead.join("snapshots")).unwrap();

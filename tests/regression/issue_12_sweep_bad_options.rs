@@ -6,11 +6,12 @@
 //! naming the option (and for `--tol` the allowed range 0 < TOL ≤ 1: a relative error against
 //! the finest stable dt), writing nothing.
 
+use crate::common::{settle, tmp};
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
 
 fn sweep(args: &[&str], out: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_settle"))
+    settle()
         .args(["sweep", "scenarios/stokes_single.toml"])
         .args(args)
         .arg("--out")
@@ -21,7 +22,7 @@ fn sweep(args: &[&str], out: &Path) -> Output {
 }
 
 fn assert_refused(args: &[&str], option: &str, also: &str) {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let out = dir.path().join("out");
     let o = sweep(args, &out);
     let err = String::from_utf8_lossy(&o.stderr);
@@ -48,7 +49,7 @@ fn tolerances_outside_zero_to_one_are_refused_naming_the_range() {
 
 #[test]
 fn a_tolerance_of_one_is_accepted() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let out = dir.path().join("out");
     let o = sweep(
         &["--tol", "1", "--dt", "1e-3", "--integrator", "exponential"],
@@ -87,9 +88,9 @@ fn command_line_errors_name_the_option_not_a_file() {
 
 #[test]
 fn a_missing_merge_folder_is_bad_input() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let missing = dir.path().join("no_such_folder");
-    let o = Command::new(env!("CARGO_BIN_EXE_settle"))
+    let o = settle()
         .args(["sweep", "--merge"])
         .arg(&missing)
         .arg("-q")

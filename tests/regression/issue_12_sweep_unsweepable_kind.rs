@@ -5,11 +5,12 @@
 //! exit 2, a message naming the file, its kind and the kinds that can be swept, and nothing
 //! written, not even for the other files of the same command.
 
+use crate::common::{settle, tmp};
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
 
 fn sweep(args: &[&str], out: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_settle"))
+    settle()
         .arg("sweep")
         .args(args)
         .arg("--out")
@@ -32,7 +33,7 @@ fn assert_refused(o: &Output, file: &str, kind: &str) {
 
 #[test]
 fn a_sedimentation_sweep_is_refused_and_writes_nothing() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let out = dir.path().join("out");
     let file = "scenarios/sedimentation_sample1.toml";
     let o = sweep(&[file, "--dt", "1e-3"], &out);
@@ -42,7 +43,7 @@ fn a_sedimentation_sweep_is_refused_and_writes_nothing() {
 
 #[test]
 fn one_unsweepable_file_stops_the_whole_command_before_anything_runs() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let out = dir.path().join("out");
     for (file, kind) in [
         ("scenarios/tilt_friction.toml", "tilt_friction"),

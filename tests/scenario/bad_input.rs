@@ -9,11 +9,9 @@
 //! A property test also feeds random mutations of the good scenarios to
 //! `settle::scenario::load_str`, which must return `Ok` or `Err` (one line), never panic.
 
+use crate::common::{settle, tmp, tree};
 use std::ffi::OsString;
-use std::path::{Path, PathBuf};
-use std::process::Command;
-
-const BIN: &str = env!("CARGO_BIN_EXE_settle");
+use std::path::PathBuf;
 
 fn crate_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -48,7 +46,7 @@ struct Outcome {
 /// folder sits two levels down so that a name such as `../../etc` escaping it would still land
 /// inside the tree, where [`assert_nothing_written`] sees it.
 fn settle_run(files: &[PathBuf], extra: &[&str]) -> Outcome {
-    let root = tempfile::tempdir().expect("temp dir");
+    let root = tmp();
     std::fs::create_dir_all(root.path().join("a").join("b")).expect("mkdir");
     let out = root.path().join("a").join("b").join("out");
     let mut args: Vec<OsString> = vec!["run".into()];
@@ -56,7 +54,7 @@ fn settle_run(files: &[PathBuf], extra: &[&str]) -> Outcome {
     args.push("--out".into());
     args.push(out.into_os_string());
     args.extend(extra.iter().map(OsString::from));
-    let o = Command::new(BIN)
+    let o = settle()
         .args(&args)
         // Relative paths in the scenarios are resolved from the scenario file, not the cwd; run
         // from inside the temp tree so that nothing could be written next to the sources either.
@@ -69,23 +67,6 @@ fn settle_run(files: &[PathBuf], extra: &[&str]) -> Outcome {
         stderr: String::from_utf8_lossy(&o.stderr).into_owned(),
         root,
     }
-}
-
-/// Every file and folder under `dir`, relative to it.
-fn tree(dir: &Path) -> Vec<PathBuf> {
-    let mut out = Vec::new();
-    let mut stack = vec![dir.to_path_buf()];
-    while let Some(d) = stack.pop() {
-        for e in std::fs::read_dir(&d).expect("read_dir") {
-            let p = e.expect("dir entry").path();
-            out.push(p.strip_prefix(dir).expect("prefix").to_path_buf());
-            if p.is_dir() {
-                stack.push(p);
-            }
-        }
-    }
-    out.sort();
-    out
 }
 
 /// The temporary tree holds only the folders made by [`settle_run`] (and at most an empty `out`).
@@ -570,8 +551,8 @@ mod fuzz {
     use std::path::Path;
 
     const GOOD: [&str; 2] = [
-        include_str!("../scenarios/stokes_single.toml"),
-        include_str!("../scenarios/valentik_susp1.toml"),
+        include_str!("../../scenarios/stokes_single.toml"),
+        include_str!("../../scenarios/valentik_susp1.toml"),
     ];
 
     const KEYS: &[&str] = &[

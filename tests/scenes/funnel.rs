@@ -1,6 +1,7 @@
 //! The funnel pour (f-EDEM §4.2) and the engine features it needs: rolling resistance, the
 //! yield-stress hold of balls at rest in paste, fluid only below a free surface.
 
+use crate::common::tmp;
 use settle::dynamics::Integrator;
 use settle::engine::{dim3, EngineSettings};
 use settle::fluid::{DragLaw, SphereDrag};
@@ -495,7 +496,7 @@ fn presence_and_z_histogram_count_what_they_should() {
 #[test]
 fn settle_run_writes_the_funnel_outputs() {
     let p = small(&["funnel.count=4", "repeats.count=2"]);
-    let dir = tempfile::tempdir().expect("tempdir");
+    let dir = tmp();
     let report = settle::run::run_one(&p, dir.path()).expect("runs");
     let out = &report.out;
     for f in [

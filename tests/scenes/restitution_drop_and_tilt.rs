@@ -14,6 +14,7 @@
 //! rise in air, and each height is within 3 % of the measurement. Because the law is calibrated
 //! on those five heights, its predictive error is stated too (leave-one-out, 4.4 %).
 
+use crate::common::{col, read_csv, tmp};
 use settle::contact::{constant_fit, restitution_fits, RestitutionLaw};
 use settle::fluid::{buoyancy_n, sphere_mass_kg, DragLaw, SphereDrag};
 use settle::run::{prepare, run_one};
@@ -26,32 +27,6 @@ const G: f64 = 9.81;
 #[allow(clippy::approx_constant)] // 0.318 m is a drop height, not 1/π
 const DROP_M: [f64; 5] = [0.095, 0.188, 0.252, 0.318, 0.398];
 const REBOUND_M: [f64; 5] = [0.0370, 0.0720, 0.0909, 0.1180, 0.1469];
-
-/// Reads a CSV written by a run into (header, rows).
-fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
-    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let mut lines = text.lines();
-    let header = lines
-        .next()
-        .unwrap()
-        .split(',')
-        .map(str::to_string)
-        .collect();
-    let rows = lines
-        .map(|l| l.split(',').map(str::to_string).collect())
-        .collect();
-    (header, rows)
-}
-
-fn col(header: &[String], row: &[String], name: &str) -> f64 {
-    let i = header
-        .iter()
-        .position(|h| h == name)
-        .unwrap_or_else(|| panic!("no column {name} in {header:?}"));
-    row[i]
-        .parse()
-        .unwrap_or_else(|e| panic!("{name} = `{}`: {e}", row[i]))
-}
 
 /// Rebound apex of the ball's lowest point after a drop from `h` in air (Dallavalle drag,
 /// buoyancy), the plate reversing the velocity with factor `e(impact speed)`: RK4 with a 1 µs
@@ -153,7 +128,7 @@ fn restitution_drop_reproduces_the_law_and_table_a2_within_3_percent() {
     let p = prepare(path, None, &[]).unwrap();
     let law = p.scenario.contacts.as_ref().unwrap().restitution_law();
     assert!(law.is_speed_dependent());
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let report = run_one(&p, dir.path()).unwrap();
     assert!(report.out.join("rebound_height.svg").is_file());
     assert!(report.out.join("run.toml").is_file());
@@ -339,7 +314,7 @@ fn tilt_threshold_is_atan_mu() {
     let mu = p.scenario.contacts.as_ref().unwrap().friction;
     assert_eq!(mu, 0.341);
     let expected = mu.atan().to_degrees();
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let report = run_one(&p, dir.path()).unwrap();
     assert!(report.out.join("tilt_displacement.svg").is_file());
     let (th, t) = read_csv(&report.out.join("threshold.csv"));

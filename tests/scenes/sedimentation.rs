@@ -4,6 +4,7 @@
 //! mass fraction finer than d* (seed eq. 16 and the ASTM D422 analysis). Tolerance: 4 standard
 //! deviations of the representative-grain count in the band (σ/c = 1/√n), plus one size class.
 
+use crate::common::{number_after, settle, tmp};
 use settle::fluid::sphere_volume_m3;
 use settle::run::prepare;
 use settle::scenes::sedimentation::{limiting_diameter_m, setup, simulate, OnRecord, State};
@@ -155,8 +156,8 @@ fn every_grain_is_accounted_for_and_stays_in_the_cylinder() {
 /// for that grain, to the 4 digits printed), and write nothing.
 #[test]
 fn an_explicit_blow_up_stops_the_run_instead_of_filling_the_bed() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_settle"))
+    let dir = tmp();
+    let out = settle()
         .args([
             "run",
             "scenarios/sedimentation_sample5.toml",
@@ -177,14 +178,7 @@ fn an_explicit_blow_up_stops_the_run_instead_of_filling_the_bed() {
     assert!(e.contains("grain ") && e.contains("speed (bound"), "{e}");
     assert!(e.contains("step 1)"), "{e}");
     // The grain's diameter and the stable dt it prints: 2τ = ρ_p d²/(9 μ).
-    let number_after = |key: &str| -> f64 {
-        let tail = e
-            .split(key)
-            .nth(1)
-            .unwrap_or_else(|| panic!("no `{key}` in {e}"));
-        tail.split(' ').next().unwrap().parse().unwrap()
-    };
-    let (d, stable) = (number_after("(d = "), number_after("use dt < "));
+    let (d, stable) = (number_after(&e, "(d = "), number_after(&e, "use dt < "));
     let two_tau = 2500.0 * d * d / (9.0 * 1e-3);
     assert!(
         (stable / two_tau - 1.0).abs() < 1e-3,

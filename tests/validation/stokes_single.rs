@@ -2,6 +2,7 @@
 //! the analytic solution of eq. 20 (v = v_t (1 − e^{−t/τ}), eq. 21 for v_t).
 //! Scenario: `scenarios/stokes_single.toml`.
 
+use crate::common::{settle, tmp};
 use settle::dynamics::Integrator;
 use settle::run::{prepare, run_files, RunRequest};
 use settle::scenes::free_settling::{run, RunOptions};
@@ -102,8 +103,8 @@ fn explicit_at_fedem_step_is_within_their_tolerance() {
 
 #[test]
 fn cli_unstable_run_exits_3_and_writes_nothing() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_settle"))
+    let dir = tmp();
+    let out = settle()
         .args([
             "run",
             SCENARIO,
@@ -131,7 +132,7 @@ fn cli_unstable_run_exits_3_and_writes_nothing() {
 
 #[test]
 fn run_writes_summary_timeseries_probes_and_run_toml() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let req = RunRequest {
         files: vec![SCENARIO.into()],
         out_dir: dir.path().to_path_buf(),
