@@ -141,7 +141,7 @@ pub fn run(
 
 /// Runs every sphere through its own Rapier world with the force hook (`engine = "rapier"`):
 /// the same scene as the free engine, through the contact pipeline. It must give the same answer
-/// (tests/engine_free_settling.rs); it costs ~300× more per step.
+/// (tests/engine/free_settling.rs); it costs ~300× more per step.
 pub fn run_rapier(
     scenario: &Scenario,
     cases: &[SphereCase],
