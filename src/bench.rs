@@ -66,12 +66,12 @@ fn valentik(root: &Path) -> Result<Vec<Prepared>, Error> {
                 None,
                 &[],
             )
-            .map_err(Error::Scenario)
+            .map_err(Error::BadInput)
         })
         .collect()
 }
 
-fn run_all(ps: &[Prepared], dt: f64, integ: Integrator) -> (f64, u64) {
+fn run_all(ps: &[Prepared], dt: f64, integ: Integrator) -> Result<(f64, u64), Error> {
     let t0 = Instant::now();
     let mut steps = 0;
     for p in ps {
@@ -80,16 +80,31 @@ fn run_all(ps: &[Prepared], dt: f64, integ: Integrator) -> (f64, u64) {
             integrator: integ,
             timeseries: false,
         };
-        let r = free_settling::run(&p.scenario, &p.spheres, opts).expect("stable");
+        let r = free_settling::run(&p.scenario, &p.spheres, opts)
+            .map_err(|u| Error::Unstable(p.path.clone(), u))?;
         steps += r.iter().map(|x| x.steps).sum::<u64>();
     }
-    (t0.elapsed().as_secs_f64(), steps)
+    Ok((t0.elapsed().as_secs_f64(), steps))
 }
 
 /// Runs the benchmarks; `root` is the project folder (for the scenario files).
 pub fn run(root: &Path, quick: bool) -> Result<Vec<Figure>, Error> {
     let mut out = Vec::new();
+    stokes_step(quick, &mut out);
+    bingham_step(quick, &mut out);
+    let ps = valentik(root)?;
+    valentik_dt(&ps, quick, &mut out)?;
+    paste_drops(root, &mut out)?;
+    sedimentation(root, quick, &mut out)?;
+    if !quick {
+        valentik_sweep(&ps, &mut out)?;
+    }
+    Ok(out)
+}
 
+/// Step cost of the exponential integrator against the analytic floor.
+fn stokes_step(quick: bool, out: &mut Vec<Figure>) {
+    let n = if quick { 1_000_000 } else { 20_000_000 };
     // 1. Integrator step cost against the analytic floor (Stokes sphere of f-EDEM Table 1).
     let d = 1e-4;
     let drag = SphereDrag::new(
@@ -101,7 +116,6 @@ pub fn run(root: &Path, quick: bool) -> Result<Vec<Figure>, Error> {
     );
     let m = sphere_mass_kg(d, 2700.0);
     let w = Vector3::new(0.0, 0.0, -(m - sphere_mass_kg(d, 1000.0)) * 9.81);
-    let n = if quick { 1_000_000 } else { 20_000_000 };
     let dt = 1e-5;
     let t0 = Instant::now();
     let mut v = Vector3::zeros();
@@ -128,7 +142,11 @@ pub fn run(root: &Path, quick: bool) -> Result<Vec<Figure>, Error> {
     out.push(fig("stokes_step", "exponential_step_ns", ours, "ns"));
     out.push(fig("stokes_step", "analytic_floor_step_ns", floor, "ns"));
     out.push(fig("stokes_step", "ratio_ours_to_floor", ours / floor, "-"));
+}
 
+/// Step cost of the exponential integrator on a Bingham sphere.
+fn bingham_step(quick: bool, out: &mut Vec<Figure>) {
+    let n = if quick { 1_000_000 } else { 20_000_000 };
     // 2. Bingham step cost (Newton solve of the set-valued implicit equation + exponential).
     let drag_b = SphereDrag::new(
         DragLaw::Bingham {
@@ -160,15 +178,17 @@ pub fn run(root: &Path, quick: bool) -> Result<Vec<Figure>, Error> {
         t0.elapsed().as_secs_f64() / n as f64 * 1e9,
         "ns",
     ));
+}
 
+/// The 121 Valentik spheres at the default dt, and large against small dt.
+fn valentik_dt(ps: &[Prepared], quick: bool, out: &mut Vec<Figure>) -> Result<(), Error> {
     // 3. All 121 Valentik spheres, default dt (1e-3 s), and large against small dt.
-    let ps = valentik(root)?;
-    let (wall, steps) = run_all(&ps, 1e-3, Integrator::Exponential);
+    let (wall, steps) = run_all(ps, 1e-3, Integrator::Exponential)?;
     out.push(fig("valentik_121", "wall_time_dt_1e-3_s", wall, "s"));
     out.push(fig("valentik_121", "steps_dt_1e-3", steps as f64, "steps"));
-    let (w_big, _) = run_all(&ps, 1e-1, Integrator::Exponential);
+    let (w_big, _) = run_all(ps, 1e-1, Integrator::Exponential)?;
     let small = if quick { 1e-4 } else { 1e-5 };
-    let (w_small, s_small) = run_all(&ps, small, Integrator::Exponential);
+    let (w_small, s_small) = run_all(ps, small, Integrator::Exponential)?;
     out.push(fig("valentik_121", "wall_time_dt_1e-1_s", w_big, "s"));
     out.push(fig(
         "valentik_121",
@@ -189,9 +209,14 @@ pub fn run(root: &Path, quick: bool) -> Result<Vec<Figure>, Error> {
         "-",
     ));
 
+    Ok(())
+}
+
+/// The 18 paste drops at the recommended dt against f-EDEM's.
+fn paste_drops(root: &Path, out: &mut Vec<Figure>) -> Result<(), Error> {
     // 4. Paste drops: 18 balls, dt = 1e-3 s (the recommended step) against f-EDEM's 5e-6 s.
     let paste_file = root.join("scenarios/paste_single_ball.toml");
-    let paste = prepare(&paste_file, None, &[]).map_err(Error::Scenario)?;
+    let paste = prepare(&paste_file, None, &[]).map_err(Error::BadInput)?;
     for dt in [1e-3, 5e-6] {
         let t0 = Instant::now();
         let opts = RunOptions {
@@ -216,6 +241,11 @@ pub fn run(root: &Path, quick: bool) -> Result<Vec<Figure>, Error> {
         ));
     }
 
+    Ok(())
+}
+
+/// The sedimentation cylinder, sample 5, 1440 min, ideal-Stokes and full physics.
+fn sedimentation(root: &Path, quick: bool, out: &mut Vec<Figure>) -> Result<(), Error> {
     // 5. Sedimentation cylinder, sample 5, 1440 min.
     let n = if quick { "20000" } else { "100000" };
     for physics in ["ideal-stokes", "full"] {
@@ -232,8 +262,8 @@ pub fn run(root: &Path, quick: bool) -> Result<Vec<Figure>, Error> {
             None,
             &ov,
         )
-        .map_err(Error::Scenario)?;
-        let su = crate::scenes::sedimentation::setup(&p.scenario, &p.path).map_err(Error::Other)?;
+        .map_err(Error::BadInput)?;
+        let su = crate::scenes::sedimentation::setup_of(&p)?;
         let t0 = Instant::now();
         let st = crate::scenes::sedimentation::simulate(
             &p.scenario,
@@ -272,32 +302,35 @@ pub fn run(root: &Path, quick: bool) -> Result<Vec<Figure>, Error> {
         out.push(fig(&name, "contact_wall_time_s", st.contacts.wall_s, "s"));
     }
 
+    Ok(())
+}
+
+/// The full Valentik sweep.
+fn valentik_sweep(ps: &[Prepared], out: &mut Vec<Figure>) -> Result<(), Error> {
     // 6. The full Valentik sweep: 6 scenarios × 10 dt (1e-5 … 3e-1 s) × 3 integrators.
-    if !quick {
-        let t0 = Instant::now();
-        let mut cases = 0;
-        for p in &ps {
-            let sw = p.scenario.sweep.as_ref().ok_or_else(|| {
-                Error::bad_input(
-                    &p.path,
-                    Some("sweep"),
-                    "missing: the benchmark sweeps its dt",
-                )
-            })?;
-            let grid = crate::sweep::grid(&Integrator::ALL, &sw.dt_s);
-            cases += grid.len();
-            let mut rows = crate::sweep::run_cases(p, &grid).map_err(|e| e.to_string())?;
-            crate::sweep::finish(&mut rows);
-        }
-        out.push(fig("valentik_sweep", "cases", cases as f64, "cases"));
-        out.push(fig(
-            "valentik_sweep",
-            "wall_time_s",
-            t0.elapsed().as_secs_f64(),
-            "s",
-        ));
+    let t0 = Instant::now();
+    let mut cases = 0;
+    for p in ps {
+        let sw = p.scenario.sweep.as_ref().ok_or_else(|| {
+            Error::bad_input(
+                &p.path,
+                Some("sweep"),
+                "missing: the benchmark sweeps its dt",
+            )
+        })?;
+        let grid = crate::sweep::grid(&Integrator::ALL, &sw.dt_s);
+        cases += grid.len();
+        let mut rows = crate::sweep::run_cases(p, &grid)?;
+        crate::sweep::finish(&mut rows);
     }
-    Ok(out)
+    out.push(fig("valentik_sweep", "cases", cases as f64, "cases"));
+    out.push(fig(
+        "valentik_sweep",
+        "wall_time_s",
+        t0.elapsed().as_secs_f64(),
+        "s",
+    ));
+    Ok(())
 }
 
 /// Writes figures as `bench.csv` (`benchmark,quantity,value,unit`).

@@ -1,7 +1,7 @@
 //! The `settle` command line.
 
-use crate::output::free_settling::{rel_error, rel_error_vs_force_balance};
 use crate::run::{run_files, FileReport, RunRequest};
+use crate::scenes::free_settling::output::{rel_error, rel_error_vs_force_balance};
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 
@@ -9,8 +9,9 @@ use std::path::PathBuf;
 ///
 /// Exit codes: 0 success; 2 bad input (a scenario, an input file or a command-line argument;
 /// nothing was run or written); 3 unstable run (nothing was written); 4 I/O or environment (a
-/// file or folder could not be read or written); 130 interrupted by Ctrl-C or SIGTERM (what was
-/// done is in the output folder).
+/// file or folder could not be read or written); 130 interrupted by Ctrl-C or SIGTERM (a
+/// sedimentation or funnel-pour run keeps what it simulated, marked interrupted in run.toml; other
+/// kinds write nothing of the unfinished run).
 #[derive(Parser, Debug)]
 #[command(name = "settle", version, about)]
 pub struct Cli {
@@ -176,7 +177,7 @@ fn print_overall(reports: &[FileReport]) {
         .iter()
         .flat_map(|r| r.results.iter().cloned())
         .collect();
-    if let Some(s) = crate::output::free_settling::metrics(&all).last() {
+    if let Some(s) = crate::scenes::free_settling::output::metrics(&all).last() {
         println!(
             "all files vs measured: N = {}, mean |err| = {:.1}%, median = {:.1}%, max = {:.1}%, bias = {:+.1}%, within 10%: {:.0}%, within 25%: {:.0}%",
             s.n,
@@ -236,7 +237,7 @@ fn print_report(r: &FileReport) {
             x.regime.label()
         );
     }
-    let stats = crate::output::free_settling::metrics(&r.results);
+    let stats = crate::scenes::free_settling::output::metrics(&r.results);
     if let Some(all) = stats.last() {
         println!(
             "  vs measured: N = {}, mean |err| = {:.1}%, median = {:.1}%, max = {:.1}%, bias = {:+.1}%, within 10%: {:.0}%, within 25%: {:.0}%",

@@ -8,10 +8,7 @@
 //! | bad input | 2 | a scenario file, an input file or a command-line argument is wrong: the message names the file (or argument), the key or row, and what is allowed; nothing was run or written |
 //! | unstable run | 3 | the simulation went numerically unstable: the message names the body, the time and a step that would hold; nothing was written |
 //! | I/O or environment | 4 | a file could not be read or written, a folder is missing or not a folder, or the machine refused (disk, permissions, `/proc`) |
-//! | interrupted | 130 | Ctrl-C or SIGTERM: what was done is in the output folder, marked `interrupted` |
-//!
-//! [`Error::Unclassified`] (built by [`Error::Other`]) is a transitional variant for messages not yet given a class (classed as I/O
-//! or environment, exit 4); it is to be removed once the scenes return typed errors.
+//! | interrupted | 130 | Ctrl-C or SIGTERM: a sedimentation or funnel-pour run keeps what it simulated in its output folder, marked `interrupted` ([`Error::Interrupted`]); the other kinds, and files not yet started, write nothing ([`Error::InterruptedUnwritten`]); files that finished before stay |
 
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -72,34 +69,23 @@ pub enum Error {
     /// A file or folder could not be read or written (exit 4).
     #[error("{path}: {cause}", path = .0.display(), cause = .1)]
     Io(PathBuf, std::io::Error),
-    /// Stopped by Ctrl-C/SIGTERM; what was done is in the folder (exit 130).
+    /// Stopped by Ctrl-C/SIGTERM; what was simulated so far is in the output folder, marked
+    /// `interrupted` in its `run.toml` (exit 130).
     #[error(
         "interrupted: what was simulated so far is in {path} (run.toml status = \"interrupted\")",
         path = .0.display()
     )]
     Interrupted(PathBuf),
-    /// Transitional: a message without a class yet, treated as I/O or environment (exit 4).
-    /// Built by [`Error::Other`]; to be removed once every scene returns a typed error.
-    #[error("{0}")]
-    Unclassified(String),
+    /// Stopped by Ctrl-C/SIGTERM before the run of the scenario file wrote anything: nothing of
+    /// it was kept (kinds that keep no partial result, or a file not yet started; exit 130).
+    #[error(
+        "interrupted: {path} was stopped before its end and nothing of it was written",
+        path = .0.display()
+    )]
+    InterruptedUnwritten(PathBuf),
 }
 
 impl Error {
-    /// Bad input (exit 2): `RunError::Scenario(e)` for any error convertible to [`BadInput`]
-    /// (the scenario layer's `ScenarioError` is).
-    #[allow(non_snake_case)]
-    pub fn Scenario(e: impl Into<BadInput>) -> Self {
-        Self::BadInput(e.into())
-    }
-
-    /// Transitional (to be removed with [`Error::Unclassified`]): a message without a class
-    /// (`String`, classed I/O or environment, exit 4), or any error that converts into this type
-    /// (kept as it is).
-    #[allow(non_snake_case)]
-    pub fn Other(e: impl Into<Error>) -> Self {
-        e.into()
-    }
-
     /// Bad input naming `file`, `key` and the message.
     pub fn bad_input(file: &Path, key: Option<&str>, message: impl Into<String>) -> Self {
         Self::BadInput(BadInput::new(file, key, message))
@@ -110,20 +96,19 @@ impl Error {
         Self::BadInput(BadInput::new(value, Some(option), message))
     }
 
+    /// Whether the run was stopped by Ctrl-C/SIGTERM (either interrupted variant).
+    pub fn is_interrupted(&self) -> bool {
+        matches!(self, Self::Interrupted(_) | Self::InterruptedUnwritten(_))
+    }
+
     /// Process exit code of this error's class.
     pub fn exit_code(&self) -> i32 {
         match self {
             Self::BadInput(_) => EXIT_BAD_INPUT,
             Self::Unstable(..) => EXIT_UNSTABLE,
-            Self::Io(..) | Self::Unclassified(_) => EXIT_IO,
-            Self::Interrupted(_) => EXIT_INTERRUPTED,
+            Self::Io(..) => EXIT_IO,
+            Self::Interrupted(_) | Self::InterruptedUnwritten(_) => EXIT_INTERRUPTED,
         }
-    }
-}
-
-impl From<String> for Error {
-    fn from(m: String) -> Self {
-        Self::Unclassified(m)
     }
 }
 
@@ -196,3 +181,26 @@ impl fmt::Display for Unstable {
 }
 
 impl std::error::Error for Unstable {}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The interrupted message says whether anything was kept, and both exit 130.
+    #[test]
+    fn interrupted_messages_say_whether_anything_was_kept() {
+        let kept = Error::Interrupted(PathBuf::from("out/sed"));
+        let none = Error::InterruptedUnwritten(PathBuf::from("scenarios/stokes_single.toml"));
+        assert!(kept
+            .to_string()
+            .contains("what was simulated so far is in out/sed"));
+        let m = none.to_string();
+        assert!(m.contains("scenarios/stokes_single.toml"), "{m}");
+        assert!(m.contains("nothing of it was written"), "{m}");
+        assert!(!m.contains("run.toml"), "{m}");
+        for e in [kept, none] {
+            assert!(e.is_interrupted());
+            assert_eq!(e.exit_code(), EXIT_INTERRUPTED);
+        }
+    }
+}

@@ -14,7 +14,7 @@
 //! | 1 physics | [`fluid`], [`contact`], [`dynamics`], [`sample`], [`instruments`] | pure functions with their equations: no I/O, no Rapier |
 //! | 2 engine | [`engine`] | the Rapier worlds |
 //! | 3 scenario | [`scenario`] | schema, loading, validation, input files, cost |
-//! | 4 scenes | [`scenes`] (and the writers of [`output`] moving into them) | one folder per kind, and the scene API ([`scenes::Prepared`], [`scenes::RunContext`], [`scenes::SceneReport`]) |
+//! | 4 scenes | [`scenes`] | one folder per kind, and the scene API ([`scenes::Prepared`], [`scenes::RunContext`], [`scenes::SceneReport`]) |
 //! | 5 application | [`run`], [`sweep`], [`bench`](mod@bench), [`cli`] | the commands |
 
 pub mod bench;
@@ -28,7 +28,6 @@ pub mod fluid;
 pub mod instruments;
 pub mod interrupt;
 pub mod io;
-pub mod output;
 pub mod progress;
 pub mod run;
 pub mod sample;

@@ -4,17 +4,14 @@
 
 use crate::error::Error;
 use crate::io::{self as output, StagedDir};
-use crate::scenario::{self, EngineChoice, Kind, Scenario, ScenarioError};
+use crate::scenario::inputs as spheres;
+use crate::scenario::{self, Kind, Scenario, ScenarioError};
 use crate::scenes::free_settling::{self, output as out_fs};
-use crate::scenes::spheres;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 pub use crate::scenes::{Prepared, RunContext, SceneReport};
-
-/// Why a run failed: the crate's one error type (kept under this name for the scenes).
-pub type RunError = Error;
 
 /// Scenario names refused because the layout of the output folder uses them: `checkpoint`
 /// (the checkpoints of a long run) and `combined` (the joint summary of a several-file run).
@@ -74,8 +71,9 @@ fn check_name(s: &Scenario, path: &Path) -> Result<(), ScenarioError> {
     Ok(())
 }
 
-/// Loads and validates a scenario with the request's overrides (`--dt` is `time.dt_s`), and
-/// refuses reserved and over-long names.
+/// Loads and validates a scenario with the request's overrides (`--dt` is `time.dt_s`), reads
+/// its input files (`spheres_csv`, a sedimentation's `sample.csv`), and refuses reserved and
+/// over-long names: every bad input is found here, before anything runs.
 pub fn prepare(
     path: &Path,
     dt_s: Option<f64>,
@@ -95,10 +93,15 @@ pub fn prepare(
     let scenario = scenario::load(path, &ov)?;
     check_name(&scenario, path)?;
     let spheres = spheres::spheres(&scenario, path)?;
+    let sample = match &scenario.sample {
+        Some(sm) if scenario.kind == Kind::Sedimentation => Some(spheres::read_sample(sm, path)?),
+        _ => None,
+    };
     Ok(Prepared {
         path: path.to_path_buf(),
         scenario,
         spheres,
+        sample,
     })
 }
 
@@ -142,18 +145,9 @@ struct RunToml<'a> {
     scenario: &'a Scenario,
 }
 
-/// Which engine a scenario runs on after `auto` is resolved: `free` or `rapier`.
-pub fn engine_name(s: &Scenario) -> &'static str {
-    match (s.kind, s.engine) {
-        (_, EngineChoice::Rapier) => "rapier",
-        (Kind::FreeSettling | Kind::Drop | Kind::Sedimentation, _) => "free",
-        (Kind::RestitutionDrop | Kind::TiltFriction | Kind::FunnelPour, _) => "rapier",
-    }
-}
-
 /// Runs one prepared scenario and writes its outputs under `out_dir` (no checkpoints, no
 /// progress bar).
-pub fn run_one(p: &Prepared, out_dir: &Path) -> Result<FileReport, RunError> {
+pub fn run_one(p: &Prepared, out_dir: &Path) -> Result<FileReport, Error> {
     run_one_with(
         p,
         out_dir,
@@ -165,16 +159,12 @@ pub fn run_one(p: &Prepared, out_dir: &Path) -> Result<FileReport, RunError> {
 }
 
 /// [`run_one`] with checkpoints, resumption and progress as `ctx` says.
-pub fn run_one_with(
-    p: &Prepared,
-    out_dir: &Path,
-    ctx: &RunContext,
-) -> Result<FileReport, RunError> {
+pub fn run_one_with(p: &Prepared, out_dir: &Path, ctx: &RunContext) -> Result<FileReport, Error> {
     let s = &p.scenario;
     let t0 = Instant::now();
     let stage =
-        StagedDir::new(out_dir, &s.name).map_err(|e| RunError::Io(out_dir.join(&s.name), e))?;
-    let io = |e: std::io::Error| RunError::Io(stage.dest().to_path_buf(), e);
+        StagedDir::new(out_dir, &s.name).map_err(|e| Error::Io(out_dir.join(&s.name), e))?;
+    let io = |e: std::io::Error| Error::Io(stage.dest().to_path_buf(), e);
     let (results, report) = match s.kind {
         Kind::FreeSettling | Kind::Drop => free_settling::run_scene(p, &stage)?,
         Kind::RestitutionDrop => (Vec::new(), crate::scenes::restitution_drop::run(p, &stage)?),
@@ -195,7 +185,7 @@ pub fn run_one_with(
             } else {
                 "complete"
             },
-            engine: engine_name(s),
+            engine: s.engine().name(),
             integrator: s.time.integrator.name(),
             dt_s: s.time.dt_s,
             steps: report.steps,
@@ -210,7 +200,7 @@ pub fn run_one_with(
     output::write_atomic(&stage.path("run.toml"), text.as_bytes()).map_err(io)?;
     let out = commit(stage, &p.path)?;
     if report.interrupted {
-        return Err(RunError::Interrupted(out));
+        return Err(Error::Interrupted(out));
     }
     Ok(FileReport {
         prepared: p.clone(),
@@ -223,17 +213,17 @@ pub fn run_one_with(
 
 /// Moves a staged folder into place; a destination settle may not replace (a folder it did not
 /// create, or a user's file in the way) is bad input naming the scenario file's key `name`.
-fn commit(stage: StagedDir, file: &Path) -> Result<PathBuf, RunError> {
+fn commit(stage: StagedDir, file: &Path) -> Result<PathBuf, Error> {
     let dest = stage.dest().to_path_buf();
     stage.commit().map_err(|e| {
         if e.kind() == std::io::ErrorKind::AlreadyExists {
-            RunError::bad_input(
+            Error::bad_input(
                 file,
                 Some("name"),
                 format!("{e}; choose another --out or another name"),
             )
         } else {
-            RunError::Io(dest, e)
+            Error::Io(dest, e)
         }
     })
 }
@@ -243,7 +233,7 @@ fn commit(stage: StagedDir, file: &Path) -> Result<PathBuf, RunError> {
 /// runs; with several files a combined `summary.csv` and `metrics.csv` go to
 /// `out_dir/combined/`. Checkpoints go to `out_dir/checkpoint/` (every `checkpoint_every_s`, and
 /// when interrupted) and are removed once every file has completed.
-pub fn run_files(req: &RunRequest) -> Result<Vec<FileReport>, RunError> {
+pub fn run_files(req: &RunRequest) -> Result<Vec<FileReport>, Error> {
     use crate::checkpoint::{Checkpoints, SavedRequest};
     let (req, saved) = resolve_resume(req)?;
     let prepared = prepare_all(&req)?;
@@ -254,11 +244,11 @@ pub fn run_files(req: &RunRequest) -> Result<Vec<FileReport>, RunError> {
         .collect();
     let mut checkpoints = Checkpoints::new(&req.out_dir, req.checkpoint_every_s);
     let ck_dir = checkpoints.dir().to_path_buf();
-    let io_ck = |e: std::io::Error| RunError::Io(ck_dir.clone(), e);
+    let io_ck = |e: std::io::Error| Error::Io(ck_dir.clone(), e);
     match &saved {
         Some(saved) => {
             if saved.scenarios != fingerprints {
-                return Err(RunError::bad_input(
+                return Err(Error::bad_input(
                     &ck_dir.join("request.toml"),
                     None,
                     "cannot resume: the scenario files changed since the checkpoint (run them \
@@ -291,11 +281,11 @@ pub fn run_files(req: &RunRequest) -> Result<Vec<FileReport>, RunError> {
     let mut reports = Vec::new();
     for p in &prepared {
         if crate::interrupt::requested() {
-            return Err(RunError::Interrupted(req.out_dir.clone()));
+            return Err(Error::InterruptedUnwritten(p.path.clone()));
         }
         match run_one_with(p, &req.out_dir, &ctx) {
             Ok(r) => reports.push(r),
-            Err(e @ RunError::Interrupted(_)) => return Err(e),
+            Err(e) if e.is_interrupted() => return Err(e),
             Err(e) => {
                 // Nothing to resume from a run that failed: leave no checkpoint behind.
                 let _ = checkpoints.clear();
@@ -314,7 +304,7 @@ pub fn run_files(req: &RunRequest) -> Result<Vec<FileReport>, RunError> {
 /// (scenario files as absolute paths, so a resume works from any directory).
 fn resolve_resume(
     req: &RunRequest,
-) -> Result<(RunRequest, Option<crate::checkpoint::SavedRequest>), RunError> {
+) -> Result<(RunRequest, Option<crate::checkpoint::SavedRequest>), Error> {
     let mut req = req.clone();
     if !req.resume {
         return Ok((req, None));
@@ -330,17 +320,17 @@ fn resolve_resume(
 
 /// Prepares every file, refuses duplicate names, and checks each cost (printing the estimate of
 /// a long run on stderr unless quiet).
-fn prepare_all(req: &RunRequest) -> Result<Vec<Prepared>, RunError> {
+fn prepare_all(req: &RunRequest) -> Result<Vec<Prepared>, Error> {
     let prepared: Vec<Prepared> = req
         .files
         .iter()
         .map(|f| prepare(f, req.dt_s, &req.overrides))
         .collect::<Result<_, _>>()
-        .map_err(RunError::Scenario)?;
+        .map_err(Error::BadInput)?;
     let mut names = std::collections::HashSet::new();
     for p in &prepared {
         if !names.insert(p.scenario.name.clone()) {
-            return Err(RunError::Scenario(ScenarioError::new(
+            return Err(Error::BadInput(ScenarioError::new(
                 &p.path,
                 Some("name"),
                 format!(
@@ -353,7 +343,7 @@ fn prepare_all(req: &RunRequest) -> Result<Vec<Prepared>, RunError> {
         if !req.quiet && cost.is_long() {
             eprintln!("{}: {}", p.path.display(), cost.describe());
         }
-        scenario::cost::check(&p.scenario, &p.path, req.force).map_err(RunError::Scenario)?;
+        scenario::cost::check(&p.scenario, &p.path, req.force).map_err(Error::BadInput)?;
     }
     Ok(prepared)
 }
@@ -361,9 +351,9 @@ fn prepare_all(req: &RunRequest) -> Result<Vec<Prepared>, RunError> {
 /// Refuses, before anything runs, an output folder that is a file, and a destination
 /// `OUT/NAME/` (or `OUT/combined/`) that settle did not create: settle never deletes or replaces
 /// a folder it did not make.
-pub fn check_destinations(out_dir: &Path, prepared: &[Prepared]) -> Result<(), RunError> {
+pub fn check_destinations(out_dir: &Path, prepared: &[Prepared]) -> Result<(), Error> {
     if out_dir.exists() && !out_dir.is_dir() {
-        return Err(RunError::bad_argument(
+        return Err(Error::bad_argument(
             "--out",
             out_dir,
             "exists and is not a folder: give a folder (it is created if absent)",
@@ -385,7 +375,7 @@ pub fn check_destinations(out_dir: &Path, prepared: &[Prepared]) -> Result<(), R
                  will not delete or replace it"
             }
         };
-        return Err(RunError::bad_input(
+        return Err(Error::bad_input(
             file,
             Some("name"),
             format!(
@@ -398,9 +388,9 @@ pub fn check_destinations(out_dir: &Path, prepared: &[Prepared]) -> Result<(), R
     Ok(())
 }
 
-fn write_combined(out_dir: &Path, reports: &[FileReport]) -> Result<(), RunError> {
+fn write_combined(out_dir: &Path, reports: &[FileReport]) -> Result<(), Error> {
     let dest = out_dir.join("combined");
-    let io = |e: std::io::Error| RunError::Io(dest.clone(), e);
+    let io = |e: std::io::Error| Error::Io(dest.clone(), e);
     let stage = StagedDir::new(out_dir, "combined").map_err(io)?;
     let mut rows = Vec::new();
     let mut all = Vec::new();
@@ -427,7 +417,7 @@ fn write_combined(out_dir: &Path, reports: &[FileReport]) -> Result<(), RunError
         .map(|r| r.out.as_path())
         .collect();
     if !sed.is_empty() {
-        crate::output::granulometry::write_combined_errors(
+        crate::scenes::sedimentation::output::granulometry::write_combined_errors(
             &stage.path("instrument_errors.csv"),
             &sed,
         )
@@ -435,14 +425,4 @@ fn write_combined(out_dir: &Path, reports: &[FileReport]) -> Result<(), RunError
     }
     commit(stage, Path::new("<command line>"))?;
     Ok(())
-}
-
-impl From<ScenarioError> for crate::error::BadInput {
-    fn from(e: ScenarioError) -> Self {
-        Self {
-            file: e.file,
-            key: e.key,
-            message: e.message,
-        }
-    }
 }

@@ -2,6 +2,7 @@
 //! (seed 000 §4.4, Fig. 5, eq. 15), and representative grains with statistical weights placed by
 //! stratified random sampling (seed Fig. 6).
 
+use crate::error::BadInput;
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -38,24 +39,26 @@ impl Distribution {
         (self.points[0].0, self.points[self.points.len() - 1].0)
     }
 
-    /// Reads sample `sample` from a CSV with columns `sample, diameter_m, percent_finer`.
-    pub fn load(path: &Path, sample: u32) -> Result<Self, String> {
+    /// Reads sample `sample` from a CSV with columns `sample, diameter_m, percent_finer` (no
+    /// range checks beyond those of a distribution: the scenario layer's reader,
+    /// `scenario::inputs::read_sample`, checks every row). Errors name the file and the row.
+    pub fn load(path: &Path, sample: u32) -> Result<Self, BadInput> {
         let mut rdr = csv::ReaderBuilder::new()
             .comment(Some(b'#'))
             .from_path(path)
-            .map_err(|e| format!("cannot read `{}`: {e}", path.display()))?;
+            .map_err(|e| BadInput::new(path, None, format!("cannot read the file: {e}")))?;
         let mut points = Vec::new();
         for (i, rec) in rdr.records().enumerate() {
-            let rec = rec.map_err(|e| format!("`{}` row {}: {e}", path.display(), i + 2))?;
-            let f = |k: usize| -> Result<f64, String> {
+            let row = format!("row {}", i + 2);
+            let rec = rec.map_err(|e| BadInput::new(path, Some(&row), e.to_string()))?;
+            let f = |k: usize| -> Result<f64, BadInput> {
                 rec.get(k)
                     .and_then(|s| s.trim().parse::<f64>().ok())
                     .ok_or_else(|| {
-                        format!(
-                            "`{}` row {}: column {} is not a number",
-                            path.display(),
-                            i + 2,
-                            k + 1
+                        BadInput::new(
+                            path,
+                            Some(&row),
+                            format!("column {} is not a number", k + 1),
                         )
                     })
             };
@@ -64,9 +67,10 @@ impl Distribution {
             }
         }
         if points.len() < 2 {
-            return Err(format!(
-                "`{}` has fewer than two points for sample {sample}",
-                path.display()
+            return Err(BadInput::new(
+                path,
+                None,
+                format!("fewer than two points for sample {sample}"),
             ));
         }
         let ok = points
@@ -76,9 +80,10 @@ impl Distribution {
                 .iter()
                 .all(|p| p.0 > 0.0 && (0.0..=100.0).contains(&p.1));
         if !ok {
-            return Err(format!(
-                "`{}` sample {sample}: diameters must increase, percent finer must not decrease and stay within 0–100",
-                path.display()
+            return Err(BadInput::new(
+                path,
+                None,
+                format!("sample {sample}: diameters must increase, percent finer must not decrease and stay within 0–100"),
             ));
         }
         Ok(Self { points })

@@ -40,7 +40,8 @@ pub enum Scale {
     Log,
 }
 
-/// Draws a scatter/line chart as SVG at `path`.
+/// Draws a scatter/line chart as SVG at `path`; a drawing failure is an [`std::io::Error`] of kind
+/// `Other` (the caller names the path).
 pub fn scatter_svg(
     path: &Path,
     title: &str,
@@ -49,7 +50,7 @@ pub fn scatter_svg(
     x_scale: Scale,
     y_scale: Scale,
     series: &[Series],
-) -> Result<(), String> {
+) -> std::io::Result<()> {
     let pts = series.iter().flat_map(|s| s.points.iter().copied());
     let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
     for (x, y) in pts {
@@ -77,7 +78,7 @@ pub fn scatter_svg(
     let (x0, x1) = pad(x0, x1, x_scale);
     let (y0, y1) = pad(y0, y1, y_scale);
     let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
-    let e = |e: &dyn std::fmt::Display| e.to_string();
+    let e = |e: &dyn std::fmt::Display| std::io::Error::other(e.to_string());
     root.fill(&WHITE).map_err(|x| e(&x))?;
     macro_rules! draw {
         ($xr:expr, $yr:expr) => {{

@@ -4,40 +4,11 @@
 use super::schema::Scenario;
 use super::spec::Parsed;
 use super::validate::check_tables;
-use std::fmt;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-/// A scenario that cannot be run: one line naming the file, the key and what is allowed.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ScenarioError {
-    /// The scenario file.
-    pub file: PathBuf,
-    /// The offending key as a dotted path (`spheres[0].diameter_m`), if one is known.
-    pub key: Option<String>,
-    /// What is wrong and what is allowed.
-    pub message: String,
-}
-
-impl ScenarioError {
-    pub(crate) fn new(file: &Path, key: Option<&str>, message: impl Into<String>) -> Self {
-        Self {
-            file: file.to_path_buf(),
-            key: key.map(|k| k.replace('\n', " ")),
-            message: message.into().replace('\n', " "),
-        }
-    }
-}
-
-impl fmt::Display for ScenarioError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match &self.key {
-            Some(k) => write!(f, "{}: key `{}`: {}", self.file.display(), k, self.message),
-            None => write!(f, "{}: {}", self.file.display(), self.message),
-        }
-    }
-}
-
-impl std::error::Error for ScenarioError {}
+/// A scenario that cannot be run: one line naming the file, the key and what is allowed. The
+/// crate's one bad-input type (exit 2), [`crate::error::BadInput`].
+pub type ScenarioError = crate::error::BadInput;
 
 /// Reads, overrides, parses and validates a scenario file. `overrides` are `KEY=VALUE` strings
 /// (`fluid.viscosity_pa_s=0.002`, `spheres[0].diameter_m=1e-4`, `physics=ideal-stokes`).
@@ -71,7 +42,7 @@ pub fn parse_str(text: &str, path: &Path, overrides: &[String]) -> Result<Parsed
         )
     })?;
     for o in overrides {
-        apply_override(&mut table, o).map_err(|m| ScenarioError::new(path, None, m))?;
+        apply_override(&mut table, o, path)?;
     }
     // A table the kind does not use is refused before the tables are parsed, so that the
     // error names the table and the kind rather than a key missing inside the unused table.
@@ -108,10 +79,15 @@ pub fn parse_str(text: &str, path: &Path, overrides: &[String]) -> Result<Parsed
 /// Applies one `KEY=VALUE` override to a TOML table. The value is parsed as TOML (number,
 /// boolean, array, quoted string) and otherwise taken as a bare string. Keys are dotted paths;
 /// `name[i]` indexes an array of tables. Missing tables are created.
-pub fn apply_override(table: &mut toml::Table, assignment: &str) -> Result<(), String> {
+pub fn apply_override(
+    table: &mut toml::Table,
+    assignment: &str,
+    path: &Path,
+) -> Result<(), ScenarioError> {
+    let bad = |m: String| ScenarioError::new(path, None, m);
     let (key, raw) = assignment
         .split_once('=')
-        .ok_or_else(|| format!("--set `{assignment}`: expected KEY=VALUE"))?;
+        .ok_or_else(|| bad(format!("--set `{assignment}`: expected KEY=VALUE")))?;
     let key = key.trim();
     let raw = raw.trim();
     let mut value = Some(match format!("v = {raw}").parse::<toml::Table>() {
@@ -127,13 +103,13 @@ pub fn apply_override(table: &mut toml::Table, assignment: &str) -> Result<(), S
                 let idx: usize = rest
                     .trim_end_matches(']')
                     .parse()
-                    .map_err(|_| format!("--set `{key}`: bad index in `{part}`"))?;
+                    .map_err(|_| bad(format!("--set `{key}`: bad index in `{part}`")))?;
                 (n, Some(idx))
             }
             None => (*part, None),
         };
         if name.is_empty() {
-            return Err(format!("--set `{key}`: empty key segment"));
+            return Err(bad(format!("--set `{key}`: empty key segment")));
         }
         match index {
             None if last => {
@@ -146,16 +122,18 @@ pub fn apply_override(table: &mut toml::Table, assignment: &str) -> Result<(), S
                     .or_insert_with(|| toml::Value::Table(toml::Table::new()));
                 cur = entry
                     .as_table_mut()
-                    .ok_or_else(|| format!("--set `{key}`: `{name}` is not a table"))?;
+                    .ok_or_else(|| bad(format!("--set `{key}`: `{name}` is not a table")))?;
             }
             Some(idx) => {
                 let arr = cur
                     .get_mut(name)
                     .and_then(|v| v.as_array_mut())
-                    .ok_or_else(|| format!("--set `{key}`: `{name}` is not an array"))?;
+                    .ok_or_else(|| bad(format!("--set `{key}`: `{name}` is not an array")))?;
                 let len = arr.len();
                 let elem = arr.get_mut(idx).ok_or_else(|| {
-                    format!("--set `{key}`: index {idx} out of range (`{name}` has {len})")
+                    bad(format!(
+                        "--set `{key}`: index {idx} out of range (`{name}` has {len})"
+                    ))
                 })?;
                 if last {
                     *elem = value.take().expect("set once");
@@ -163,7 +141,7 @@ pub fn apply_override(table: &mut toml::Table, assignment: &str) -> Result<(), S
                 }
                 cur = elem
                     .as_table_mut()
-                    .ok_or_else(|| format!("--set `{key}`: `{name}[{idx}]` is not a table"))?;
+                    .ok_or_else(|| bad(format!("--set `{key}`: `{name}[{idx}]` is not a table")))?;
             }
         }
     }

@@ -1,11 +1,9 @@
 //! Scene builders and runners, one module per scenario kind.
 
-pub mod calibration;
 pub mod free_settling;
 pub mod funnel;
 pub mod restitution_drop;
 pub mod sedimentation;
-pub mod spheres;
 pub mod tilt_friction;
 
 use crate::fluid::{DragLaw, SphereDrag};
@@ -20,7 +18,10 @@ pub struct Prepared {
     /// The effective scenario (overrides applied).
     pub scenario: Scenario,
     /// Its spheres (free settling and drops; read from `spheres_csv` when given).
-    pub spheres: Vec<spheres::SphereCase>,
+    pub spheres: Vec<crate::scenario::inputs::SphereCase>,
+    /// The particle-size distribution of a sedimentation scenario, read from `sample.csv`
+    /// while the scenario is prepared (None for other kinds).
+    pub sample: Option<crate::sample::Distribution>,
 }
 
 /// How a run is carried out beyond its scenario: checkpoints, resumption, progress display.

@@ -18,7 +18,6 @@
 
 mod analysis;
 mod args;
-mod error;
 mod plan;
 mod report;
 mod table;
@@ -26,18 +25,18 @@ mod targets;
 
 pub use analysis::{rayleigh_time_of, recommended_dt, summarise, CaseSummary, RAYLEIGH_FRACTION};
 pub use args::{parse_dt, parse_dt_range, parse_shard, parse_tol, Args, BadValue, TOL_ALLOWED};
-pub use error::Error;
 pub use plan::{dt_range, grid, shard, Case, DtRange, Plan, Shard, DEFAULT_TOL};
 pub use report::{charts, write_results, Context};
 pub use table::{finish, from_csv, read_rows, rel, to_csv, write_rows, Row, Status, HEADER};
 pub use targets::{Target, SWEEPABLE, SWEEPABLE_NAMES};
 
-use crate::output::StagedDir;
+use crate::error::Error;
+use crate::io::StagedDir;
 use crate::run::{prepare, Prepared};
 use std::path::{Path, PathBuf};
 
 /// Runs `cases` of a sweepable scenario (in parallel) and returns their rows, without
-/// `error_vs_finest`; [`Error::Unsweepable`] for other kinds.
+/// `error_vs_finest`; a bad input (exit 2) for other kinds.
 pub fn run_cases(p: &Prepared, cases: &[Case]) -> Result<Vec<Row>, Error> {
     run_cases_with(p, cases, &|| {})
 }
@@ -138,9 +137,8 @@ fn sweep_file(p: &Prepared, plan: &Plan, out: &Path, quiet: bool) -> Result<(), 
 fn part_files(dirs: &[PathBuf]) -> Result<Vec<PathBuf>, Error> {
     let mut all = Vec::new();
     for dir in dirs {
-        let rd = std::fs::read_dir(dir).map_err(|e| Error::Usage {
-            option: "--merge",
-            message: format!("{}: cannot read the folder: {e}", dir.display()),
+        let rd = std::fs::read_dir(dir).map_err(|e| {
+            Error::bad_argument("--merge", dir, format!("cannot read the folder: {e}"))
         })?;
         let mut files: Vec<PathBuf> = rd
             .filter_map(|e| e.ok().map(|e| e.path()))
@@ -154,10 +152,12 @@ fn part_files(dirs: &[PathBuf]) -> Result<Vec<PathBuf>, Error> {
         all.extend(files);
     }
     if all.is_empty() {
-        return Err(Error::Usage {
-            option: "--merge",
-            message: "no sweep_part_*.csv in the given folders".into(),
-        });
+        let dirs: Vec<String> = dirs.iter().map(|d| d.display().to_string()).collect();
+        return Err(Error::bad_argument(
+            "--merge",
+            Path::new(&dirs.join(" ")),
+            "no sweep_part_*.csv in the given folders",
+        ));
     }
     Ok(all)
 }
@@ -174,7 +174,10 @@ fn merge(args: &Args) -> Result<(), Error> {
         .transpose()?;
     let mut rows: Vec<Row> = Vec::new();
     for f in &files {
-        rows.extend(read_rows(f).map_err(|e| Error::BadPart(f.clone(), e))?);
+        rows.extend(
+            read_rows(f)
+                .map_err(|e| Error::bad_input(f, None, format!("not a sweep part table: {e}")))?,
+        );
     }
     finish(&mut rows);
     let dest = args.out.clone().unwrap_or_else(|| args.merge[0].clone());

@@ -2,8 +2,8 @@
 //! scenario's `[sweep]` table. Pure: no I/O, no simulation.
 
 use super::args::Args;
-use super::error::Error;
 use crate::dynamics::Integrator;
+use crate::error::Error;
 use crate::run::Prepared;
 use crate::scenario::ScenarioError;
 
@@ -114,7 +114,7 @@ impl Plan {
             dts_s = table.map(|s| s.dt_s.clone()).unwrap_or_default();
         }
         if dts_s.is_empty() {
-            return Err(Error::Scenario(ScenarioError::new(
+            return Err(Error::BadInput(ScenarioError::new(
                 &p.path,
                 Some("sweep.dt_s"),
                 "no time steps to sweep: give --dt or --dt-range, or a [sweep] dt_s list in the scenario",

@@ -2,11 +2,11 @@
 //! `speed_accuracy.svg`, `recommended_dt.csv`, and the console table.
 
 use super::analysis::{recommended_dt, summarise, CaseSummary, RAYLEIGH_FRACTION};
-use super::error::Error;
 use super::table::{write_rows, Row};
 use crate::dynamics::Integrator;
-use crate::output::chart::{scatter_svg, Scale, Series};
-use crate::output::{num, write_atomic};
+use crate::error::Error;
+use crate::io::chart::{scatter_svg, Scale, Series};
+use crate::io::{num, write_atomic};
 use std::collections::BTreeMap;
 use std::io;
 use std::path::Path;
@@ -146,7 +146,7 @@ pub fn charts(dir: &Path, title: &str, summaries: &[CaseSummary]) -> Result<(), 
         .collect();
     let chart_err = |file: &str| {
         let path = dir.join(file);
-        move |e: String| Error::Io(path, io::Error::other(e))
+        move |e: io::Error| Error::Io(path, e)
     };
     scatter_svg(
         &dir.join("quantity_vs_dt.svg"),

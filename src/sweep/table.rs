@@ -3,7 +3,7 @@
 //! finest stable dt and puts rows in their canonical order.
 
 use crate::dynamics::Integrator;
-use crate::output::num;
+use crate::io::num;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::collections::BTreeMap;
 use std::io;
@@ -157,9 +157,9 @@ pub fn from_csv(rdr: impl io::Read) -> Result<Vec<Row>, csv::Error> {
     csv::Reader::from_reader(rdr).deserialize().collect()
 }
 
-/// Writes rows to `path` atomically (see [`crate::output::write_atomic`]).
+/// Writes rows to `path` atomically (see [`crate::io::write_atomic`]).
 pub fn write_rows(path: &std::path::Path, rows: &[Row]) -> io::Result<()> {
-    crate::output::write_atomic(path, &to_csv(rows)?)
+    crate::io::write_atomic(path, &to_csv(rows)?)
 }
 
 /// Reads a file written by [`write_rows`].

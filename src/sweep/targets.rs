@@ -4,9 +4,9 @@
 //! repeat, no reference). Other kinds have no dt-sensitive quantity defined here and are
 //! refused before anything runs.
 
-use super::error::Error;
 use super::plan::Case;
 use super::table::{rel, Row, Status};
+use crate::error::Error;
 use crate::run::Prepared;
 use crate::scenario::Kind;
 use crate::scenes::free_settling::{self, RunOptions, SphereResult};
@@ -28,15 +28,20 @@ pub enum Target {
 }
 
 impl Target {
-    /// The target of a prepared scenario, or [`Error::Unsweepable`] naming its file and kind.
+    /// The target of a prepared scenario, or a bad input (exit 2) naming its file and kind.
     pub fn of(p: &Prepared) -> Result<Self, Error> {
         match p.scenario.kind {
             Kind::FreeSettling | Kind::Drop => Ok(Self::Spheres),
             Kind::FunnelPour => Ok(Self::FunnelPour),
-            other => Err(Error::Unsweepable {
-                file: p.path.clone(),
-                kind: kind_name(other),
-            }),
+            other => Err(Error::bad_input(
+                &p.path,
+                Some("kind"),
+                format!(
+                    "a scenario of kind `{}` cannot be swept; kinds that can: {}; nothing was written",
+                    kind_name(other),
+                    SWEEPABLE_NAMES.join(", ")
+                ),
+            )),
         }
     }
 

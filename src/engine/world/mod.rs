@@ -138,7 +138,7 @@ impl Body {
 ///
 /// Serializable (serde) with everything it holds, Rapier's world included, for checkpoints: a
 /// world restored from its bytes continues bit for bit as the original would have (Rapier's
-/// pipeline is a workspace only; measured in `tests/checkpoint.rs`).
+/// pipeline is a workspace only; measured in `tests/app/checkpoint.rs`).
 #[derive(serde::Serialize, serde::Deserialize)]
 pub struct World {
     physics: PhysicsWorld,

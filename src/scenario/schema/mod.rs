@@ -232,13 +232,23 @@ pub enum Dim {
     Three,
 }
 
+/// A dimension other than 2 or 3 (the number read).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BadDim(pub i64);
+
+impl std::fmt::Display for BadDim {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} is not allowed: 2 or 3", self.0)
+    }
+}
+
 impl TryFrom<i64> for Dim {
-    type Error = String;
-    fn try_from(n: i64) -> Result<Self, String> {
+    type Error = BadDim;
+    fn try_from(n: i64) -> Result<Self, BadDim> {
         match n {
             2 => Ok(Dim::Two),
             3 => Ok(Dim::Three),
-            _ => Err(format!("{n} is not allowed: 2 or 3")),
+            _ => Err(BadDim(n)),
         }
     }
 }

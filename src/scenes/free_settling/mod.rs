@@ -6,10 +6,10 @@
 //!
 //! Each sphere is advanced by [`crate::dynamics::advance`] alone (`engine = "free"`, the default
 //! for this kind: there is nothing for a contact solver to do), or through a Rapier world with the
-//! force hook (`engine = "rapier"`), which must give the same answer (tests/engine_free_settling.rs)
+//! force hook (`engine = "rapier"`), which must give the same answer (tests/engine/free_settling.rs)
 //! at ~300× the cost per step. A free-settling sphere is released submerged at `release.depth_m`
 //! (one radius when 0) and feels constant forces; a drop starts `fall_height_m` above the free
-//! surface and crosses it, its drag and buoyancy scaled by [`immersion`].
+//! surface and crosses it, its drag and buoyancy scaled by [`immersion`](fn@crate::fluid::immersion).
 //!
 //! # Equations
 //!
@@ -56,34 +56,25 @@ pub use simulate::{
     run, run_interruptible, run_rapier, run_sphere, Halt, Sample, SphereResult, StopReason,
 };
 
-use crate::run::{Prepared, RunError, SceneReport};
-
-pub use crate::fluid::immersion::immersion;
+use crate::error::Error;
+use crate::scenes::{Prepared, SceneReport};
 
 /// Runs the spheres of a free-settling or drop scenario and writes its files into `stage`:
 /// the entry point of `settle run` for these kinds. Interrupted (Ctrl-C/SIGTERM), it writes
-/// nothing and returns [`RunError::Interrupted`] with the output folder.
+/// nothing and returns [`Error::InterruptedUnwritten`] with the scenario file.
 pub fn run_scene(
     p: &Prepared,
-    stage: &crate::output::StagedDir,
-) -> Result<(Vec<SphereResult>, SceneReport), RunError> {
+    stage: &crate::io::StagedDir,
+) -> Result<(Vec<SphereResult>, SceneReport), Error> {
     let s = &p.scenario;
-    let interrupted = || {
-        RunError::Interrupted(
-            stage
-                .dest()
-                .parent()
-                .map(|d| d.to_path_buf())
-                .unwrap_or_default(),
-        )
-    };
+    let interrupted = || Error::InterruptedUnwritten(p.path.clone());
     let results = match run_interruptible(s, &p.spheres, RunOptions::of(s)) {
         Ok(r) => r,
-        Err(Halt::Unstable(u)) => return Err(RunError::Unstable(p.path.clone(), u)),
+        Err(Halt::Unstable(u)) => return Err(Error::Unstable(p.path.clone(), u)),
         Err(Halt::Interrupted) => return Err(interrupted()),
     };
     let report = output::write_all(p, &results, stage).map_err(|e| match e {
-        RunError::Io(_, io) if io.kind() == std::io::ErrorKind::Interrupted => interrupted(),
+        Error::Io(_, io) if io.kind() == std::io::ErrorKind::Interrupted => interrupted(),
         e => e,
     })?;
     Ok((results, report))

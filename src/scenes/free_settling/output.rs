@@ -11,11 +11,12 @@
 
 use super::setup::uses_rapier;
 use super::SphereResult;
-use crate::output::chart::{scatter_svg, Scale, Series};
-use crate::output::metrics::ErrorStats;
-use crate::output::{num, opt, StagedDir};
-use crate::run::{Prepared, RunError, SceneReport};
+use crate::error::Error;
+use crate::io::chart::{scatter_svg, Scale, Series};
+use crate::io::metrics::ErrorStats;
+use crate::io::{num, opt, StagedDir};
 use crate::scenario::{Kind, Submergence};
+use crate::scenes::{Prepared, SceneReport};
 use std::collections::BTreeMap;
 use std::io;
 use std::path::Path;
@@ -27,9 +28,9 @@ pub fn write_all(
     p: &Prepared,
     results: &[SphereResult],
     stage: &StagedDir,
-) -> Result<SceneReport, RunError> {
+) -> Result<SceneReport, Error> {
     let s = &p.scenario;
-    let io = |e: io::Error| RunError::Io(p.path.clone(), e);
+    let io = |e: io::Error| Error::Io(stage.dest().to_path_buf(), e);
     let integ = s.time.integrator.name();
     if s.kind == Kind::Drop {
         let sub = match s.fluid.submergence {
@@ -46,7 +47,7 @@ pub fn write_all(
             ),
             results,
         )
-        .map_err(RunError::Other)?;
+        .map_err(io)?;
     } else {
         let rows: Vec<Vec<String>> = results
             .iter()
@@ -64,7 +65,7 @@ pub fn write_all(
                 ),
                 results,
             )
-            .map_err(RunError::Other)?;
+            .map_err(io)?;
         }
     }
     if s.record.timeseries {
@@ -273,7 +274,7 @@ pub fn write_metrics(path: &Path, stats: &[ErrorStats]) -> io::Result<()> {
 
 /// Terminal velocity against sphere density, one colour per diameter: measured (hollow) and
 /// simulated (filled), like f-EDEM Fig. 11.
-pub fn write_chart(path: &Path, title: &str, results: &[SphereResult]) -> Result<(), String> {
+pub fn write_chart(path: &Path, title: &str, results: &[SphereResult]) -> io::Result<()> {
     type Points = Vec<(f64, f64)>;
     let mut by_d: BTreeMap<u64, (Points, Points)> = BTreeMap::new();
     for r in results {
@@ -367,7 +368,7 @@ pub fn write_drop_summary(
 
 /// Writes `settling_distance.svg`: settling distance against fall height, one series per
 /// diameter (like f-EDEM Fig. 16).
-pub fn write_drop_chart(path: &Path, title: &str, results: &[SphereResult]) -> Result<(), String> {
+pub fn write_drop_chart(path: &Path, title: &str, results: &[SphereResult]) -> io::Result<()> {
     let mut by_d: BTreeMap<u64, Vec<(f64, f64)>> = BTreeMap::new();
     for r in results {
         let key = (r.case.spec.diameter_m * 1e6).round() as u64;

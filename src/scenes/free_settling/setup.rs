@@ -4,9 +4,9 @@
 
 use crate::dynamics::Integrator;
 use crate::fluid::{sphere_mass_kg, DragLaw, SphereDrag};
+use crate::scenario::inputs::SphereCase;
 use crate::scenario::{EngineChoice, Scenario, Submergence};
 use crate::scenes::sphere_drag;
-use crate::scenes::spheres::SphereCase;
 use nalgebra::SVector;
 
 /// Options of one run that do not belong in the scenario file.

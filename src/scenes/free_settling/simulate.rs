@@ -3,15 +3,15 @@
 //! decide whether to stop — and the runners over all spheres (rayon, results in input order),
 //! with one dispatch on the dimension and the engine.
 
-use super::immersion;
 use super::setup::{uses_rapier, Dim, RunOptions, SphereSetup};
 use crate::contact::rayleigh_time_s;
 use crate::dynamics::{advance, explicit_stable_dt_s, Monitor, Motion, Step, Unstable};
 use crate::engine::{dim2, dim3, BodyId, EngineSettings};
 use crate::fluid::bingham::reynolds_bingham;
+use crate::fluid::immersion;
 use crate::fluid::{sphere_mass_kg, DragLaw, DragRegime, SphereDrag};
+use crate::scenario::inputs::SphereCase;
 use crate::scenario::{Scenario, Submergence};
-use crate::scenes::spheres::SphereCase;
 use nalgebra::SVector;
 use std::collections::VecDeque;
 
@@ -141,7 +141,7 @@ pub fn run(
 
 /// Runs every sphere through its own Rapier world with the force hook (`engine = "rapier"`):
 /// the same scene as the free engine, through the contact pipeline. It must give the same answer
-/// (tests/engine_free_settling.rs); it costs ~300× more per step.
+/// (tests/engine/free_settling.rs); it costs ~300× more per step.
 pub fn run_rapier(
     scenario: &Scenario,
     cases: &[SphereCase],

@@ -63,12 +63,13 @@ pub mod report;
 
 pub use census::{z_range, Ball, Census, Place, RepeatResult, Sample};
 pub use geometry::Geometry;
-pub use placement::place_balls;
+pub use placement::{place_balls, Unplaceable};
 pub use repeat::{run_repeat, run_repeat_with, simulate, simulate_with, RepeatOutcome};
 
-use crate::output::StagedDir;
-use crate::run::{Prepared, RunContext, RunError, SceneReport};
+use crate::error::Error;
+use crate::io::StagedDir;
 use crate::scenario::{Contacts, FunnelSpec, Repeats, Scenario};
+use crate::scenes::{Prepared, RunContext, SceneReport};
 use std::time::Instant;
 
 /// Time over which every ball must stay slower than `rest_speed_m_s` before a run stops early, s.
@@ -102,7 +103,7 @@ pub fn repeats(s: &Scenario) -> Repeats {
 /// Funnel pour (kind `funnel_pour`): runs the repeats, writes `balls.csv`, `counts.csv`,
 /// `timeseries.csv`, `z_distribution.csv` + `.svg` and `presence.csv` + `.svg` (see
 /// [`output`]). Interrupted, it writes the repeats that finished.
-pub fn run(p: &Prepared, stage: &StagedDir, ctx: &RunContext) -> Result<SceneReport, RunError> {
+pub fn run(p: &Prepared, stage: &StagedDir, ctx: &RunContext) -> Result<SceneReport, Error> {
     let t0 = Instant::now();
     let (results, interrupted) = simulate_with(p, ctx)?;
     if results.is_empty() {

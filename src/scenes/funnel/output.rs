@@ -17,8 +17,9 @@
 //!   (f-EDEM Fig. 22, 15 repeats).
 
 use super::{funnel, Geometry, Place, RepeatResult};
-use crate::output::{num, StagedDir};
-use crate::run::{Prepared, RunError};
+use crate::error::Error;
+use crate::io::{num, StagedDir};
+use crate::scenes::Prepared;
 use plotters::prelude::*;
 use std::io;
 use std::path::Path;
@@ -279,8 +280,8 @@ pub fn write_presence(path: &Path, cells: &[PresenceCell]) -> io::Result<()> {
     w.flush()
 }
 
-fn err(e: impl std::fmt::Display) -> String {
-    e.to_string()
+fn err(e: impl std::fmt::Display) -> io::Error {
+    io::Error::other(e.to_string())
 }
 
 /// The vertical distribution as horizontal bars (balls per repeat against Z, in cm), with
@@ -291,7 +292,7 @@ pub fn write_z_chart(
     bins: &[ZBin],
     repeats: usize,
     height_m: f64,
-) -> Result<(), String> {
+) -> io::Result<()> {
     let reps = repeats.max(1) as f64;
     let x_max = bins
         .iter()
@@ -369,7 +370,7 @@ pub fn write_presence_chart(
     planes_z_m: &[f64],
     radius_m: f64,
     cell_m: f64,
-) -> Result<(), String> {
+) -> io::Result<()> {
     let cols = planes_z_m.len().clamp(1, 3);
     let rows = planes_z_m.len().div_ceil(3).max(1);
     let root =
@@ -430,15 +431,11 @@ pub fn write_presence_chart(
 }
 
 /// Writes every output file of a funnel pour into the staging folder.
-pub fn write_all(
-    p: &Prepared,
-    results: &[RepeatResult],
-    stage: &StagedDir,
-) -> Result<(), RunError> {
+pub fn write_all(p: &Prepared, results: &[RepeatResult], stage: &StagedDir) -> Result<(), Error> {
     let s = &p.scenario;
     let f = funnel(s);
     let geo = Geometry::of(s);
-    let io = |e: io::Error| RunError::Io(p.path.clone(), e);
+    let io = |e: io::Error| Error::Io(stage.dest().to_path_buf(), e);
     let reps = results.len();
     write_balls(&stage.path("balls.csv"), results).map_err(io)?;
     write_counts(&stage.path("counts.csv"), results, f.count_time_s).map_err(io)?;
@@ -459,7 +456,7 @@ pub fn write_all(
         reps,
         geo.paste_height_m,
     )
-    .map_err(RunError::Other)?;
+    .map_err(io)?;
     if !f.planes_z_m.is_empty() {
         let cells = presence(results, &f.planes_z_m, geo.cylinder_radius_m, f.grid_cell_m);
         write_presence(&stage.path("presence.csv"), &cells).map_err(io)?;
@@ -474,7 +471,7 @@ pub fn write_all(
             geo.cylinder_radius_m,
             f.grid_cell_m,
         )
-        .map_err(RunError::Other)?;
+        .map_err(io)?;
     }
     Ok(())
 }

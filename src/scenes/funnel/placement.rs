@@ -4,10 +4,35 @@ use super::{Geometry, PLACEMENT_GAP};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
+/// A ball that found no free place in the funnel and column in 100 000 random tries.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Unplaceable {
+    /// Index of the ball (0-based).
+    pub index: usize,
+    /// Number of balls to place.
+    pub count: usize,
+    /// Its diameter, m.
+    pub diameter_m: f64,
+}
+
+impl std::fmt::Display for Unplaceable {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "cannot place ball {} of {} (d = {} m) in the funnel at random: raise funnel.column_height_m or top_diameter_m",
+            self.index, self.count, self.diameter_m
+        )
+    }
+}
+
 /// Random initial centres of the balls of diameters `diameters` in the funnel and column, clear
-/// of the walls, the plug and each other by [`PLACEMENT_GAP`] × d. Errors if a ball cannot be
-/// placed in 100 000 tries.
-pub fn place_balls(geo: &Geometry, diameters: &[f64], seed: u64) -> Result<Vec<[f64; 3]>, String> {
+/// of the walls, the plug and each other by [`PLACEMENT_GAP`] × d; [`Unplaceable`] if a ball
+/// cannot be placed in 100 000 tries.
+pub fn place_balls(
+    geo: &Geometry,
+    diameters: &[f64],
+    seed: u64,
+) -> Result<Vec<[f64; 3]>, Unplaceable> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut placed: Vec<([f64; 3], f64)> = Vec::with_capacity(diameters.len());
     let cos_a = geo.half_angle_rad.cos();
@@ -46,11 +71,10 @@ pub fn place_balls(geo: &Geometry, diameters: &[f64], seed: u64) -> Result<Vec<[
                 break;
             }
         }
-        let x = ok.ok_or_else(|| {
-            format!(
-                "cannot place ball {i} of {} (d = {d} m) in the funnel at random: raise funnel.column_height_m or top_diameter_m",
-                diameters.len()
-            )
+        let x = ok.ok_or(Unplaceable {
+            index: i,
+            count: diameters.len(),
+            diameter_m: d,
         })?;
         placed.push((x, d));
     }

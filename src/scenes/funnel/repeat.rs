@@ -10,8 +10,9 @@ use super::{
 };
 use crate::dynamics::Unstable;
 use crate::engine::{dim3, BodyId, EngineSettings};
-use crate::run::{Prepared, RunContext, RunError};
+use crate::error::Error;
 use crate::scenes::sphere_drag;
+use crate::scenes::{Prepared, RunContext};
 use rapier3d_f64::prelude::ColliderHandle;
 use std::time::Instant;
 
@@ -47,10 +48,10 @@ pub enum RepeatOutcome {
 }
 
 /// Runs repeat `index` (seed `seed`) of a funnel pour from its start.
-pub fn run_repeat(p: &Prepared, index: usize, seed: u64) -> Result<RepeatResult, RunError> {
+pub fn run_repeat(p: &Prepared, index: usize, seed: u64) -> Result<RepeatResult, Error> {
     match run_repeat_with(p, index, seed, &RunContext::default())? {
         RepeatOutcome::Done(r) => Ok(r),
-        RepeatOutcome::Interrupted => Err(RunError::Interrupted(p.path.clone())),
+        RepeatOutcome::Interrupted => Err(Error::InterruptedUnwritten(p.path.clone())),
     }
 }
 
@@ -61,7 +62,7 @@ fn position(world: &dim3::World, id: BodyId) -> [f64; 3] {
 }
 
 /// The state of repeat `index` (seed `seed`) at t = 0: the world built, the balls placed.
-fn initial_repeat(p: &Prepared, seed: u64) -> Result<RepeatState, RunError> {
+fn initial_repeat(p: &Prepared, seed: u64) -> Result<RepeatState, Error> {
     let s = &p.scenario;
     let ct = contacts(s);
     let geo = Geometry::of(s);
@@ -73,7 +74,7 @@ fn initial_repeat(p: &Prepared, seed: u64) -> Result<RepeatState, RunError> {
     let diameters: Vec<f64> = specs.iter().map(|sp| sp.diameter_m).collect();
     let d_min = diameters.iter().copied().fold(f64::INFINITY, f64::min);
     let centres = place_balls(&geo, &diameters, seed)
-        .map_err(|m| RunError::Other(format!("{}: {m}", p.path.display())))?;
+        .map_err(|e| Error::bad_input(&p.path, Some("funnel.column_height_m"), e.to_string()))?;
 
     // Free fall from the top of the column to the bottom bounds every speed of the scene.
     let v_max = (2.0 * g * geo.column_top_z_m).sqrt();
@@ -235,14 +236,14 @@ impl<'a> RepeatRun<'a> {
     }
 
     /// The engine's fault, named with the repeat.
-    fn unstable(&self, mut u: Unstable) -> RunError {
+    fn unstable(&self, mut u: Unstable) -> Error {
         u.body = format!("repeat {} (seed {}) {}", self.index, self.seed, u.body);
-        RunError::Unstable(self.p.path.clone(), u)
+        Error::Unstable(self.p.path.clone(), u)
     }
 
     /// One step: opens the outlet after the fill, steps the world, tracks breaches and records.
     /// Returns true when every ball in play has rested long enough to stop.
-    fn advance(&mut self) -> Result<bool, RunError> {
+    fn advance(&mut self) -> Result<bool, Error> {
         let sch = self.schedule;
         if self.state.k == sch.n_fill {
             self.state.max_speed_at_opening = self.observe().1;
@@ -351,39 +352,35 @@ impl<'a> Checkpoints<'a> {
     }
 
     /// The saved result or state of the repeat, when resuming with checkpoints.
-    fn resume(&self) -> Result<Option<Resumed>, RunError> {
+    fn resume(&self) -> Result<Option<Resumed>, Error> {
         let (Some(c), true) = (&self.ctx.checkpoints, self.ctx.resume) else {
             return Ok(None);
         };
         let name = &self.p.scenario.name;
-        if let Some(r) = c
-            .load::<RepeatResult>(name, &self.done_part)
-            .map_err(RunError::Other)?
-        {
+        if let Some(r) = c.load::<RepeatResult>(name, &self.done_part)? {
             return Ok(Some(Resumed::Done(r)));
         }
-        Ok(c.load::<RepeatState>(name, &self.part)
-            .map_err(RunError::Other)?
+        Ok(c.load::<RepeatState>(name, &self.part)?
             .map(|st| Resumed::From(Box::new(st))))
     }
 
     /// Saves the state, its wall time including the `wall_s` spent since the last resumption.
-    fn save(&self, state: &mut RepeatState, wall_s: f64) -> Result<(), RunError> {
+    fn save(&self, state: &mut RepeatState, wall_s: f64) -> Result<(), Error> {
         if let Some(c) = &self.ctx.checkpoints {
             let before = state.wall_before_s;
             state.wall_before_s += wall_s;
             let r = c.save(&self.p.scenario.name, &self.part, &*state);
             state.wall_before_s = before;
-            r.map_err(|e| RunError::Io(self.p.path.clone(), e))?;
+            r.map_err(|e| Error::Io(self.p.path.clone(), e))?;
         }
         Ok(())
     }
 
     /// Saves the result of the finished repeat.
-    fn save_done(&self, result: &RepeatResult) -> Result<(), RunError> {
+    fn save_done(&self, result: &RepeatResult) -> Result<(), Error> {
         if let Some(c) = &self.ctx.checkpoints {
             c.save(&self.p.scenario.name, &self.done_part, result)
-                .map_err(|e| RunError::Io(self.p.path.clone(), e))?;
+                .map_err(|e| Error::Io(self.p.path.clone(), e))?;
         }
         Ok(())
     }
@@ -398,7 +395,7 @@ pub fn run_repeat_with(
     index: usize,
     seed: u64,
     ctx: &RunContext,
-) -> Result<RepeatOutcome, RunError> {
+) -> Result<RepeatOutcome, Error> {
     let wall = Instant::now();
     let checkpoints = Checkpoints::new(p, ctx, index);
     let state = match checkpoints.resume()? {
@@ -426,20 +423,17 @@ pub fn run_repeat_with(
 }
 
 /// Runs every repeat of a funnel pour in parallel (rayon); results in repeat order.
-pub fn simulate(p: &Prepared) -> Result<Vec<RepeatResult>, RunError> {
+pub fn simulate(p: &Prepared) -> Result<Vec<RepeatResult>, Error> {
     let (results, interrupted) = simulate_with(p, &RunContext::default())?;
     if interrupted {
-        return Err(RunError::Interrupted(p.path.clone()));
+        return Err(Error::InterruptedUnwritten(p.path.clone()));
     }
     Ok(results)
 }
 
 /// [`simulate`] with checkpoints, resumption and progress as `ctx` says. Returns the finished
 /// repeats in repeat order, and whether Ctrl-C/SIGTERM stopped some (they are then missing).
-pub fn simulate_with(
-    p: &Prepared,
-    ctx: &RunContext,
-) -> Result<(Vec<RepeatResult>, bool), RunError> {
+pub fn simulate_with(p: &Prepared, ctx: &RunContext) -> Result<(Vec<RepeatResult>, bool), Error> {
     use rayon::prelude::*;
     let r = repeats(&p.scenario);
     let bar = crate::progress::bar(r.count as u64, &p.scenario.name, "repeats,", ctx.quiet);

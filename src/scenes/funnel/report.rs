@@ -2,8 +2,8 @@
 
 use super::{contacts, funnel, Census, Geometry, Place, RepeatResult};
 use crate::engine::EngineSettings;
-use crate::run::Prepared;
 use crate::scenario::Submergence;
+use crate::scenes::Prepared;
 
 /// The engine settings of the scene: [`EngineSettings::for_scene`] for the smallest ball and the
 /// free-fall speed from the top of the column to the bottom, √(2 g z_top), with the contacts'

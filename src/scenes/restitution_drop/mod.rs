@@ -53,9 +53,10 @@ use crate::contact::{restitution_fits, LawFit, RestitutionLaw};
 #[cfg(doc)]
 use crate::engine::dim3::World;
 use crate::engine::EngineSettings;
-use crate::output::StagedDir;
-use crate::run::{Prepared, RunError, SceneReport};
+use crate::error::Error;
+use crate::io::StagedDir;
 use crate::scenario::{RestitutionDropSpec, SphereSpec};
+use crate::scenes::{Prepared, SceneReport};
 
 /// What a restitution drop needs from its prepared scenario.
 #[derive(Clone, Copy, Debug)]
@@ -70,22 +71,24 @@ pub struct Setup<'a> {
 
 impl<'a> Setup<'a> {
     /// The setup of a prepared `restitution_drop` scenario; errors name a missing table.
-    pub fn of(p: &'a Prepared) -> Result<Self, RunError> {
+    pub fn of(p: &'a Prepared) -> Result<Self, Error> {
         let s = &p.scenario;
-        let missing = |what: &str| RunError::Other(format!("{}: missing {what}", p.path.display()));
+        let missing = |what: &str| {
+            Error::bad_input(
+                &p.path,
+                Some(what),
+                "missing: a restitution_drop scenario needs it",
+            )
+        };
         let spec = s
             .restitution_drop
             .as_ref()
-            .ok_or_else(|| missing("[restitution_drop]"))?;
-        let ball = &p
-            .spheres
-            .first()
-            .ok_or_else(|| missing("[[spheres]]"))?
-            .spec;
+            .ok_or_else(|| missing("restitution_drop"))?;
+        let ball = &p.spheres.first().ok_or_else(|| missing("spheres"))?.spec;
         let law = s
             .contacts
             .as_ref()
-            .ok_or_else(|| missing("[contacts]"))?
+            .ok_or_else(|| missing("contacts"))?
             .restitution_law();
         Ok(Self { spec, ball, law })
     }
@@ -101,15 +104,17 @@ fn simulate_all(
     p: &Prepared,
     setup: &Setup,
     settings: EngineSettings,
-) -> Result<Vec<DropOutcome>, RunError> {
+) -> Result<Vec<DropOutcome>, Error> {
     setup
         .spec
         .drop_heights_m
         .iter()
         .map(|&h| {
             simulate_drop(&p.scenario, setup.ball, h, settings).map_err(|err| match err {
-                DropError::Unstable(u) => RunError::Unstable(p.path.clone(), u),
-                other => RunError::Other(format!("{}: {other}", p.path.display())),
+                DropError::Unstable(u) => Error::Unstable(p.path.clone(), u),
+                other @ DropError::NoApex { .. } => {
+                    Error::bad_input(&p.path, Some("time.end_s"), other.to_string())
+                }
             })
         })
         .collect()
@@ -140,9 +145,9 @@ fn fit_lines(tally: &Tally, heights: usize, tolerance: f64, fits: &[LawFit]) -> 
 
 /// Restitution drop (kind `restitution_drop`): drops the ball from every height and writes
 /// `summary.csv`, `fit.csv` (when measurements are given) and `rebound_height.svg`.
-pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, RunError> {
+pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, Error> {
     let s = &p.scenario;
-    let io = |e: std::io::Error| RunError::Io(p.path.clone(), e);
+    let io = |e: std::io::Error| Error::Io(stage.dest().to_path_buf(), e);
     let setup = Setup::of(p)?;
     let spec = setup.spec;
     let g = s.gravity_m_s2;
@@ -185,7 +190,7 @@ pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, RunError> {
         g,
         &outcomes,
     )
-    .map_err(RunError::Other)?;
+    .map_err(io)?;
 
     Ok(SceneReport {
         steps: outcomes.iter().map(|o| o.steps).sum(),

@@ -12,8 +12,8 @@
 use super::fit::heights_within;
 use super::{Comparison, DropOutcome, Setup, Tally};
 use crate::contact::{LawFit, RestitutionLaw};
-use crate::output::chart::{scatter_svg, Scale, Series};
-use crate::output::{num, write_atomic};
+use crate::io::chart::{scatter_svg, Scale, Series};
+use crate::io::{num, write_atomic};
 use std::io;
 use std::path::Path;
 
@@ -155,7 +155,7 @@ pub fn write_chart(
     setup: &Setup,
     g_m_s2: f64,
     outcomes: &[DropOutcome],
-) -> Result<(), String> {
+) -> io::Result<()> {
     let (law, spec) = (&setup.law, setup.spec);
     let heights = &spec.drop_heights_m;
     let e_at = |h: f64| law.at((2.0 * g_m_s2 * h).sqrt());

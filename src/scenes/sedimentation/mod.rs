@@ -22,7 +22,7 @@
 //! - **Instruments** ([`crate::instruments`], seed §4.5): the 152H hydrometer and the buoyancy
 //!   sphere read the layered suspension density of the profile at their reading times (real
 //!   densities, applied to the full axisymmetric bodies); the pipette weighs the grains in its
-//!   disc. The run lands on every reading time ([`simulate`]) and writes
+//!   disc. The run lands on every reading time ([`simulate`](fn@simulate)) and writes
 //!   `granulometry.csv`/`.svg`, `instruments.csv`/`.svg`, `bulb_density.csv`/`.svg` and
 //!   `instrument_errors.csv`.
 //! - **Contacts and lubrication** (`physics = "full"`, `sample.contacts` and
@@ -32,7 +32,7 @@
 //!   grains whose gap falls below the lubrication cut-off h_out = 0.1 a_eff at some time of the
 //!   step on their free (vertical) paths, exactly. Linked pairs form clusters; each cluster is
 //!   re-done from the start of the step in its own Rapier 2D world
-//!   ([`contacts::resolve`]: [`crate::engine::dim2::World`] with its
+//!   ([`contacts::resolve`](fn@contacts::resolve): [`crate::engine::dim2::World`] with its
 //!   effective-mass drag, discs with the Coulomb friction and restitution of `[contacts]` (frictionless and perfectly inelastic without it), walls at x = 0 and B, the bed surface as floor),
 //!   only over the window in which the pair is close, with the squeeze film
 //!   F = 6πμ a_eff² v_n / max(h, h_in) ([`crate::fluid::lubrication`], h_in = 1e-3 a_eff) as an
@@ -78,15 +78,16 @@ pub use instruments::{
 };
 pub use observer::{Observer, OnRecord};
 pub use setup::{
-    default_record_times, limiting_diameter_m, projection_thickness_m, setup, GrainContacts, Setup,
+    default_record_times, limiting_diameter_m, setup, setup_of, setup_with, GrainContacts, Setup,
     CONTACT_FILM_CHANGE_PER_STEP, CONTACT_TRAVEL_PER_SUBSTEP,
 };
 pub use simulate::simulate;
 pub use state::{band_mass_fractions, ContactStats, Profile, State, PICTURE_BANDS};
 
 use crate::checkpoint::Timer;
-use crate::output::StagedDir;
-use crate::run::{Prepared, RunContext, RunError, SceneReport};
+use crate::error::Error;
+use crate::io::StagedDir;
+use crate::scenes::{Prepared, RunContext, SceneReport};
 use output::Recorded;
 
 /// Runs a sedimentation scenario and writes `profiles.csv`, `bed.csv`, `max_diameter.csv`,
@@ -94,16 +95,13 @@ use output::Recorded;
 /// checkpoints in `ctx` it saves its state and what it recorded every period and when
 /// interrupted (part `state`, see [`crate::checkpoint`]); with `ctx.resume` it continues from
 /// the saved state.
-pub fn run(p: &Prepared, stage: &StagedDir, ctx: &RunContext) -> Result<SceneReport, RunError> {
+pub fn run(p: &Prepared, stage: &StagedDir, ctx: &RunContext) -> Result<SceneReport, Error> {
     let s = &p.scenario;
     let sm = s.sample.as_ref().expect("validated");
-    let setup = setup(s, &p.path)
-        .map_err(|e| RunError::Other(format!("{}: key `sample.csv`: {e}", p.path.display())))?;
+    let setup = setup_of(p)?;
     let instruments = InstrumentSet::new(s, &setup);
     let (start, recorded) = match (&ctx.checkpoints, ctx.resume) {
-        (Some(c), true) => c
-            .load::<(State, Recorded)>(&s.name, "state")
-            .map_err(RunError::Other)?,
+        (Some(c), true) => c.load::<(State, Recorded)>(&s.name, "state")?,
         _ => None,
     }
     .unwrap_or_else(|| {
@@ -136,26 +134,16 @@ pub fn run(p: &Prepared, stage: &StagedDir, ctx: &RunContext) -> Result<SceneRep
     obs.bar.finish_and_clear();
     if let Some(u) = st.fault.clone() {
         // Nothing to resume from a run that went unstable.
-        return Err(RunError::Unstable(p.path.clone(), u));
+        return Err(Error::Unstable(p.path.clone(), u));
     }
     if st.interrupted {
         obs.save(&st);
     }
     if let Some(e) = obs.save_err.take() {
-        return Err(RunError::Io(p.path.clone(), e));
+        return Err(Error::Io(p.path.clone(), e));
     }
     let wall = t0.elapsed().as_secs_f64();
-    output::write_all(
-        stage,
-        &p.path,
-        s,
-        sm,
-        &setup,
-        &instruments,
-        &st,
-        obs.rec,
-        wall,
-    )
+    output::write_all(stage, s, sm, &setup, &instruments, &st, obs.rec, wall)
 }
 
 /// The observer of [`run`]: records profiles, pictures, snapshots and instrument readings, moves

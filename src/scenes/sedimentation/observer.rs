@@ -9,7 +9,7 @@ pub trait Observer {
     fn record(&mut self, _st: &State) {}
     /// At every snapshot time (`sample.snapshot_times_s`).
     fn snapshot(&mut self, _st: &State) {}
-    /// At every instrument reading time passed to [`super::simulate`].
+    /// At every instrument reading time passed to [`super::simulate`](fn@super::simulate).
     fn reading(&mut self, _st: &State) {}
     /// After every step, events included (decides itself whether to save a checkpoint).
     fn step(&mut self, _st: &State) {}

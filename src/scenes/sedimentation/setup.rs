@@ -2,7 +2,8 @@
 //! fluid viscosity, and the default record times.
 
 use crate::sample::{discretize, representative_grains, Distribution, Grain, SizeClass};
-use crate::scenario::{Contacts, Scenario};
+use crate::scenario::inputs::read_sample;
+use crate::scenario::{Contacts, Scenario, ScenarioError};
 use std::path::Path;
 
 /// Largest travel of the fastest grain of a contact cluster per Rapier step, in diameters of
@@ -12,16 +13,8 @@ pub const CONTACT_TRAVEL_PER_SUBSTEP: f64 = 1.0;
 /// Largest relative change of a squeeze film's gap per Rapier step of the contact solve in the
 /// run. The approach from h_out to h_in takes ln(h_out/h_in)/f Rapier steps; the frozen gap
 /// makes the film approach too fast by a first-order error in f (see
-/// `tests/sedimentation_contacts.rs` for the measured figures).
+/// `tests/scenes/sedimentation_contacts.rs` for the measured figures).
 pub const CONTACT_FILM_CHANGE_PER_STEP: f64 = 0.25;
-
-/// Thickness of the 2D projection of two opposing 1° wedges, m: h_z = π B / 720, generalised to a
-/// wedge fraction f of the cylinder as h_z = π B f / 4 (B H h_z = f π B² H / 4). Kept here for
-/// callers of the old path; the formula lives in
-/// [`crate::scenario::SampleSpec::projection_thickness_m`].
-pub fn projection_thickness_m(width_m: f64, wedge_fraction: f64) -> f64 {
-    std::f64::consts::PI * width_m * wedge_fraction / 4.0
-}
 
 /// Limiting diameter of seed eq. 16 (Stokes), m: the largest grain still above depth y at time
 /// t, φ_o = √(18 μ y / ((ρ_p − ρ_f) g t)).
@@ -91,14 +84,47 @@ impl GrainContacts {
     }
 }
 
-/// Builds the sample of a scenario.
-pub fn setup(s: &Scenario, path: &Path) -> Result<Setup, String> {
-    let sm = s.sample.as_ref().ok_or("no [sample]")?;
-    let ct = s.container.as_ref().ok_or("no [container]")?;
-    let width = ct.width_m.ok_or("no container.width_m")?;
+/// Builds the sample of the scenario file `path`, reading its `sample.csv`
+/// ([`crate::scenario::inputs::read_sample`]); see [`setup_with`].
+pub fn setup(s: &Scenario, path: &Path) -> Result<Setup, ScenarioError> {
+    let sm = s.sample.as_ref().ok_or_else(|| {
+        ScenarioError::new(
+            path,
+            Some("sample"),
+            "missing: a sedimentation scenario needs a [sample] table",
+        )
+    })?;
+    setup_with(s, path, read_sample(sm, path)?)
+}
+
+/// Builds the sample of a prepared scenario from the distribution read while it was prepared
+/// ([`crate::scenes::Prepared::sample`]; read now if absent).
+pub fn setup_of(p: &crate::scenes::Prepared) -> Result<Setup, ScenarioError> {
+    match &p.sample {
+        Some(d) => setup_with(&p.scenario, &p.path, d.clone()),
+        None => setup(&p.scenario, &p.path),
+    }
+}
+
+/// Builds the sample of the scenario file `path` from its particle-size `distribution`
+/// (read while the scenario was prepared, [`crate::scenes::Prepared::sample`]). A missing
+/// `[sample]`, `[container]` or `container.width_m` is a bad input naming the key.
+pub fn setup_with(
+    s: &Scenario,
+    path: &Path,
+    distribution: Distribution,
+) -> Result<Setup, ScenarioError> {
+    let missing = |key: &str| {
+        ScenarioError::new(
+            path,
+            Some(key),
+            "missing: a sedimentation scenario needs it",
+        )
+    };
+    let sm = s.sample.as_ref().ok_or_else(|| missing("sample"))?;
+    let ct = s.container.as_ref().ok_or_else(|| missing("container"))?;
+    let width = ct.width_m.ok_or_else(|| missing("container.width_m"))?;
     let viscosity_pa_s = s.fluid.drag_viscosity_pa_s();
-    let csv = path.parent().unwrap_or(Path::new(".")).join(&sm.csv);
-    let distribution = Distribution::load(&csv, sm.sample)?;
     let classes = discretize(&distribution, sm.n_diameters);
     let model_mass = sm.mass_kg * sm.wedge_fraction;
     let grains = representative_grains(

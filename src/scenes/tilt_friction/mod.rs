@@ -40,8 +40,9 @@ pub use simulate::{simulate_tilt, TiltOutcome};
 use crate::engine::dim3::World;
 #[cfg(doc)]
 use crate::engine::EngineSettings;
-use crate::output::StagedDir;
-use crate::run::{Prepared, RunError, SceneReport};
+use crate::error::Error;
+use crate::io::StagedDir;
+use crate::scenes::{Prepared, SceneReport};
 
 /// Console lines: one per given angle, then the threshold against atan(μ) = `expected_deg`.
 fn lines(
@@ -79,16 +80,19 @@ fn lines(
 
 /// Tilt friction (kind `tilt_friction`): runs the threshold search and writes `summary.csv`,
 /// `threshold.csv` and `tilt_displacement.svg`.
-pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, RunError> {
+pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, Error> {
     let s = &p.scenario;
-    let io = |e: std::io::Error| RunError::Io(p.path.clone(), e);
-    let spec = s
-        .tilt
-        .as_ref()
-        .ok_or_else(|| RunError::Other(format!("{}: missing [tilt]", p.path.display())))?;
+    let io = |e: std::io::Error| Error::Io(stage.dest().to_path_buf(), e);
+    let spec = s.tilt.as_ref().ok_or_else(|| {
+        Error::bad_input(
+            &p.path,
+            Some("tilt"),
+            "missing: a tilt_friction scenario needs it",
+        )
+    })?;
     let setup = TiltSetup::from_scenario(s, spec);
     let search = tilt_threshold(&setup, &spec.angles_deg, spec.bisection_tolerance_deg)
-        .map_err(|u| RunError::Unstable(p.path.clone(), u))?;
+        .map_err(|u| Error::Unstable(p.path.clone(), u))?;
     let found = search.threshold_deg();
     let TiltSearch { runs, bracket } = search;
     let expected = setup.friction.atan().to_degrees();
@@ -112,7 +116,7 @@ pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, RunError> {
         &runs,
         expected,
     )
-    .map_err(RunError::Other)?;
+    .map_err(io)?;
 
     Ok(SceneReport {
         steps: runs.len() as u64 * setup.steps(),

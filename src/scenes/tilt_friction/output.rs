@@ -7,8 +7,8 @@
 //! - `tilt_displacement.svg`: displacement down the slope against the angle.
 
 use super::TiltOutcome;
-use crate::output::chart::{scatter_svg, Scale, Series};
-use crate::output::{num, opt, write_atomic};
+use crate::io::chart::{scatter_svg, Scale, Series};
+use crate::io::{num, opt, write_atomic};
 use std::io;
 use std::path::Path;
 
@@ -80,7 +80,7 @@ pub fn write_chart(
     title: &str,
     runs: &[TiltOutcome],
     expected_deg: f64,
-) -> Result<(), String> {
+) -> io::Result<()> {
     let pts = |slides: bool| -> Vec<(f64, f64)> {
         runs.iter()
             .filter(|r| r.slides == slides)

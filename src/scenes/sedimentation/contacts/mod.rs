@@ -1,6 +1,6 @@
 //! Contacts and squeeze-film lubrication between representative grains of the sedimentation
 //! cylinder (`physics = "full"`): the pair search ([`PairFinder`]), the clusters of linked pairs
-//! ([`clusters`]), their contact solve in a Rapier 2D world ([`resolve`]), and the stage of the
+//! ([`clusters`](mod@clusters)), their contact solve in a Rapier 2D world ([`resolve`](fn@resolve)), and the stage of the
 //! step that chains them ([`ContactStage`]).
 
 pub mod clusters;

@@ -151,6 +151,109 @@ pub fn resolve(
     sc: &ContactScene,
     dt_s: f64,
 ) -> (Vec<Resolved>, Solve) {
+    let sub = Substep::of(grains, sc);
+    // 1. Free approach up to the first time a pair may come within its cut-off plus two Rapier
+    //    steps of travel (so that Rapier's narrow phase sees the pair, within its prediction
+    //    distance, before it is within the cut-off).
+    let margin = 2.0 * sub.travel_m;
+    let t_c = first_contact_time(grains, pairs, sc, dt_s, margin);
+    let mut state = free_all(grains, sc, t_c);
+    if t_c >= dt_s {
+        return (state, Solve::default());
+    }
+    // 2. Contact window in a Rapier world.
+    let mut w = Window::new(grains, pairs, sc, &state, sub.d_min_m);
+    w.register_close_pairs(margin);
+    let mut t = t_c;
+    let mut steps = 0u64;
+    let mut warm = true;
+    let mut released = false;
+    while t < dt_s * (1.0 - 1e-12) {
+        w.set_dampers();
+        let h = if warm { 1e-6 } else { 1.0 } * sub.h_m.min(w.film_step_limit_s()).min(dt_s - t);
+        warm = false;
+        let Some(h_done) = w.step_with_retries(h) else {
+            // The engine reported a speed above half its cap (or a non-finite state): give up
+            // the contact solve of this cluster for this step, counted as a fallback.
+            let solve = Solve {
+                rapier_steps: steps,
+                fallback: true,
+                interrupted: false,
+            };
+            return (free_all(grains, sc, dt_s), solve);
+        };
+        t += h_done;
+        steps += 1;
+        if steps.is_multiple_of(RAPIER_STEPS_PER_INTERRUPT_CHECK) && crate::interrupt::requested() {
+            let solve = Solve {
+                rapier_steps: steps,
+                fallback: false,
+                interrupted: true,
+            };
+            return (state, solve);
+        }
+        // 3. Release once no pair is close or may meet on the free paths for the rest.
+        if let Some(end) = w.try_release(dt_s - t) {
+            state = end;
+            released = true;
+            break;
+        }
+    }
+    if !released {
+        state = w.current();
+    }
+    // Inside the walls (Rapier's resting penetration is ~1e-3 d).
+    for (k, s) in state.iter_mut().enumerate() {
+        let r = w.radius(k);
+        s.x_m = s.x_m.clamp(r, sc.width_m - r);
+    }
+    let solve = Solve {
+        rapier_steps: steps,
+        fallback: false,
+        interrupted: false,
+    };
+    (state, solve)
+}
+
+/// Rapier step size of a contact window: the fastest grain moves at most
+/// `travel_per_substep` of the smallest diameter.
+struct Substep {
+    /// Smallest diameter of the cluster, m.
+    d_min_m: f64,
+    /// Largest travel per Rapier step, m.
+    travel_m: f64,
+    /// Rapier step, s.
+    h_m: f64,
+}
+
+impl Substep {
+    fn of(grains: &[ClusterGrain], sc: &ContactScene) -> Self {
+        let d_min = grains
+            .iter()
+            .map(|g| g.diameter_m)
+            .fold(f64::INFINITY, f64::min);
+        let v_bound = grains
+            .iter()
+            .map(|g| g.vy_m_s.abs().max(stokes_speed_m_s(g, sc)))
+            .fold(0.0, f64::max);
+        let travel = sc.travel_per_substep * d_min;
+        Self {
+            d_min_m: d_min,
+            travel_m: travel,
+            h_m: (travel / v_bound.max(1e-300)).max(1e-12),
+        }
+    }
+}
+
+/// First time within the step at which a pair may come within its cut-off widened by
+/// `margin_m` (bisection on the exact free paths, [`may_meet_within`]); `dt_s` if none does.
+fn first_contact_time(
+    grains: &[ClusterGrain],
+    pairs: &[(usize, usize)],
+    sc: &ContactScene,
+    dt_s: f64,
+    margin_m: f64,
+) -> f64 {
     let probe_at = |k: usize, t: f64| {
         let g = &grains[k];
         Probe {
@@ -160,30 +263,18 @@ pub fn resolve(
             radius_m: 0.5 * g.diameter_m,
         }
     };
-    // Rapier step size of the contact window: the fastest grain moves at most
-    // `travel_per_substep` of the smallest diameter.
-    let d_min = grains
-        .iter()
-        .map(|g| g.diameter_m)
-        .fold(f64::INFINITY, f64::min);
-    let v_bound = grains
-        .iter()
-        .map(|g| g.vy_m_s.abs().max(stokes_speed_m_s(g, sc)))
-        .fold(0.0, f64::max);
-    let travel = sc.travel_per_substep * d_min;
-    let h_sub = (travel / v_bound.max(1e-300)).max(1e-12);
-    // 1. First time a pair may come within its cut-off plus two Rapier steps of travel (so that
-    //    Rapier's narrow phase sees the pair, within its prediction distance, before it is
-    //    within the cut-off).
-    let margin = 2.0 * travel;
     let meet = |i: usize, j: usize, t: f64| {
-        may_meet_within(&probe_at(i, t), &probe_at(j, t), sc.outer_fraction, margin)
+        may_meet_within(
+            &probe_at(i, t),
+            &probe_at(j, t),
+            sc.outer_fraction,
+            margin_m,
+        )
     };
     let mut t_c = dt_s;
     for &(i, j) in pairs {
         if meet(i, j, 0.0) {
-            t_c = 0.0;
-            break;
+            return 0.0;
         }
         let (mut lo, mut hi) = (0.0, t_c);
         if !meet(i, j, hi) {
@@ -199,224 +290,240 @@ pub fn resolve(
         }
         t_c = lo;
     }
-    let mut state: Vec<Resolved> = grains
+    t_c
+}
+
+/// Every grain moved freely from the start of the step over `t`.
+fn free_all(grains: &[ClusterGrain], sc: &ContactScene, t: f64) -> Vec<Resolved> {
+    grains
         .iter()
         .map(|g| {
-            let (y, v) = free(g, sc, g.y_m, g.vy_m_s, t_c);
+            let (y, v) = free(g, sc, g.y_m, g.vy_m_s, t);
             Resolved {
                 x_m: g.x_m,
                 y_m: y,
                 vy_m_s: v,
             }
         })
-        .collect();
-    if t_c >= dt_s {
-        return (state, Solve::default());
-    }
-    // 2. Contact window in a Rapier world.
-    let v_max = grains
-        .iter()
-        .zip(&state)
-        .map(|(g, s)| s.vy_m_s.abs().max(stokes_speed_m_s(g, sc)))
-        .fold(0.0, f64::max);
-    let mut settings = EngineSettings::for_scene(d_min, v_max);
-    settings.friction = sc.friction;
-    // A small grain squeezed by a large one may move faster than its own terminal speed: the
-    // cap (an instability detector) is set well above the cluster's largest terminal speed.
-    settings.max_linear_velocity_m_s = settings.max_linear_velocity_m_s.max(40.0 * v_max);
-    // Undoing overlaps left by earlier steps is this solve's job, not a fault: the engine's
-    // penetration check would send such clusters to the free fallback, which keeps the overlap.
-    settings.max_penetration_fraction = 0.0;
-    let mut world = World::new(settings, sc.gravity_m_s2);
-    world.add_floor(sc.floor_m);
-    world.add_wall(Vector::new(0.0, 0.0), Vector::new(1.0, 0.0));
-    world.add_wall(Vector::new(sc.width_m, 0.0), Vector::new(-1.0, 0.0));
-    let ids: Vec<BodyId> = grains
-        .iter()
-        .zip(&state)
-        .map(|(g, s)| {
-            let mut b = FluidBody::at_rest(
-                Vector::new(s.x_m, s.y_m),
-                g.diameter_m,
-                sc.density_kg_m3,
-                g.drag,
-                sc.gravity_m_s2,
-            );
-            b.velocity_m_s = Vector::new(0.0, s.vy_m_s);
-            world.add_sphere(b)
-        })
-        .collect();
-    // Every collider exists now (the world's default restitution is 0).
-    if sc.restitution != RestitutionLaw::constant(0.0) {
-        world.set_restitution_law(sc.restitution);
-    }
-    let radius = |k: usize| 0.5 * grains[k].diameter_m;
-    let gap = |w: &World, i: usize, j: usize| {
-        (w.position_m(ids[j]) - w.position_m(ids[i])).norm() - radius(i) - radius(j)
-    };
-    let on_floor =
-        |w: &World, k: usize| w.position_m(ids[k])[1] - radius(k) <= sc.floor_m + 1e-3 * radius(k);
-    let cut_of = |i: usize, j: usize| {
-        let (a, b) = (radius(i), radius(j));
-        sc.outer_fraction * a * b / (a + b)
-    };
-    let mut t = t_c;
-    let mut steps = 0u64;
-    let mut dampers = Vec::new();
-    // A first step of 1e-6 of a Rapier step registers the close pairs (prediction distance
-    // floored at the window's margin plus the largest cut-off), so that the first real step
-    // already drives them with the effective-mass drag.
-    let cut_max = pairs.iter().map(|&(i, j)| cut_of(i, j)).fold(0.0, f64::max);
-    world.set_min_prediction_distance_m(margin + cut_max);
-    let mut warm = true;
-    let mut released = false;
-    while t < dt_s * (1.0 - 1e-12) {
-        for j in dampers.drain(..) {
-            world.remove_pair_damper(j);
-        }
-        if let Some(cut) = sc.lubrication {
-            for &(i, j) in pairs {
-                let c = damping_n_s_m(
-                    radius(i),
-                    radius(j),
-                    gap(&world, i, j),
-                    sc.viscosity_pa_s,
-                    cut,
+        .collect()
+}
+
+/// The contact window of one cluster: its Rapier world and the grains' bodies in it.
+struct Window<'a> {
+    grains: &'a [ClusterGrain],
+    pairs: &'a [(usize, usize)],
+    sc: &'a ContactScene,
+    world: World,
+    ids: Vec<BodyId>,
+    dampers: Vec<rapier2d_f64::prelude::ImpulseJointHandle>,
+}
+
+impl<'a> Window<'a> {
+    /// The Rapier world (walls at x = 0 and B, the bed surface as floor) holding the grains at
+    /// `state`, with the scene's friction and restitution.
+    fn new(
+        grains: &'a [ClusterGrain],
+        pairs: &'a [(usize, usize)],
+        sc: &'a ContactScene,
+        state: &[Resolved],
+        d_min_m: f64,
+    ) -> Self {
+        let v_max = grains
+            .iter()
+            .zip(state)
+            .map(|(g, s)| s.vy_m_s.abs().max(stokes_speed_m_s(g, sc)))
+            .fold(0.0, f64::max);
+        let mut settings = EngineSettings::for_scene(d_min_m, v_max);
+        settings.friction = sc.friction;
+        // A small grain squeezed by a large one may move faster than its own terminal speed:
+        // the cap (an instability detector) is set well above the cluster's largest terminal
+        // speed.
+        settings.max_linear_velocity_m_s = settings.max_linear_velocity_m_s.max(40.0 * v_max);
+        // Undoing overlaps left by earlier steps is this solve's job, not a fault: the engine's
+        // penetration check would send such clusters to the free fallback, which keeps the
+        // overlap.
+        settings.max_penetration_fraction = 0.0;
+        let mut world = World::new(settings, sc.gravity_m_s2);
+        world.add_floor(sc.floor_m);
+        world.add_wall(Vector::new(0.0, 0.0), Vector::new(1.0, 0.0));
+        world.add_wall(Vector::new(sc.width_m, 0.0), Vector::new(-1.0, 0.0));
+        let ids: Vec<BodyId> = grains
+            .iter()
+            .zip(state)
+            .map(|(g, s)| {
+                let mut b = FluidBody::at_rest(
+                    Vector::new(s.x_m, s.y_m),
+                    g.diameter_m,
+                    sc.density_kg_m3,
+                    g.drag,
+                    sc.gravity_m_s2,
                 );
-                if c > 0.0 {
-                    dampers.push(world.add_pair_damper(ids[i], ids[j], c));
-                }
+                b.velocity_m_s = Vector::new(0.0, s.vy_m_s);
+                world.add_sphere(b)
+            })
+            .collect();
+        // Every collider exists now (the world's default restitution is 0).
+        if sc.restitution != RestitutionLaw::constant(0.0) {
+            world.set_restitution_law(sc.restitution);
+        }
+        Self {
+            grains,
+            pairs,
+            sc,
+            world,
+            ids,
+            dampers: Vec::new(),
+        }
+    }
+
+    fn radius(&self, k: usize) -> f64 {
+        0.5 * self.grains[k].diameter_m
+    }
+
+    fn gap(&self, i: usize, j: usize) -> f64 {
+        let w = &self.world;
+        (w.position_m(self.ids[j]) - w.position_m(self.ids[i])).norm()
+            - self.radius(i)
+            - self.radius(j)
+    }
+
+    fn on_floor(&self, k: usize) -> bool {
+        self.world.position_m(self.ids[k])[1] - self.radius(k)
+            <= self.sc.floor_m + 1e-3 * self.radius(k)
+    }
+
+    /// The lubrication cut-off of a pair, h_out = f a_eff, m.
+    fn cut_of(&self, i: usize, j: usize) -> f64 {
+        let (a, b) = (self.radius(i), self.radius(j));
+        self.sc.outer_fraction * a * b / (a + b)
+    }
+
+    /// A first step of 1e-6 of a Rapier step registers the close pairs (prediction distance
+    /// floored at the window's margin plus the largest cut-off), so that the first real step
+    /// already drives them with the effective-mass drag.
+    fn register_close_pairs(&mut self, margin_m: f64) {
+        let cut_max = self
+            .pairs
+            .iter()
+            .map(|&(i, j)| self.cut_of(i, j))
+            .fold(0.0, f64::max);
+        self.world.set_min_prediction_distance_m(margin_m + cut_max);
+    }
+
+    /// Replaces the squeeze-film dampers: c = 6πμ a_eff²/max(h, h_in) on every pair within
+    /// h_out ([`damping_n_s_m`]).
+    fn set_dampers(&mut self) {
+        for j in self.dampers.drain(..) {
+            self.world.remove_pair_damper(j);
+        }
+        let Some(cut) = self.sc.lubrication else {
+            return;
+        };
+        for &(i, j) in self.pairs {
+            let c = damping_n_s_m(
+                self.radius(i),
+                self.radius(j),
+                self.gap(i, j),
+                self.sc.viscosity_pa_s,
+                cut,
+            );
+            if c > 0.0 {
+                let d = self.world.add_pair_damper(self.ids[i], self.ids[j], c);
+                self.dampers.push(d);
             }
         }
-        // Within the film, the gap may change by at most `film_change_per_step` per Rapier step
-        // (the damper's gap is frozen over the step): h ≤ f max(gap, h_in)/|approach speed|.
+    }
+
+    /// Within the film, the gap may change by at most `film_change_per_step` per Rapier step
+    /// (the damper's gap is frozen over the step): h ≤ f max(gap, h_in)/|approach speed|, s.
+    fn film_step_limit_s(&self) -> f64 {
         let mut h_lub = f64::INFINITY;
-        if let Some(cut) = sc.lubrication {
-            for &(i, j) in pairs {
-                let gap_ij = gap(&world, i, j);
-                if gap_ij < cut_of(i, j) {
-                    let (pi, pj) = (world.position_m(ids[i]), world.position_m(ids[j]));
-                    let n = (pj - pi).normalize();
-                    let approach =
-                        -(world.velocity_m_s(ids[j]) - world.velocity_m_s(ids[i])).dot(&n);
-                    let a_eff = cut_of(i, j) / sc.outer_fraction;
-                    if approach > 0.0 {
-                        h_lub = h_lub.min(
-                            sc.film_change_per_step * gap_ij.max(cut.inner * a_eff) / approach,
-                        );
-                    }
+        let Some(cut) = self.sc.lubrication else {
+            return h_lub;
+        };
+        let w = &self.world;
+        for &(i, j) in self.pairs {
+            let gap_ij = self.gap(i, j);
+            if gap_ij < self.cut_of(i, j) {
+                let (pi, pj) = (w.position_m(self.ids[i]), w.position_m(self.ids[j]));
+                let n = (pj - pi).normalize();
+                let approach = -(w.velocity_m_s(self.ids[j]) - w.velocity_m_s(self.ids[i])).dot(&n);
+                let a_eff = self.cut_of(i, j) / self.sc.outer_fraction;
+                if approach > 0.0 {
+                    h_lub = h_lub.min(
+                        self.sc.film_change_per_step * gap_ij.max(cut.inner * a_eff) / approach,
+                    );
                 }
             }
         }
-        let h = if warm { 1e-6 } else { 1.0 } * h_sub.min(h_lub).min(dt_s - t);
-        warm = false;
-        // The engine refuses a step (states untouched) whose free-flight force would exceed its
-        // speed cap: retry smaller.
+        h_lub
+    }
+
+    /// One Rapier step of `h` s. The engine refuses a step (states untouched) whose free-flight
+    /// force would exceed its speed cap: it is retried at a quarter, up to 20 times. Returns the
+    /// step taken, or None if every try was refused.
+    fn step_with_retries(&mut self, h: f64) -> Option<f64> {
         let mut h_try = h;
-        let mut last = None;
         for _ in 0..20 {
-            match world.step(h_try, sc.integrator) {
-                Ok(()) => {
-                    last = None;
-                    break;
-                }
-                Err(e) => last = Some(e),
+            if self.world.step(h_try, self.sc.integrator).is_ok() {
+                return Some(h_try);
             }
             h_try *= 0.25;
         }
-        if last.is_some() {
-            // The engine reported a speed above half its cap (or a non-finite state): give up
-            // the contact solve of this cluster for this step, counted as a fallback.
-            let free_only = grains
-                .iter()
-                .map(|g| {
-                    let (y, v) = free(g, sc, g.y_m, g.vy_m_s, dt_s);
-                    Resolved {
-                        x_m: g.x_m,
-                        y_m: y,
-                        vy_m_s: v,
-                    }
-                })
-                .collect();
-            return (
-                free_only,
-                Solve {
-                    rapier_steps: steps,
-                    fallback: true,
-                    interrupted: false,
-                },
-            );
-        }
-        t += h_try;
-        steps += 1;
-        if steps.is_multiple_of(RAPIER_STEPS_PER_INTERRUPT_CHECK) && crate::interrupt::requested() {
-            return (
-                state,
-                Solve {
-                    rapier_steps: steps,
-                    fallback: false,
-                    interrupted: true,
-                },
-            );
-        }
-        // 3. Release once no pair is close or may meet on the free paths for the rest.
-        let rest = dt_s - t;
-        let now: Vec<(f64, f64, f64)> = ids
+        None
+    }
+
+    /// The grains as they are in the world.
+    fn current(&self) -> Vec<Resolved> {
+        self.ids
             .iter()
             .map(|&id| {
-                let (p, v) = (world.position_m(id), world.velocity_m_s(id));
-                (p[0], p[1], v[1])
+                let (p, v) = (self.world.position_m(id), self.world.velocity_m_s(id));
+                Resolved {
+                    x_m: p[0],
+                    y_m: p[1],
+                    vy_m_s: v[1],
+                }
             })
-            .collect();
-        let apart = pairs.iter().all(|&(i, j)| {
-            if on_floor(&world, i) || on_floor(&world, j) {
+            .collect()
+    }
+
+    /// The grains at the end of the step, moved freely over the `rest_s` left, if no pair is
+    /// within its cut-off and none may meet again on the free paths (grains on the floor
+    /// excepted: they join the bed), or if no time is left; None while the contact goes on.
+    fn try_release(&self, rest_s: f64) -> Option<Vec<Resolved>> {
+        let now = self.current();
+        let sc = self.sc;
+        let apart = self.pairs.iter().all(|&(i, j)| {
+            if self.on_floor(i) || self.on_floor(j) {
                 return true;
             }
-            if gap(&world, i, j) < cut_of(i, j) {
+            if self.gap(i, j) < self.cut_of(i, j) {
                 return false;
             }
             let probe = |k: usize| Probe {
-                x_m: now[k].0,
-                y_start_m: now[k].1,
-                y_end_m: free(&grains[k], sc, now[k].1, now[k].2, rest).0,
-                radius_m: radius(k),
+                x_m: now[k].x_m,
+                y_start_m: now[k].y_m,
+                y_end_m: free(&self.grains[k], sc, now[k].y_m, now[k].vy_m_s, rest_s).0,
+                radius_m: self.radius(k),
             };
             !may_meet(&probe(i), &probe(j), sc.outer_fraction)
         });
-        if apart || rest <= 0.0 {
-            for (k, s) in state.iter_mut().enumerate() {
-                let (y, v) = free(&grains[k], sc, now[k].1, now[k].2, rest.max(0.0));
-                *s = Resolved {
-                    x_m: now[k].0,
+        if !(apart || rest_s <= 0.0) {
+            return None;
+        }
+        let end = now
+            .iter()
+            .zip(self.grains)
+            .map(|(s, g)| {
+                let (y, v) = free(g, sc, s.y_m, s.vy_m_s, rest_s.max(0.0));
+                Resolved {
+                    x_m: s.x_m,
                     y_m: y,
                     vy_m_s: v,
-                };
-            }
-            released = true;
-            break;
-        }
+                }
+            })
+            .collect();
+        Some(end)
     }
-    if !released {
-        for (k, s) in state.iter_mut().enumerate() {
-            let (p, v) = (world.position_m(ids[k]), world.velocity_m_s(ids[k]));
-            *s = Resolved {
-                x_m: p[0],
-                y_m: p[1],
-                vy_m_s: v[1],
-            };
-        }
-    }
-    // Inside the walls (Rapier's resting penetration is ~1e-3 d).
-    for (k, s) in state.iter_mut().enumerate() {
-        let r = radius(k);
-        s.x_m = s.x_m.clamp(r, sc.width_m - r);
-    }
-    (
-        state,
-        Solve {
-            rapier_steps: steps,
-            fallback: false,
-            interrupted: false,
-        },
-    )
 }

@@ -4,8 +4,8 @@
 //! Figs. 15–17), `bulb_density.csv` (seed Fig. 13), `instrument_errors.csv` (each instrument
 //! against the input curve) and the combined `instrument_errors.csv` of several runs.
 
-use crate::output::chart::{scatter_svg, Scale, Series};
-use crate::output::{num, opt, StagedDir};
+use crate::io::chart::{scatter_svg, Scale, Series};
+use crate::io::{num, opt, StagedDir};
 use crate::sample::Distribution;
 use crate::scenario::{SampleSpec, Scenario};
 use crate::scenes::sedimentation::instruments::{
@@ -14,15 +14,6 @@ use crate::scenes::sedimentation::instruments::{
 use crate::scenes::sedimentation::setup::Setup;
 use std::io;
 use std::path::Path;
-
-/// Why an instrument file could not be written.
-#[derive(Debug)]
-pub enum WriteError {
-    /// A CSV file.
-    Io(io::Error),
-    /// A chart (the plotting library's message).
-    Chart(String),
-}
 
 /// Writes every instrument file of a run into `stage`: `granulometry.csv`/`.svg`,
 /// `instruments.csv`/`.svg`, `bulb_density.csv`/`.svg` and `instrument_errors.csv`; returns the
@@ -35,7 +26,7 @@ pub fn write_all(
     instruments: &InstrumentSet,
     readings: &[InstrumentReading],
     bulb: &[BulbRow],
-) -> Result<Vec<ErrorRow>, WriteError> {
+) -> io::Result<Vec<ErrorRow>> {
     let instrument_errors = errors(&setup.distribution, readings);
     let full = super::physics_label(s, true);
     write_granulometry(
@@ -43,30 +34,26 @@ pub fn write_all(
         sm.sample,
         &setup.distribution,
         readings,
-    )
-    .map_err(WriteError::Io)?;
-    write_instruments(&stage.path("instruments.csv"), readings).map_err(WriteError::Io)?;
-    write_bulb_density(&stage.path("bulb_density.csv"), bulb).map_err(WriteError::Io)?;
+    )?;
+    write_instruments(&stage.path("instruments.csv"), readings)?;
+    write_bulb_density(&stage.path("bulb_density.csv"), bulb)?;
     write_chart(
         &stage.path("granulometry.svg"),
         &format!("{}: percent finer, input and instruments ({full})", s.name),
         &setup.distribution,
         readings,
-    )
-    .map_err(WriteError::Chart)?;
+    )?;
     write_time_chart(
         &stage.path("instruments.svg"),
         &format!("{}: percent finer read against time", s.name),
         readings,
-    )
-    .map_err(WriteError::Chart)?;
+    )?;
     write_bulb_chart(
         &stage.path("bulb_density.svg"),
         &format!("{}: suspension density along the hydrometer bulb", s.name),
         bulb,
         instruments.hydrometer.spec.bulb_length_m,
-    )
-    .map_err(WriteError::Chart)?;
+    )?;
     write_errors(
         &stage.path("instrument_errors.csv"),
         &s.name,
@@ -74,8 +61,7 @@ pub fn write_all(
         super::physics_label(s, false),
         setup.grains.len(),
         &instrument_errors,
-    )
-    .map_err(WriteError::Io)?;
+    )?;
     Ok(instrument_errors)
 }
 
@@ -224,7 +210,7 @@ pub fn write_chart(
     title: &str,
     input: &Distribution,
     readings: &[InstrumentReading],
-) -> Result<(), String> {
+) -> io::Result<()> {
     let mut series = vec![Series {
         label: "input".into(),
         points: input_diameters(input)
@@ -398,7 +384,7 @@ pub fn write_time_chart(
     path: &Path,
     title: &str,
     readings: &[InstrumentReading],
-) -> Result<(), String> {
+) -> io::Result<()> {
     let series: Vec<Series> = [
         InstrumentKind::Hydrometer,
         InstrumentKind::Buoyancy,
@@ -437,7 +423,7 @@ pub fn write_bulb_chart(
     title: &str,
     rows: &[BulbRow],
     bulb_length_m: f64,
-) -> Result<(), String> {
+) -> io::Result<()> {
     let mut times: Vec<f64> = rows.iter().map(|r| r.0).collect();
     times.dedup();
     let bin = 2e-3;

@@ -8,9 +8,10 @@ pub mod pictures;
 use super::instruments::{BulbRow, InstrumentReading, InstrumentSet};
 use super::setup::{limiting_diameter_m, Setup};
 use super::state::{concentration, Profile, State};
-use crate::output::{num, StagedDir};
-use crate::run::{RunError, SceneReport};
+use crate::error::Error;
+use crate::io::{num, StagedDir};
 use crate::scenario::{Physics, SampleSpec, Scenario};
+use crate::scenes::SceneReport;
 use std::io;
 use std::path::Path;
 
@@ -35,11 +36,10 @@ fn csv_err(e: csv::Error) -> io::Error {
 
 /// Writes every file of a run of `s` that ended in `st` with what it `rec`orded into `stage`,
 /// and returns its report (`wall_s`: wall time of the simulation, s). I/O errors name the
-/// scenario file `path`.
+/// output folder.
 #[allow(clippy::too_many_arguments)]
 pub fn write_all(
     stage: &StagedDir,
-    path: &Path,
     s: &Scenario,
     sm: &SampleSpec,
     setup: &Setup,
@@ -47,8 +47,8 @@ pub fn write_all(
     st: &State,
     rec: Recorded,
     wall_s: f64,
-) -> Result<SceneReport, RunError> {
-    let io = |e: io::Error| RunError::Io(path.to_path_buf(), e);
+) -> Result<SceneReport, Error> {
+    let io = |e: io::Error| Error::Io(stage.dest().to_path_buf(), e);
     let Recorded {
         profiles,
         pictures,
@@ -61,14 +61,9 @@ pub fn write_all(
         pictures::write_snapshot(&snap_dir, snap).map_err(io)?;
     }
     let instrument_errors =
-        granulometry::write_all(stage, s, sm, setup, instruments, &readings, &bulb).map_err(
-            |e| match e {
-                granulometry::WriteError::Io(e) => io(e),
-                granulometry::WriteError::Chart(m) => RunError::Other(m),
-            },
-        )?;
+        granulometry::write_all(stage, s, sm, setup, instruments, &readings, &bulb).map_err(io)?;
     if !pictures.is_empty() {
-        pictures::draw_cylinder(&stage.path("cylinder.png"), &pictures).map_err(RunError::Other)?;
+        pictures::draw_cylinder(&stage.path("cylinder.png"), &pictures).map_err(io)?;
     }
     let k = Densities {
         grain_kg_m3: sm.density_kg_m3,

@@ -1,20 +1,21 @@
 //! Pictures and particle files of a sedimentation run: `cylinder.png` (seed Fig. 11) and the
 //! `snapshots/` (CSV and VTK PolyData).
 
-use crate::output::num;
+use crate::io::num;
 use crate::scenes::sedimentation::state::State;
-use std::io::Write;
+use std::io::{self, Write};
 use std::path::Path;
 
 /// Draws the cylinder at each snapshot time side by side: grey level = mass fraction per band
 /// (black = the largest band fraction in suspension; the bed saturates), like seed Fig. 11. PNG;
 /// panels in the order of `snapshot_times_s`, each topped by one tick per minute (up to 15).
-pub fn draw_cylinder(path: &Path, pictures: &[(f64, Vec<f64>)]) -> Result<(), String> {
+pub fn draw_cylinder(path: &Path, pictures: &[(f64, Vec<f64>)]) -> io::Result<()> {
     use plotters::prelude::*;
     let (pw, ph, gap) = (80u32, 640u32, 40u32);
     let width = pictures.len() as u32 * (pw + gap) + gap;
     let root = BitMapBackend::new(path, (width, ph + 60)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| e.to_string())?;
+    root.fill(&WHITE)
+        .map_err(|e| io::Error::other(e.to_string()))?;
     // Grey scale set by the suspension (the bottom band, with the bed, saturates to black).
     let fmax = pictures
         .iter()
@@ -32,23 +33,23 @@ pub fn draw_cylinder(path: &Path, pictures: &[(f64, Vec<f64>)]) -> Result<(), St
                 [(x0, y0), (x0 + pw as i32, y1)],
                 RGBColor(grey, grey, grey).filled(),
             ))
-            .map_err(|e| e.to_string())?;
+            .map_err(|e| io::Error::other(e.to_string()))?;
         }
         root.draw(&Rectangle::new(
             [(x0, 30), (x0 + pw as i32, 30 + ph as i32)],
             BLACK.stroke_width(1),
         ))
-        .map_err(|e| e.to_string())?;
+        .map_err(|e| io::Error::other(e.to_string()))?;
         // Time marks as ticks above the panel, one per 60 s up to 15 (no fonts in the bitmap
         // backend; the panel times are the snapshot times, in order).
         let ticks = ((t / 60.0).round() as i32).clamp(1, 15);
         for j in 0..ticks {
             let x = x0 + 4 + j * 5;
             root.draw(&Rectangle::new([(x, 10), (x + 2, 22)], BLACK.filled()))
-                .map_err(|e| e.to_string())?;
+                .map_err(|e| io::Error::other(e.to_string()))?;
         }
     }
-    root.present().map_err(|e| e.to_string())
+    root.present().map_err(|e| io::Error::other(e.to_string()))
 }
 
 /// Writes the grains of `st` to `dir/t<time>s.csv` (x, y, diameter, weight, settled) and

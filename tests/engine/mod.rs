@@ -1,0 +1,5 @@
+//! `src/engine/`: the Rapier worlds.
+
+mod faults;
+mod free_settling;
+mod rest;

@@ -1,0 +1,141 @@
+//! Issue 12, "Data loss and hangs" item 5 (interruption part): a free-settling scenario with
+//! 100 000 `[[spheres]]` ignored the first SIGTERM for 9 minutes: the sphere loops (free engine
+//! and Rapier path) never looked at the interruption flag, so the run went on to the end and
+//! wrote everything. Now every sphere checks it every few hundred microseconds of work, and an
+//! interrupted free-settling run writes nothing (a partial set of spheres is no result) and exits
+//! with 130, leaving neither a result folder nor a staging folder.
+
+use crate::common::{isolated, settle, tmp};
+use std::path::Path;
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// A scenario of `n` Stokes spheres in water, each taking 10⁶ steps (dt = 1 µs, 1 s): hours of
+/// work in all, seconds for a few spheres, little memory.
+fn many_spheres_toml(engine: &str, n: usize) -> String {
+    let mut s = format!(
+        r#"name = "many"
+kind = "free_settling"
+dimension = 3
+engine = "{engine}"
+
+[fluid]
+density_kg_m3 = 1000.0
+rheology = "newtonian"
+viscosity_pa_s = 0.001
+
+[drag]
+law = "stokes"
+
+[time]
+dt_s = 1e-6
+end_s = 1.0
+integrator = "exponential"
+
+[release]
+depth_m = 0.01
+velocity_m_s = 0.0
+"#
+    );
+    for i in 0..n {
+        s.push_str(&format!(
+            "\n[[spheres]]\nid = \"s{i}\"\ndiameter_m = 1e-4\ndensity_kg_m3 = {}\n",
+            2000.0 + i as f64 * 0.01
+        ));
+    }
+    s
+}
+
+/// Runs the scenario, sends SIGTERM after 1.5 s and checks the exit: within 5 s, code 130, no
+/// folder `many` and no `.many.partial-*` left.
+#[cfg(unix)]
+fn sigterm_stops(engine: &str) {
+    let dir = tmp();
+    let file = dir.path().join("many.toml");
+    std::fs::write(&file, many_spheres_toml(engine, 20_000)).unwrap();
+    let out = dir.path().join("out");
+    let mut child = settle()
+        .args(["run", "--force", "--quiet", "--out"])
+        .arg(&out)
+        .arg(&file)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(Duration::from_millis(1500));
+    assert!(
+        child.try_wait().unwrap().is_none(),
+        "{engine}: the run ended before the signal"
+    );
+    let pid = child.id().to_string();
+    assert!(Command::new("kill")
+        .args(["-TERM", &pid])
+        .status()
+        .unwrap()
+        .success());
+    let t0 = Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            break status;
+        }
+        if t0.elapsed() > Duration::from_secs(5) {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("{engine}: SIGTERM not honoured within 5 s");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    let mut stderr = String::new();
+    std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut stderr).unwrap();
+    assert_eq!(status.code(), Some(130), "{engine}: {stderr}");
+    assert_no_result(&out, engine);
+}
+
+fn assert_no_result(out: &Path, engine: &str) {
+    let Ok(entries) = std::fs::read_dir(out) else {
+        return;
+    };
+    for e in entries {
+        let name = e.unwrap().file_name().to_string_lossy().to_string();
+        assert!(
+            name != "many" && !name.contains("partial"),
+            "{engine}: an interrupted run left {name}"
+        );
+    }
+}
+
+#[cfg(unix)]
+#[test]
+fn sigterm_stops_many_spheres_on_the_free_engine() {
+    sigterm_stops("free");
+}
+
+#[cfg(unix)]
+#[test]
+fn sigterm_stops_many_spheres_on_rapier() {
+    sigterm_stops("rapier");
+}
+
+/// In the library: with an interruption requested, the interruptible runner returns
+/// `Halt::Interrupted` at once instead of simulating.
+///
+/// The interrupt flag is process-wide, and all tests share one process: the body runs in a process
+/// of its own ([`isolated`]), so that the other tests are not interrupted.
+#[test]
+fn an_interrupted_runner_returns_interrupted() {
+    if !isolated(
+        "regression::issue_12_interrupt_free_settling::an_interrupted_runner_returns_interrupted",
+    ) {
+        return;
+    }
+    use settle::scenes::free_settling::{run_interruptible, Halt, RunOptions};
+    let dir = tmp();
+    let file = dir.path().join("many.toml");
+    std::fs::write(&file, many_spheres_toml("free", 100)).unwrap();
+    let p = settle::run::prepare(&file, None, &[]).unwrap();
+    settle::interrupt::request();
+    let t0 = Instant::now();
+    let r = run_interruptible(&p.scenario, &p.spheres, RunOptions::of(&p.scenario));
+    assert!(matches!(r, Err(Halt::Interrupted)), "{r:?}");
+    assert!(t0.elapsed() < Duration::from_secs(1));
+}

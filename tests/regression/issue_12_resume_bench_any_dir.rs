@@ -1,0 +1,80 @@
+//! Regression test for issue 12, "Data loss and hangs" item 9: `--resume DIR` and `bench` worked
+//! only from the directory the run started in: the checkpoint stored the scenario files as given
+//! (relative), and `bench` read `scenarios/` relative to the current directory (exit 1
+//! elsewhere). The checkpoint now stores absolute paths and `bench` finds its scenarios from
+//! anywhere.
+//!
+//! Set `SETTLE_BIN` to run these checks against another binary (e.g. the one before the fix).
+
+use crate::common::{settle, tmp};
+use std::path::Path;
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+const REPO: &str = env!("CARGO_MANIFEST_DIR");
+
+#[test]
+fn resume_works_from_another_directory() {
+    let dir = tmp();
+    let out = dir.path().join("out");
+    // Started from the repository with a relative scenario path, stopped by SIGINT.
+    let child = settle()
+        .current_dir(REPO)
+        .args(["run", "scenarios/sedimentation_sample2.toml"])
+        .args(["--set", "sample.particles=20000", "--quiet"])
+        .args(["--checkpoint-every", "0.2", "--out"])
+        .arg(&out)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let t0 = Instant::now();
+    while !out.join("checkpoint/request.toml").exists() && t0.elapsed() < Duration::from_secs(60) {
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    std::thread::sleep(Duration::from_millis(300));
+    assert!(Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap()
+        .success());
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(
+        o.status.code(),
+        Some(130),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    // Resumed from the temporary folder, with a relative DIR.
+    let o = settle()
+        .current_dir(dir.path())
+        .args(["run", "--resume", "out", "--quiet"])
+        .output()
+        .unwrap();
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(out.join("sedimentation_sample2/summary.csv").exists());
+    assert!(!out.join("checkpoint").exists());
+}
+
+#[test]
+fn bench_works_from_another_directory() {
+    let dir = tmp();
+    let o = settle()
+        .current_dir(dir.path())
+        .args(["bench", "--quick", "--out", "b"])
+        .output()
+        .unwrap();
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let csv = std::fs::read_to_string(Path::new(dir.path()).join("b/bench.csv")).unwrap();
+    assert!(csv.contains("valentik_121"), "{csv}");
+}

@@ -1,0 +1,3 @@
+//! `src/scenario/`: loading and validating scenarios and their input files.
+
+mod bad_input;

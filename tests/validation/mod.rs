@@ -1,0 +1,6 @@
+//! Validation cases (MercuryDPM style): each is a scenario in `scenarios/`, reference data
+//! (a table in `data/` or an independent solution) and a test stating its tolerance.
+
+mod paste_drop;
+mod stokes_single;
+mod valentik;
