@@ -80,7 +80,7 @@ fn run_all(ps: &[Prepared], dt: f64, integ: Integrator) -> Result<(f64, u64), Er
             integrator: integ,
             timeseries: false,
         };
-        let r = free_settling::run(&p.scenario, &p.spheres, opts)
+        let r = free_settling::run(&p.scenario, p.rheology, &p.spheres, opts)
             .map_err(|u| Error::Unstable(p.path.clone(), u))?;
         steps += r.iter().map(|x| x.steps).sum::<u64>();
     }
@@ -224,7 +224,7 @@ fn paste_drops(root: &Path, out: &mut Vec<Figure>) -> Result<(), Error> {
             integrator: Integrator::Exponential,
             timeseries: false,
         };
-        let r = free_settling::run(&paste.scenario, &paste.spheres, opts)
+        let r = free_settling::run(&paste.scenario, paste.rheology, &paste.spheres, opts)
             .map_err(|u| Error::Unstable(paste_file.clone(), u))?;
         let steps: u64 = r.iter().map(|x| x.steps).sum();
         out.push(fig(
@@ -263,7 +263,7 @@ fn sedimentation(root: &Path, quick: bool, out: &mut Vec<Figure>) -> Result<(), 
             &ov,
         )
         .map_err(Error::BadInput)?;
-        let su = crate::scenes::sedimentation::setup_of(&p)?;
+        let su = crate::scenes::sedimentation::setup(&p.scenario, &p.path)?;
         let t0 = Instant::now();
         let st = crate::scenes::sedimentation::simulate(
             &p.scenario,

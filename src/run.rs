@@ -5,7 +5,7 @@
 use crate::error::Error;
 use crate::io::{self as output, StagedDir};
 use crate::scenario::inputs as spheres;
-use crate::scenario::{self, Kind, Scenario, ScenarioError};
+use crate::scenario::{self, Kind, Scenario, ScenarioError, SceneSpec};
 use crate::scenes::free_settling::{self, output as out_fs};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -90,11 +90,15 @@ pub fn prepare(
     if let Some(dt) = dt_s {
         ov.push(format!("time.dt_s={dt:e}"));
     }
-    let scenario = scenario::load(path, &ov)?;
+    let scenario::Parsed {
+        scenario,
+        scene,
+        rheology,
+    } = scenario::parse(path, &ov)?;
     check_name(&scenario, path)?;
     let spheres = spheres::spheres(&scenario, path)?;
-    let sample = match &scenario.sample {
-        Some(sm) if scenario.kind == Kind::Sedimentation => Some(spheres::read_sample(sm, path)?),
+    let sample = match &scene {
+        SceneSpec::Sedimentation(sd) => Some(spheres::read_sample(&sd.sample, path)?),
         _ => None,
     };
     Ok(Prepared {
@@ -102,6 +106,8 @@ pub fn prepare(
         scenario,
         spheres,
         sample,
+        scene,
+        rheology,
     })
 }
 
@@ -165,15 +171,14 @@ pub fn run_one_with(p: &Prepared, out_dir: &Path, ctx: &RunContext) -> Result<Fi
     let stage =
         StagedDir::new(out_dir, &s.name).map_err(|e| Error::Io(out_dir.join(&s.name), e))?;
     let io = |e: std::io::Error| Error::Io(stage.dest().to_path_buf(), e);
-    let (results, report) = match s.kind {
-        Kind::FreeSettling | Kind::Drop => free_settling::run_scene(p, &stage)?,
-        Kind::RestitutionDrop => (Vec::new(), crate::scenes::restitution_drop::run(p, &stage)?),
-        Kind::TiltFriction => (Vec::new(), crate::scenes::tilt_friction::run(p, &stage)?),
-        Kind::FunnelPour => (Vec::new(), crate::scenes::funnel::run(p, &stage, ctx)?),
-        Kind::Sedimentation => (
-            Vec::new(),
-            crate::scenes::sedimentation::run(p, &stage, ctx)?,
-        ),
+    use crate::scenes::{funnel, restitution_drop, sedimentation, tilt_friction};
+    // The one match on the kind: each scene receives its typed spec.
+    let (results, report) = match &p.scene {
+        SceneSpec::FreeSettling(_) | SceneSpec::Drop(_) => free_settling::run_scene(p, &stage)?,
+        SceneSpec::RestitutionDrop(r) => (Vec::new(), restitution_drop::run(p, r, &stage)?),
+        SceneSpec::TiltFriction(t) => (Vec::new(), tilt_friction::run(p, t, &stage)?),
+        SceneSpec::FunnelPour(f) => (Vec::new(), funnel::run(p, f, &stage, ctx)?),
+        SceneSpec::Sedimentation(sd) => (Vec::new(), sedimentation::run(p, sd, &stage, ctx)?),
     };
     let wall = t0.elapsed().as_secs_f64();
     let meta = RunToml {

@@ -130,6 +130,38 @@ impl SceneSpec {
             SceneSpec::Sedimentation(_) => "sedimentation",
         }
     }
+
+    /// The spec of a `funnel_pour` scenario (None for another kind).
+    pub fn funnel_pour(&self) -> Option<&FunnelPourSpec> {
+        match self {
+            SceneSpec::FunnelPour(f) => Some(f),
+            _ => None,
+        }
+    }
+
+    /// The spec of a `restitution_drop` scenario (None for another kind).
+    pub fn restitution_drop(&self) -> Option<&RestitutionSpec> {
+        match self {
+            SceneSpec::RestitutionDrop(r) => Some(r),
+            _ => None,
+        }
+    }
+
+    /// The spec of a `tilt_friction` scenario (None for another kind).
+    pub fn tilt_friction(&self) -> Option<&TiltFrictionSpec> {
+        match self {
+            SceneSpec::TiltFriction(t) => Some(t),
+            _ => None,
+        }
+    }
+
+    /// The spec of a `sedimentation` scenario (None for another kind).
+    pub fn sedimentation(&self) -> Option<&SedimentationSpec> {
+        match self {
+            SceneSpec::Sedimentation(s) => Some(s),
+            _ => None,
+        }
+    }
 }
 
 #[cfg(test)]

@@ -7,7 +7,7 @@ pub mod sedimentation;
 pub mod tilt_friction;
 
 use crate::fluid::{DragLaw, SphereDrag};
-use crate::scenario::{DragLawName, Physics, Rheology, Scenario};
+use crate::scenario::{DragLawName, Physics, RheologyModel, Scenario, SceneSpec};
 use std::path::PathBuf;
 
 /// A loaded scenario ready to run: the effective scenario and its input files, read and checked.
@@ -22,6 +22,10 @@ pub struct Prepared {
     /// The particle-size distribution of a sedimentation scenario, read from `sample.csv`
     /// while the scenario is prepared (None for other kinds).
     pub sample: Option<crate::sample::Distribution>,
+    /// What the scenario's kind needs, typed ([`crate::scenario::Parsed::scene`]).
+    pub scene: SceneSpec,
+    /// The fluid's rheology with its parameters ([`crate::scenario::Parsed::rheology`]).
+    pub rheology: RheologyModel,
 }
 
 /// How a run is carried out beyond its scenario: checkpoints, resumption, progress display.
@@ -50,14 +54,11 @@ pub struct SceneReport {
     pub interrupted: bool,
 }
 
-/// The drag law a scenario asks for, after the `physics` switch (`ideal-stokes` turns every law
-/// into Stokes drag with the fluid's viscosity, or its plastic viscosity for a Bingham fluid).
-pub fn drag_law(s: &Scenario) -> DragLaw {
-    let f = &s.fluid;
-    let mu = match f.rheology {
-        Rheology::Newtonian => f.viscosity_pa_s.unwrap_or(f64::NAN),
-        Rheology::Bingham => f.plastic_viscosity_pa_s.unwrap_or(f64::NAN),
-    };
+/// The drag law a scenario asks for in a fluid of rheology `rheology`, after the `physics`
+/// switch (`ideal-stokes` turns every law into Stokes drag with the fluid's viscosity, or its
+/// plastic viscosity for a Bingham fluid).
+pub fn drag_law(s: &Scenario, rheology: RheologyModel) -> DragLaw {
+    let mu = rheology.drag_viscosity_pa_s();
     if s.physics == Physics::IdealStokes {
         return DragLaw::Stokes { viscosity_pa_s: mu };
     }
@@ -68,13 +69,13 @@ pub fn drag_law(s: &Scenario) -> DragLaw {
             voidage: s.drag.voidage,
         },
         DragLawName::BinghamFedem => DragLaw::Bingham {
-            yield_stress_pa: f.yield_stress_pa.unwrap_or(0.0),
+            yield_stress_pa: rheology.yield_stress_pa(),
             plastic_viscosity_pa_s: mu,
         },
     }
 }
 
-/// The drag of one sphere of diameter `d_m` in the scenario's fluid.
-pub fn sphere_drag(s: &Scenario, d_m: f64) -> SphereDrag {
-    SphereDrag::new(drag_law(s), d_m, s.fluid.density_kg_m3)
+/// The drag of one sphere of diameter `d_m` in the scenario's fluid of rheology `rheology`.
+pub fn sphere_drag(s: &Scenario, rheology: RheologyModel, d_m: f64) -> SphereDrag {
+    SphereDrag::new(drag_law(s, rheology), d_m, s.fluid.density_kg_m3)
 }

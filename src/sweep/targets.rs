@@ -8,7 +8,7 @@ use super::plan::Case;
 use super::table::{rel, Row, Status};
 use crate::error::Error;
 use crate::run::Prepared;
-use crate::scenario::Kind;
+use crate::scenario::{FunnelPourSpec, Kind, SceneSpec};
 use crate::scenes::free_settling::{self, RunOptions, SphereResult};
 use std::time::Instant;
 
@@ -19,26 +19,26 @@ pub const SWEEPABLE: [Kind; 3] = [Kind::FreeSettling, Kind::Drop, Kind::FunnelPo
 pub const SWEEPABLE_NAMES: [&str; 3] = ["free_settling", "drop", "funnel_pour"];
 
 /// How the cases of a scenario run.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Target {
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Target<'a> {
     /// Every sphere alone ([`free_settling::run`]): kinds `free_settling` and `drop`.
     Spheres,
-    /// The first repeat of a funnel pour ([`crate::scenes::funnel::run_repeat`]).
-    FunnelPour,
+    /// The first repeat of a funnel pour ([`crate::scenes::funnel::run_repeat`]), of this spec.
+    FunnelPour(&'a FunnelPourSpec),
 }
 
-impl Target {
+impl<'a> Target<'a> {
     /// The target of a prepared scenario, or a bad input (exit 2) naming its file and kind.
-    pub fn of(p: &Prepared) -> Result<Self, Error> {
-        match p.scenario.kind {
-            Kind::FreeSettling | Kind::Drop => Ok(Self::Spheres),
-            Kind::FunnelPour => Ok(Self::FunnelPour),
-            other => Err(Error::bad_input(
+    pub fn of(p: &'a Prepared) -> Result<Self, Error> {
+        match &p.scene {
+            SceneSpec::FreeSettling(_) | SceneSpec::Drop(_) => Ok(Self::Spheres),
+            SceneSpec::FunnelPour(f) => Ok(Self::FunnelPour(f)),
+            _ => Err(Error::bad_input(
                 &p.path,
                 Some("kind"),
                 format!(
                     "a scenario of kind `{}` cannot be swept; kinds that can: {}; nothing was written",
-                    kind_name(other),
+                    kind_name(p.scenario.kind),
                     SWEEPABLE_NAMES.join(", ")
                 ),
             )),
@@ -49,7 +49,7 @@ impl Target {
     pub fn run_case(self, p: &Prepared, c: &Case) -> Vec<Row> {
         match self {
             Self::Spheres => spheres_case(p, c),
-            Self::FunnelPour => funnel_case(p, c),
+            Self::FunnelPour(f) => funnel_case(p, f, c),
         }
     }
 }
@@ -108,7 +108,7 @@ fn spheres_case(p: &Prepared, c: &Case) -> Vec<Row> {
         timeseries: false,
     };
     let t0 = Instant::now();
-    let res = free_settling::run(&p.scenario, &p.spheres, opts);
+    let res = free_settling::run(&p.scenario, p.rheology, &p.spheres, opts);
     let wall = t0.elapsed().as_secs_f64();
     match res {
         Ok(results) => results
@@ -164,7 +164,7 @@ fn spheres_case(p: &Prepared, c: &Case) -> Vec<Row> {
 /// the case's dt and integrator; quantities: balls in the paste and in the domain at
 /// `funnel.count_time_s`, balls lost through a wall, and the lowest and highest final ball
 /// centre, m. No reference value: errors are against the finest stable dt only.
-fn funnel_case(p: &Prepared, c: &Case) -> Vec<Row> {
+fn funnel_case(p: &Prepared, f: &FunnelPourSpec, c: &Case) -> Vec<Row> {
     const QUANTITIES: [&str; 5] = [
         "balls_in_paste_at_count",
         "balls_in_domain_at_count",
@@ -175,9 +175,8 @@ fn funnel_case(p: &Prepared, c: &Case) -> Vec<Row> {
     let mut q = p.clone();
     q.scenario.time.dt_s = c.dt_s;
     q.scenario.time.integrator = c.integrator;
-    let seed = q.scenario.repeats.as_ref().map(|r| r.seed).unwrap_or(0);
     let t0 = Instant::now();
-    let res = crate::scenes::funnel::run_repeat(&q, 0, seed);
+    let res = crate::scenes::funnel::run_repeat(&q, f, 0, f.repeats.seed);
     let wall = t0.elapsed().as_secs_f64();
     let row = |status, reason: String, steps, quantity: &str, value| Row {
         steps,

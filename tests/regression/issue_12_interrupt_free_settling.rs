@@ -135,7 +135,12 @@ fn an_interrupted_runner_returns_interrupted() {
     let p = settle::run::prepare(&file, None, &[]).unwrap();
     settle::interrupt::request();
     let t0 = Instant::now();
-    let r = run_interruptible(&p.scenario, &p.spheres, RunOptions::of(&p.scenario));
+    let r = run_interruptible(
+        &p.scenario,
+        p.rheology,
+        &p.spheres,
+        RunOptions::of(&p.scenario),
+    );
     assert!(matches!(r, Err(Halt::Interrupted)), "{r:?}");
     assert!(t0.elapsed() < Duration::from_secs(1));
 }

@@ -314,7 +314,7 @@ fn a_ball_dropped_into_paste_through_rapier_stops_where_the_drop_scene_stops_it(
             integrator: Integrator::Exponential,
             timeseries: false,
         };
-        let drop = run_sphere::<3>(&p.scenario, case, opts).expect("drop");
+        let drop = run_sphere::<3>(&p.scenario, p.rheology, case, opts).expect("drop");
         let expected = drop.final_bottom_depth_m - 0.5 * D;
         let got = rapier_drop_depth(0.15, 1e-5, sub);
         println!("{name}: drop scene {expected:.5} m, rapier {got:.5} m");
@@ -353,7 +353,7 @@ fn the_full_scenario_loads_with_the_documented_geometry() {
     let p = settle::run::prepare(std::path::Path::new(SCENARIO), None, &[]).expect("scenario");
     let f = p.scenario.funnel.as_ref().unwrap();
     assert_eq!(f.count, 68);
-    let geo = Geometry::of(&p.scenario);
+    let geo = Geometry::of(p.scene.funnel_pour().expect("funnel_pour"));
     assert!(
         (geo.outlet_z_m - 0.30).abs() < 1e-12,
         "outlet 15 cm above the paste"
@@ -371,7 +371,7 @@ fn the_full_scenario_loads_with_the_documented_geometry() {
 fn random_placement_fills_the_funnel_without_overlap() {
     use settle::scenes::funnel::{place_balls, Geometry};
     let p = settle::run::prepare(std::path::Path::new(SCENARIO), None, &[]).expect("scenario");
-    let geo = Geometry::of(&p.scenario);
+    let geo = Geometry::of(p.scene.funnel_pour().expect("funnel_pour"));
     let d = vec![D; 68];
     let a = place_balls(&geo, &d, 1).expect("placed");
     assert_eq!(a, place_balls(&geo, &d, 1).unwrap(), "seeded");
@@ -397,7 +397,7 @@ fn a_small_pour_puts_every_ball_in_the_paste_and_loses_none() {
     // A 10 cm collar on the cylinder keeps in the balls that bounce off a ball at the surface
     // (without it, 4 of these 16 escape over the rim: see the report of the full scenario).
     let p = small(&["funnel.wall_above_surface_m=0.1", "funnel.fill_time_s=0.3"]);
-    let results = simulate(&p).expect("runs");
+    let results = simulate(&p, p.scene.funnel_pour().expect("funnel_pour")).expect("runs");
     assert_eq!(results.len(), 2);
     for r in &results {
         let c = r.census();
@@ -432,8 +432,8 @@ fn a_repeat_is_reproducible_from_its_seed() {
         "time.end_s=0.05",
         "funnel.count_time_s=0.05",
     ]);
-    let a = run_repeat(&p, 0, 11).expect("runs");
-    let b = run_repeat(&p, 5, 11).expect("runs");
+    let a = run_repeat(&p, p.scene.funnel_pour().expect("funnel_pour"), 0, 11).expect("runs");
+    let b = run_repeat(&p, p.scene.funnel_pour().expect("funnel_pour"), 5, 11).expect("runs");
     assert_eq!(a.balls, b.balls);
 }
 
@@ -531,7 +531,7 @@ fn median_z_in_paste(extra: &[&str]) -> f64 {
     let mut ov = vec!["repeats.count=2".to_string(), "time.dt_s=1e-4".to_string()];
     ov.extend(extra.iter().map(|s| s.to_string()));
     let p = settle::run::prepare(std::path::Path::new(SCENARIO), None, &ov).expect("scenario");
-    let mut z: Vec<f64> = simulate(&p)
+    let mut z: Vec<f64> = simulate(&p, p.scene.funnel_pour().expect("funnel_pour"))
         .expect("runs")
         .iter()
         .flat_map(|r| r.balls.iter())

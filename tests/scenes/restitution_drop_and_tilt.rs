@@ -18,7 +18,7 @@ use crate::common::{col, read_csv, tmp};
 use settle::contact::{constant_fit, restitution_fits, RestitutionLaw};
 use settle::fluid::{buoyancy_n, sphere_mass_kg, DragLaw, SphereDrag};
 use settle::run::{prepare, run_one};
-use settle::scenes::restitution_drop::{drop_settings, simulate_drop};
+use settle::scenes::restitution_drop::{drop_settings, simulate_drop, Setup};
 use settle::scenes::tilt_friction::{tilt_threshold, TiltSetup};
 use std::path::Path;
 
@@ -251,9 +251,9 @@ fn restitution_follows_the_scenario_value() {
             ],
         )
         .unwrap();
-        let ball = &p.spheres[0].spec;
-        let settings = drop_settings(&p.scenario, ball, 0.188);
-        let o = simulate_drop(&p.scenario, ball, 0.188, settings).unwrap();
+        let setup = Setup::of(p.scene.restitution_drop().unwrap(), p.rheology);
+        let settings = drop_settings(&p.scenario, &setup, 0.188);
+        let o = simulate_drop(&p.scenario, &setup, 0.188, settings).unwrap();
         assert!(
             (o.restitution_effective / e - 1.0).abs() < 1e-3,
             "e = {e}: contact e {}",
@@ -288,10 +288,10 @@ fn speed_dependent_restitution_reaches_the_contact() {
         ],
     )
     .unwrap();
-    let ball = &p.spheres[0].spec;
-    let settings = drop_settings(&p.scenario, ball, 0.398);
+    let setup = Setup::of(p.scene.restitution_drop().unwrap(), p.rheology);
+    let settings = drop_settings(&p.scenario, &setup, 0.398);
     for h in [0.095, 0.398] {
-        let o = simulate_drop(&p.scenario, ball, h, settings).unwrap();
+        let o = simulate_drop(&p.scenario, &setup, h, settings).unwrap();
         let e = law.at(o.impact_speed_m_s);
         assert!(
             (o.restitution_effective / e - 1.0).abs() < 1e-3,
@@ -357,8 +357,7 @@ fn tilt_threshold_follows_the_friction() {
         &["contacts.friction=0.5".into()],
     )
     .unwrap();
-    let spec = p.scenario.tilt.as_ref().unwrap();
-    let setup = TiltSetup::from_scenario(&p.scenario, spec);
+    let setup = TiltSetup::from_scenario(&p.scenario, p.scene.tilt_friction().unwrap());
     let search = tilt_threshold(&setup, &[20.0, 26.0, 27.0, 35.0], 0.1).unwrap();
     let (lo, hi) = search.bracket.expect("bracketed");
     let expected = 0.5f64.atan().to_degrees();

@@ -54,7 +54,7 @@ fn settling_distances_match_an_independent_integration() {
             integrator: p.scenario.time.integrator,
             timeseries: false,
         };
-        for r in run(&p.scenario, &p.spheres, opts).unwrap() {
+        for r in run(&p.scenario, p.rheology, &p.spheres, opts).unwrap() {
             let d = r.case.spec.diameter_m;
             let hf = r.case.fall_height_m.unwrap();
             assert_eq!(r.stop, StopReason::Static, "{} did not stop", r.case.id);
@@ -95,7 +95,7 @@ fn partial_submergence_sinks_a_ball_at_rest_to_its_static_balance() {
         integrator: p.scenario.time.integrator,
         timeseries: false,
     };
-    for r in run(&p.scenario, &p.spheres, opts).unwrap() {
+    for r in run(&p.scenario, p.rheology, &p.spheres, opts).unwrap() {
         if r.case.fall_height_m != Some(0.0) {
             continue;
         }

@@ -24,7 +24,7 @@ fn run_with(dt: f64, integrator: Integrator, overrides: &[&str]) -> Outcome {
         integrator,
         timeseries: false,
     };
-    run(&p.scenario, &p.spheres, opts).map(|mut v| v.remove(0))
+    run(&p.scenario, p.rheology, &p.spheres, opts).map(|mut v| v.remove(0))
 }
 
 /// Acceptance: max |v − v_analytic| / v_t < 1e-6 at every dt from 1e-8 to 1e-2 s
@@ -184,6 +184,8 @@ fn set_overrides_change_the_physics() {
         integrator: Integrator::Exponential,
         timeseries: false,
     };
-    let r = run(&p.scenario, &p.spheres, opts).unwrap().remove(0);
+    let r = run(&p.scenario, p.rheology, &p.spheres, opts)
+        .unwrap()
+        .remove(0);
     assert!((r.v_analytic_m_s.unwrap() - 9.265e-3 / 2.0).abs() < 1e-12);
 }

@@ -132,7 +132,7 @@ fn run_all(dt: f64) -> Vec<SphereResult> {
             integrator: p.scenario.time.integrator,
             timeseries: true,
         };
-        out.extend(run(&p.scenario, &p.spheres, opts).unwrap());
+        out.extend(run(&p.scenario, p.rheology, &p.spheres, opts).unwrap());
     }
     out
 }

@@ -84,20 +84,8 @@ pub enum RheologyModel {
 }
 
 impl Fluid {
-    /// The viscosity every drag law and every kind takes, Pa s: η of a Newtonian fluid, the
-    /// plastic viscosity η_B of a Bingham fluid. Validation guarantees the one the rheology
-    /// needs is present; NaN only for a hand-built `Fluid` that lacks it (never a silent
-    /// default).
-    pub fn drag_viscosity_pa_s(&self) -> f64 {
-        match self.rheology {
-            Rheology::Newtonian => self.viscosity_pa_s,
-            Rheology::Bingham => self.plastic_viscosity_pa_s,
-        }
-        .unwrap_or(f64::NAN)
-    }
-
     /// The rheology with its parameters, or `None` when one the rheology needs is missing
-    /// (never for a validated scenario).
+    /// (never for a validated scenario, whose rheology is [`crate::scenario::Parsed::rheology`]).
     pub fn model(&self) -> Option<RheologyModel> {
         Some(match self.rheology {
             Rheology::Newtonian => RheologyModel::Newtonian {

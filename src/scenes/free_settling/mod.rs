@@ -68,7 +68,7 @@ pub fn run_scene(
 ) -> Result<(Vec<SphereResult>, SceneReport), Error> {
     let s = &p.scenario;
     let interrupted = || Error::InterruptedUnwritten(p.path.clone());
-    let results = match run_interruptible(s, &p.spheres, RunOptions::of(s)) {
+    let results = match run_interruptible(s, p.rheology, &p.spheres, RunOptions::of(s)) {
         Ok(r) => r,
         Err(Halt::Unstable(u)) => return Err(Error::Unstable(p.path.clone(), u)),
         Err(Halt::Interrupted) => return Err(interrupted()),

@@ -1,11 +1,11 @@
-//! Setup of a free-settling run: the options that are not in the scenario file, the dimension,
-//! and the quantities of one sphere fixed at release (drag, weights, force balance, schedule,
+//! Setup of a free-settling run: the options that are not in the scenario file and the
+//! quantities of one sphere fixed at release (drag, weights, force balance, schedule,
 //! detectors).
 
 use crate::dynamics::Integrator;
 use crate::fluid::{sphere_mass_kg, DragLaw, SphereDrag};
 use crate::scenario::inputs::SphereCase;
-use crate::scenario::{EngineChoice, Scenario, Submergence};
+use crate::scenario::{EngineChoice, RheologyModel, Scenario, Submergence};
 use crate::scenes::sphere_drag;
 use nalgebra::SVector;
 
@@ -28,26 +28,6 @@ impl RunOptions {
             dt_s: s.time.dt_s,
             integrator: s.time.integrator,
             timeseries: s.record.timeseries,
-        }
-    }
-}
-
-/// The dimension of a scene: the one place where `scenario.dimension` picks a const generic.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Dim {
-    /// 2D (rapier2d, gravity along −y).
-    Two,
-    /// 3D (rapier3d, gravity along −z).
-    Three,
-}
-
-impl Dim {
-    /// The scenario's dimension (validation admits only 2 and 3; anything else reads as 3).
-    pub fn of(s: &Scenario) -> Self {
-        if s.dimension == crate::scenario::Dim::Two {
-            Self::Two
-        } else {
-            Self::Three
         }
     }
 }
@@ -129,12 +109,17 @@ pub(super) struct SphereSetup<const D: usize> {
 
 impl<const D: usize> SphereSetup<D> {
     /// The setup of `case` in `scenario` with the options `opts`.
-    pub fn new(scenario: &Scenario, case: &SphereCase, opts: RunOptions) -> Self {
+    pub fn new(
+        scenario: &Scenario,
+        rheology: RheologyModel,
+        case: &SphereCase,
+        opts: RunOptions,
+    ) -> Self {
         let sp = &case.spec;
         let d = sp.diameter_m;
         let g = scenario.gravity_m_s2;
         let rho_f = scenario.fluid.density_kg_m3;
-        let drag: SphereDrag = sphere_drag(scenario, d);
+        let drag: SphereDrag = sphere_drag(scenario, rheology, d);
         let m = sphere_mass_kg(d, sp.density_kg_m3);
         let net_weight = (m - sphere_mass_kg(d, rho_f)) * g; // > 0: sinks
         let mut down = SVector::<f64, D>::zeros();

@@ -3,7 +3,7 @@
 //! decide whether to stop — and the runners over all spheres (rayon, results in input order),
 //! with one dispatch on the dimension and the engine.
 
-use super::setup::{uses_rapier, Dim, RunOptions, SphereSetup};
+use super::setup::{uses_rapier, RunOptions, SphereSetup};
 use crate::contact::rayleigh_time_s;
 use crate::dynamics::{advance, explicit_stable_dt_s, Monitor, Motion, Step, Unstable};
 use crate::engine::{dim2, dim3, BodyId, EngineSettings};
@@ -11,6 +11,7 @@ use crate::fluid::bingham::reynolds_bingham;
 use crate::fluid::immersion;
 use crate::fluid::{sphere_mass_kg, DragLaw, DragRegime, SphereDrag};
 use crate::scenario::inputs::SphereCase;
+use crate::scenario::{Dim, RheologyModel};
 use crate::scenario::{Scenario, Submergence};
 use nalgebra::SVector;
 use std::collections::VecDeque;
@@ -133,10 +134,11 @@ fn stokes_analytic(vt: f64, tau: f64, v0: f64, t: f64) -> (f64, f64) {
 /// results in input order. Not interruptible (see [`run_interruptible`]).
 pub fn run(
     scenario: &Scenario,
+    rheology: RheologyModel,
     cases: &[SphereCase],
     opts: RunOptions,
 ) -> Result<Vec<SphereResult>, Unstable> {
-    run_cases(scenario, cases, opts, false, false).map_err(uninterruptible)
+    run_cases(scenario, rheology, cases, opts, false, false).map_err(uninterruptible)
 }
 
 /// Runs every sphere through its own Rapier world with the force hook (`engine = "rapier"`):
@@ -144,20 +146,22 @@ pub fn run(
 /// (tests/engine/free_settling.rs); it costs ~300× more per step.
 pub fn run_rapier(
     scenario: &Scenario,
+    rheology: RheologyModel,
     cases: &[SphereCase],
     opts: RunOptions,
 ) -> Result<Vec<SphereResult>, Unstable> {
-    run_cases(scenario, cases, opts, true, false).map_err(uninterruptible)
+    run_cases(scenario, rheology, cases, opts, true, false).map_err(uninterruptible)
 }
 
 /// Runs every sphere on the engine the scenario asks for, stopping within
 /// [`INTERRUPT_CHECK_STEPS`] steps of every running sphere once an interruption is requested.
 pub fn run_interruptible(
     scenario: &Scenario,
+    rheology: RheologyModel,
     cases: &[SphereCase],
     opts: RunOptions,
 ) -> Result<Vec<SphereResult>, Halt> {
-    run_cases(scenario, cases, opts, uses_rapier(scenario), true)
+    run_cases(scenario, rheology, cases, opts, uses_rapier(scenario), true)
 }
 
 fn uninterruptible(h: Halt) -> Unstable {
@@ -171,18 +175,19 @@ fn uninterruptible(h: Halt) -> Unstable {
 /// the first halt wins.
 fn run_cases(
     scenario: &Scenario,
+    rheology: RheologyModel,
     cases: &[SphereCase],
     opts: RunOptions,
     rapier: bool,
     interruptible: bool,
 ) -> Result<Vec<SphereResult>, Halt> {
     use rayon::prelude::*;
-    let dim = Dim::of(scenario);
-    let one = |c: &SphereCase| match (dim, rapier) {
-        (Dim::Two, false) => run_sphere_with::<2>(scenario, c, opts, None, interruptible),
-        (Dim::Three, false) => run_sphere_with::<3>(scenario, c, opts, None, interruptible),
-        (Dim::Two, true) => rapier_sphere::<2, dim2::World>(scenario, c, opts, interruptible),
-        (Dim::Three, true) => rapier_sphere::<3, dim3::World>(scenario, c, opts, interruptible),
+    let (s, rh, on) = (scenario, rheology, interruptible);
+    let one = |c: &SphereCase| match (s.dimension, rapier) {
+        (Dim::Two, false) => run_sphere_with::<2>(s, rh, c, opts, None, on),
+        (Dim::Three, false) => run_sphere_with::<3>(s, rh, c, opts, None, on),
+        (Dim::Two, true) => rapier_sphere::<2, dim2::World>(s, rh, c, opts, on),
+        (Dim::Three, true) => rapier_sphere::<3, dim3::World>(s, rh, c, opts, on),
     };
     cases.par_iter().map(one).collect()
 }
@@ -190,10 +195,11 @@ fn run_cases(
 /// Runs one sphere in `D` dimensions (vertical = last axis) on the free engine.
 pub fn run_sphere<const D: usize>(
     scenario: &Scenario,
+    rheology: RheologyModel,
     case: &SphereCase,
     opts: RunOptions,
 ) -> Result<SphereResult, Unstable> {
-    run_sphere_with::<D>(scenario, case, opts, None, false).map_err(uninterruptible)
+    run_sphere_with::<D>(scenario, rheology, case, opts, None, false).map_err(uninterruptible)
 }
 
 /// A step taken by an engine instead of [`advance`]: given dt, advance the sphere and report its
@@ -223,12 +229,13 @@ struct State<const D: usize> {
 /// The loop of one sphere, with the steps taken by `external` (a Rapier world) when given.
 fn run_sphere_with<const D: usize>(
     scenario: &Scenario,
+    rheology: RheologyModel,
     case: &SphereCase,
     opts: RunOptions,
     mut external: Option<ExternalStep<'_, D>>,
     interruptible: bool,
 ) -> Result<SphereResult, Halt> {
-    let su = SphereSetup::<D>::new(scenario, case, opts);
+    let su = SphereSetup::<D>::new(scenario, rheology, case, opts);
     let d = su.d_m;
     let mut st = State {
         v: su.down * su.v0_m_s,
@@ -620,12 +627,13 @@ impl SphereWorld<3> for dim3::World {
 /// [`run_sphere_with`] with Rapier taking the steps.
 fn rapier_sphere<const D: usize, W: SphereWorld<D>>(
     scenario: &Scenario,
+    rheology: RheologyModel,
     case: &SphereCase,
     opts: RunOptions,
     interruptible: bool,
 ) -> Result<SphereResult, Halt> {
     let d = case.spec.diameter_m;
-    let drag = super::super::sphere_drag(scenario, d);
+    let drag = super::super::sphere_drag(scenario, rheology, d);
     let g = scenario.gravity_m_s2;
     let depth0 = super::release_depth_m(scenario, case);
     let v_max = drag
@@ -670,5 +678,12 @@ fn rapier_sphere<const D: usize, W: SphereWorld<D>>(
         prev = x;
         Ok(out)
     };
-    run_sphere_with::<D>(scenario, case, opts, Some(&mut step), interruptible)
+    run_sphere_with::<D>(
+        scenario,
+        rheology,
+        case,
+        opts,
+        Some(&mut step),
+        interruptible,
+    )
 }

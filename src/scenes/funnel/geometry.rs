@@ -1,9 +1,9 @@
 //! The scene's geometry (see the [module doc](super)): the cylinder, the funnel and its column,
 //! where a ball is, and the colliders that make the walls.
 
-use super::{funnel, Place, DOMAIN_MARGIN_M};
+use super::{Place, DOMAIN_MARGIN_M};
 use crate::engine::dim3;
-use crate::scenario::Scenario;
+use crate::scenario::FunnelPourSpec;
 use rapier3d_f64::math::{Pose, Rotation, Vector as RVector};
 use rapier3d_f64::prelude::{ColliderBuilder, ColliderHandle};
 
@@ -35,18 +35,14 @@ pub struct Geometry {
 }
 
 impl Geometry {
-    /// The geometry of a validated `funnel_pour` scenario.
-    pub fn of(s: &Scenario) -> Self {
-        let f = funnel(s);
-        let c = s
-            .container
-            .as_ref()
-            .expect("validated: funnel_pour has a container");
-        let h = c.height_m;
+    /// The geometry of a `funnel_pour` scenario: its `[funnel]` table and its cylinder.
+    pub fn of(spec: &FunnelPourSpec) -> Self {
+        let f = &spec.funnel;
+        let h = spec.height_m;
         let outlet_z = h + f.outlet_above_surface_m;
         let (r_out, r_top) = (0.5 * f.outlet_diameter_m, 0.5 * f.top_diameter_m);
         Self {
-            cylinder_radius_m: 0.5 * c.diameter_m.expect("validated: cylinder"),
+            cylinder_radius_m: spec.cylinder_radius_m,
             paste_height_m: h,
             wall_top_z_m: h + f.wall_above_surface_m,
             outlet_z_m: outlet_z,

@@ -68,7 +68,7 @@ pub use repeat::{run_repeat, run_repeat_with, simulate, simulate_with, RepeatOut
 
 use crate::error::Error;
 use crate::io::StagedDir;
-use crate::scenario::{Contacts, FunnelSpec, Repeats, Scenario};
+use crate::scenario::FunnelPourSpec;
 use crate::scenes::{Prepared, RunContext, SceneReport};
 use std::time::Instant;
 
@@ -81,31 +81,17 @@ pub const DOMAIN_MARGIN_M: f64 = 0.1;
 /// Default interval of the time series when `record.every_s` is not set, s.
 pub const DEFAULT_RECORD_EVERY_S: f64 = 0.01;
 
-/// The `[funnel]` table of a validated `funnel_pour` scenario.
-fn funnel(s: &Scenario) -> &FunnelSpec {
-    s.funnel
-        .as_ref()
-        .expect("validated: funnel_pour has a [funnel] table")
-}
-
-/// The `[contacts]` table of a validated `funnel_pour` scenario.
-fn contacts(s: &Scenario) -> &Contacts {
-    s.contacts
-        .as_ref()
-        .expect("validated: funnel_pour has a [contacts] table")
-}
-
-/// The repeats of a scenario (default: one, seed 0).
-pub fn repeats(s: &Scenario) -> Repeats {
-    s.repeats.clone().unwrap_or(Repeats { count: 1, seed: 0 })
-}
-
 /// Funnel pour (kind `funnel_pour`): runs the repeats, writes `balls.csv`, `counts.csv`,
 /// `timeseries.csv`, `z_distribution.csv` + `.svg` and `presence.csv` + `.svg` (see
 /// [`output`]). Interrupted, it writes the repeats that finished.
-pub fn run(p: &Prepared, stage: &StagedDir, ctx: &RunContext) -> Result<SceneReport, Error> {
+pub fn run(
+    p: &Prepared,
+    f: &FunnelPourSpec,
+    stage: &StagedDir,
+    ctx: &RunContext,
+) -> Result<SceneReport, Error> {
     let t0 = Instant::now();
-    let (results, interrupted) = simulate_with(p, ctx)?;
+    let (results, interrupted) = simulate_with(p, f, ctx)?;
     if results.is_empty() {
         return Ok(SceneReport {
             interrupted,
@@ -114,12 +100,12 @@ pub fn run(p: &Prepared, stage: &StagedDir, ctx: &RunContext) -> Result<SceneRep
         });
     }
     let wall_s = t0.elapsed().as_secs_f64();
-    output::write_all(p, &results, stage)?;
+    output::write_all(p, f, &results, stage)?;
     Ok(SceneReport {
         steps: results.iter().map(|r| r.steps).sum(),
-        bodies: funnel(&p.scenario).count * results.len(),
-        engine_settings: Some(report::engine_settings(p)),
-        lines: report::lines(p, &results, wall_s),
+        bodies: f.funnel.count * results.len(),
+        engine_settings: Some(report::engine_settings(p, f)),
+        lines: report::lines(p, f, &results, wall_s),
         interrupted,
     })
 }

@@ -16,9 +16,10 @@
 //!   point (x, y, Z) inside a ball's sphere, as a cut through the hardened paste shows it
 //!   (f-EDEM Fig. 22, 15 repeats).
 
-use super::{funnel, Geometry, Place, RepeatResult};
+use super::{Geometry, Place, RepeatResult};
 use crate::error::Error;
 use crate::io::{num, StagedDir};
+use crate::scenario::FunnelPourSpec;
 use crate::scenes::Prepared;
 use plotters::prelude::*;
 use std::io;
@@ -431,10 +432,15 @@ pub fn write_presence_chart(
 }
 
 /// Writes every output file of a funnel pour into the staging folder.
-pub fn write_all(p: &Prepared, results: &[RepeatResult], stage: &StagedDir) -> Result<(), Error> {
+pub fn write_all(
+    p: &Prepared,
+    spec: &FunnelPourSpec,
+    results: &[RepeatResult],
+    stage: &StagedDir,
+) -> Result<(), Error> {
     let s = &p.scenario;
-    let f = funnel(s);
-    let geo = Geometry::of(s);
+    let f = &spec.funnel;
+    let geo = Geometry::of(spec);
     let io = |e: io::Error| Error::Io(stage.dest().to_path_buf(), e);
     let reps = results.len();
     write_balls(&stage.path("balls.csv"), results).map_err(io)?;

@@ -5,12 +5,13 @@
 //! repeats in parallel.
 
 use super::{
-    contacts, funnel, place_balls, repeats, Ball, Census, Geometry, Place, RepeatResult, Sample,
-    DEFAULT_RECORD_EVERY_S, REST_WINDOW_S,
+    place_balls, Ball, Census, Geometry, Place, RepeatResult, Sample, DEFAULT_RECORD_EVERY_S,
+    REST_WINDOW_S,
 };
 use crate::dynamics::Unstable;
 use crate::engine::{dim3, BodyId, EngineSettings};
 use crate::error::Error;
+use crate::scenario::FunnelPourSpec;
 use crate::scenes::sphere_drag;
 use crate::scenes::{Prepared, RunContext};
 use rapier3d_f64::prelude::ColliderHandle;
@@ -48,8 +49,13 @@ pub enum RepeatOutcome {
 }
 
 /// Runs repeat `index` (seed `seed`) of a funnel pour from its start.
-pub fn run_repeat(p: &Prepared, index: usize, seed: u64) -> Result<RepeatResult, Error> {
-    match run_repeat_with(p, index, seed, &RunContext::default())? {
+pub fn run_repeat(
+    p: &Prepared,
+    f: &FunnelPourSpec,
+    index: usize,
+    seed: u64,
+) -> Result<RepeatResult, Error> {
+    match run_repeat_with(p, f, index, seed, &RunContext::default())? {
         RepeatOutcome::Done(r) => Ok(r),
         RepeatOutcome::Interrupted => Err(Error::InterruptedUnwritten(p.path.clone())),
     }
@@ -62,12 +68,12 @@ fn position(world: &dim3::World, id: BodyId) -> [f64; 3] {
 }
 
 /// The state of repeat `index` (seed `seed`) at t = 0: the world built, the balls placed.
-fn initial_repeat(p: &Prepared, seed: u64) -> Result<RepeatState, Error> {
+fn initial_repeat(p: &Prepared, f: &FunnelPourSpec, seed: u64) -> Result<RepeatState, Error> {
     let s = &p.scenario;
-    let ct = contacts(s);
-    let geo = Geometry::of(s);
+    let ct = &f.contacts;
+    let geo = Geometry::of(f);
     let g = s.gravity_m_s2;
-    let n = funnel(s).count;
+    let n = f.funnel.count;
     let specs: Vec<_> = (0..n)
         .map(|i| &p.spheres[i % p.spheres.len()].spec)
         .collect();
@@ -91,7 +97,7 @@ fn initial_repeat(p: &Prepared, seed: u64) -> Result<RepeatState, Error> {
                 dim3::Vector::new(x[0], x[1], x[2]),
                 sp.diameter_m,
                 sp.density_kg_m3,
-                sphere_drag(s, sp.diameter_m),
+                sphere_drag(s, p.rheology, sp.diameter_m),
                 g,
             ))
         })
@@ -141,9 +147,9 @@ struct Schedule {
 }
 
 impl Schedule {
-    fn of(p: &Prepared) -> Self {
+    fn of(p: &Prepared, spec: &FunnelPourSpec) -> Self {
         let s = &p.scenario;
-        let f = funnel(s);
+        let f = &spec.funnel;
         let dt = s.time.dt_s;
         let n_fill = (f.fill_time_s / dt).round() as u64;
         Self {
@@ -177,13 +183,19 @@ struct RepeatRun<'a> {
 }
 
 impl<'a> RepeatRun<'a> {
-    fn new(p: &'a Prepared, index: usize, seed: u64, state: RepeatState) -> Self {
+    fn new(
+        p: &'a Prepared,
+        f: &FunnelPourSpec,
+        index: usize,
+        seed: u64,
+        state: RepeatState,
+    ) -> Self {
         Self {
             p,
             index,
             seed,
-            geo: Geometry::of(&p.scenario),
-            schedule: Schedule::of(p),
+            geo: Geometry::of(f),
+            schedule: Schedule::of(p, f),
             ids: state.ids.clone(),
             diameters: state.diameters.clone(),
             state,
@@ -392,6 +404,7 @@ impl<'a> Checkpoints<'a> {
 /// it.
 pub fn run_repeat_with(
     p: &Prepared,
+    f: &FunnelPourSpec,
     index: usize,
     seed: u64,
     ctx: &RunContext,
@@ -401,9 +414,9 @@ pub fn run_repeat_with(
     let state = match checkpoints.resume()? {
         Some(Resumed::Done(r)) => return Ok(RepeatOutcome::Done(r)),
         Some(Resumed::From(st)) => *st,
-        None => initial_repeat(p, seed)?,
+        None => initial_repeat(p, f, seed)?,
     };
-    let mut run = RepeatRun::new(p, index, seed, state);
+    let mut run = RepeatRun::new(p, f, index, seed, state);
     let mut timer = ctx.checkpoints.as_ref().map(|c| c.timer());
     while !run.finished() {
         if crate::interrupt::requested() {
@@ -423,8 +436,8 @@ pub fn run_repeat_with(
 }
 
 /// Runs every repeat of a funnel pour in parallel (rayon); results in repeat order.
-pub fn simulate(p: &Prepared) -> Result<Vec<RepeatResult>, Error> {
-    let (results, interrupted) = simulate_with(p, &RunContext::default())?;
+pub fn simulate(p: &Prepared, f: &FunnelPourSpec) -> Result<Vec<RepeatResult>, Error> {
+    let (results, interrupted) = simulate_with(p, f, &RunContext::default())?;
     if interrupted {
         return Err(Error::InterruptedUnwritten(p.path.clone()));
     }
@@ -433,14 +446,18 @@ pub fn simulate(p: &Prepared) -> Result<Vec<RepeatResult>, Error> {
 
 /// [`simulate`] with checkpoints, resumption and progress as `ctx` says. Returns the finished
 /// repeats in repeat order, and whether Ctrl-C/SIGTERM stopped some (they are then missing).
-pub fn simulate_with(p: &Prepared, ctx: &RunContext) -> Result<(Vec<RepeatResult>, bool), Error> {
+pub fn simulate_with(
+    p: &Prepared,
+    f: &FunnelPourSpec,
+    ctx: &RunContext,
+) -> Result<(Vec<RepeatResult>, bool), Error> {
     use rayon::prelude::*;
-    let r = repeats(&p.scenario);
+    let r = &f.repeats;
     let bar = crate::progress::bar(r.count as u64, &p.scenario.name, "repeats,", ctx.quiet);
     let outcomes: Vec<RepeatOutcome> = (0..r.count)
         .into_par_iter()
         .map(|i| {
-            let o = run_repeat_with(p, i, r.seed.wrapping_add(i as u64), ctx);
+            let o = run_repeat_with(p, f, i, r.seed.wrapping_add(i as u64), ctx);
             bar.inc(1);
             o
         })

@@ -1,16 +1,17 @@
 //! The console summary of a funnel pour and the engine settings it records in `run.toml`.
 
-use super::{contacts, funnel, Census, Geometry, Place, RepeatResult};
+use super::{Census, Geometry, Place, RepeatResult};
 use crate::engine::EngineSettings;
+use crate::scenario::FunnelPourSpec;
 use crate::scenario::Submergence;
 use crate::scenes::Prepared;
 
 /// The engine settings of the scene: [`EngineSettings::for_scene`] for the smallest ball and the
 /// free-fall speed from the top of the column to the bottom, √(2 g z_top), with the contacts'
 /// friction.
-pub fn engine_settings(p: &Prepared) -> EngineSettings {
+pub fn engine_settings(p: &Prepared, f: &FunnelPourSpec) -> EngineSettings {
     let s = &p.scenario;
-    let geo = Geometry::of(s);
+    let geo = Geometry::of(f);
     let d_min = p
         .spheres
         .iter()
@@ -18,18 +19,18 @@ pub fn engine_settings(p: &Prepared) -> EngineSettings {
         .fold(f64::INFINITY, f64::min);
     let v_max = (2.0 * s.gravity_m_s2 * geo.column_top_z_m).sqrt();
     let mut settings = EngineSettings::for_scene(d_min, v_max);
-    settings.friction = contacts(s).friction;
+    settings.friction = f.contacts.friction;
     settings
 }
 
 /// The first line: repeats, balls, time step, submergence and wall time (`wall_s` in all, s).
-fn header(p: &Prepared, results: &[RepeatResult], wall_s: f64) -> String {
+fn header(p: &Prepared, f: &FunnelPourSpec, results: &[RepeatResult], wall_s: f64) -> String {
     let s = &p.scenario;
     let reps = results.len();
     let mean_wall = results.iter().map(|r| r.wall_time_s).sum::<f64>() / reps as f64;
     format!(
         "funnel pour: {reps} repeat(s) × {} balls, dt = {:e} s, {} submergence; wall time {wall_s:.1} s ({mean_wall:.1} s per repeat, {} threads)",
-        funnel(s).count,
+        f.funnel.count,
         s.time.dt_s,
         match s.fluid.submergence {
             Submergence::Full => "full",
@@ -115,9 +116,14 @@ fn settling(results: &[RepeatResult]) -> String {
 }
 
 /// The summary lines of a funnel pour of the (non-empty) `results`, `wall_s` of wall time in all.
-pub fn lines(p: &Prepared, results: &[RepeatResult], wall_s: f64) -> Vec<String> {
-    let f = funnel(&p.scenario);
-    let mut lines = vec![header(p, results, wall_s)];
+pub fn lines(
+    p: &Prepared,
+    spec: &FunnelPourSpec,
+    results: &[RepeatResult],
+    wall_s: f64,
+) -> Vec<String> {
+    let f = &spec.funnel;
+    let mut lines = vec![header(p, spec, results, wall_s)];
     lines.extend(
         f.count_time_s
             .and_then(|tc| at_count_time(f.count, tc, results)),

@@ -55,7 +55,7 @@ use crate::engine::dim3::World;
 use crate::engine::EngineSettings;
 use crate::error::Error;
 use crate::io::StagedDir;
-use crate::scenario::{RestitutionDropSpec, SphereSpec};
+use crate::scenario::{RestitutionDropSpec, RestitutionSpec, RheologyModel, SphereSpec};
 use crate::scenes::{Prepared, SceneReport};
 
 /// What a restitution drop needs from its prepared scenario.
@@ -63,34 +63,26 @@ use crate::scenes::{Prepared, SceneReport};
 pub struct Setup<'a> {
     /// The `[restitution_drop]` table: heights, measurements, tolerance.
     pub spec: &'a RestitutionDropSpec,
-    /// The ball (the first `[[spheres]]` entry).
+    /// The ball (the scenario's one `[[spheres]]` entry).
     pub ball: &'a SphereSpec,
     /// The contact's restitution law (`[contacts]`).
     pub law: RestitutionLaw,
+    /// The contact's Coulomb friction coefficient (`contacts.friction`).
+    pub friction: f64,
+    /// The fluid's rheology (the ball's drag).
+    pub rheology: RheologyModel,
 }
 
 impl<'a> Setup<'a> {
-    /// The setup of a prepared `restitution_drop` scenario; errors name a missing table.
-    pub fn of(p: &'a Prepared) -> Result<Self, Error> {
-        let s = &p.scenario;
-        let missing = |what: &str| {
-            Error::bad_input(
-                &p.path,
-                Some(what),
-                "missing: a restitution_drop scenario needs it",
-            )
-        };
-        let spec = s
-            .restitution_drop
-            .as_ref()
-            .ok_or_else(|| missing("restitution_drop"))?;
-        let ball = &p.spheres.first().ok_or_else(|| missing("spheres"))?.spec;
-        let law = s
-            .contacts
-            .as_ref()
-            .ok_or_else(|| missing("contacts"))?
-            .restitution_law();
-        Ok(Self { spec, ball, law })
+    /// The setup of a `restitution_drop` scenario from its spec and its fluid's rheology.
+    pub fn of(spec: &'a RestitutionSpec, rheology: RheologyModel) -> Self {
+        Self {
+            spec: &spec.drop,
+            ball: &spec.ball,
+            law: spec.contacts.restitution_law(),
+            friction: spec.contacts.friction,
+            rheology,
+        }
     }
 
     /// Largest drop height, m.
@@ -110,7 +102,7 @@ fn simulate_all(
         .drop_heights_m
         .iter()
         .map(|&h| {
-            simulate_drop(&p.scenario, setup.ball, h, settings).map_err(|err| match err {
+            simulate_drop(&p.scenario, setup, h, settings).map_err(|err| match err {
                 DropError::Unstable(u) => Error::Unstable(p.path.clone(), u),
                 other @ DropError::NoApex { .. } => {
                     Error::bad_input(&p.path, Some("time.end_s"), other.to_string())
@@ -145,13 +137,13 @@ fn fit_lines(tally: &Tally, heights: usize, tolerance: f64, fits: &[LawFit]) -> 
 
 /// Restitution drop (kind `restitution_drop`): drops the ball from every height and writes
 /// `summary.csv`, `fit.csv` (when measurements are given) and `rebound_height.svg`.
-pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, Error> {
+pub fn run(p: &Prepared, rd: &RestitutionSpec, stage: &StagedDir) -> Result<SceneReport, Error> {
     let s = &p.scenario;
     let io = |e: std::io::Error| Error::Io(stage.dest().to_path_buf(), e);
-    let setup = Setup::of(p)?;
+    let setup = Setup::of(rd, p.rheology);
     let spec = setup.spec;
     let g = s.gravity_m_s2;
-    let settings = drop_settings(s, setup.ball, setup.max_drop_height_m());
+    let settings = drop_settings(s, &setup, setup.max_drop_height_m());
     let outcomes = simulate_all(p, &setup, settings)?;
     let rows: Vec<Comparison> = outcomes
         .iter()

@@ -1,10 +1,10 @@
 //! One drop of the restitution scene: the ball falls from rest onto the plate in a Rapier 3D
 //! [`World`] and is followed to the apex of its first bounce (see the [module doc](super)).
 
-use crate::contact::RestitutionLaw;
+use super::Setup;
 use crate::engine::dim3::{up, FluidBody, World};
 use crate::engine::{EngineSettings, Unstable};
-use crate::scenario::{Scenario, SphereSpec};
+use crate::scenario::Scenario;
 use crate::scenes::sphere_drag;
 
 /// Result of one drop.
@@ -25,42 +25,37 @@ pub struct DropOutcome {
 }
 
 /// Engine settings of a drop scene: [`EngineSettings::for_scene`] for the ball's diameter and the
-/// largest impact speed √(2 g H_max), with the scenario's friction.
-pub fn drop_settings(s: &Scenario, ball: &SphereSpec, max_drop_height_m: f64) -> EngineSettings {
+/// largest impact speed √(2 g H_max), with the contact's friction.
+pub fn drop_settings(s: &Scenario, setup: &Setup, max_drop_height_m: f64) -> EngineSettings {
     let v_impact = (2.0 * s.gravity_m_s2 * max_drop_height_m).sqrt();
-    let mut settings = EngineSettings::for_scene(ball.diameter_m, v_impact);
-    settings.friction = s
-        .contacts
-        .as_ref()
-        .map_or(settings.friction, |c| c.friction);
+    let mut settings = EngineSettings::for_scene(setup.ball.diameter_m, v_impact);
+    settings.friction = setup.friction;
     settings
 }
 
-/// Drops `ball` from `drop_height_m` (lowest point above the plate) in the scenario's fluid with
-/// the scenario's restitution, time step and integrator, and returns the first rebound. Errors
+/// Drops the ball of `setup` from `drop_height_m` (lowest point above the plate) in the
+/// scenario's fluid with the setup's restitution law and the scenario's time step and integrator, and returns the first rebound. Errors
 /// with the engine's [`Unstable`], or with a message when no apex is reached within
 /// `time.end_s`.
 pub fn simulate_drop(
     s: &Scenario,
-    ball: &SphereSpec,
+    setup: &Setup,
     drop_height_m: f64,
     settings: EngineSettings,
 ) -> Result<DropOutcome, DropError> {
     let g = s.gravity_m_s2;
     let dt = s.time.dt_s;
+    let ball = setup.ball;
     let d = ball.diameter_m;
     let r = 0.5 * d;
-    let restitution = s
-        .contacts
-        .as_ref()
-        .map_or(RestitutionLaw::constant(0.0), |c| c.restitution_law());
+    let restitution = setup.law;
     let mut world = World::new(settings, g);
     world.add_floor(0.0);
     let id = world.add_sphere(FluidBody::at_rest(
         up() * (drop_height_m + r),
         d,
         ball.density_kg_m3,
-        sphere_drag(s, d),
+        sphere_drag(s, setup.rheology, d),
         g,
     ));
     world.set_restitution_law(restitution);

@@ -39,8 +39,8 @@ pub struct InstrumentSet {
 impl InstrumentSet {
     /// The instruments of scenario `s` (defaults of [`InstrumentsSpec`] without `[instruments]`).
     pub fn new(s: &Scenario, setup: &Setup) -> Self {
-        let sm = s.sample.as_ref().expect("validated");
-        let ins = s.instruments.clone().unwrap_or_default();
+        let sm = &setup.spec.sample;
+        let ins = &setup.spec.instruments;
         let rho_f = s.fluid.density_kg_m3;
         let mu = setup.viscosity_pa_s;
         let within = |t: &[f64]| -> Vec<f64> {

@@ -87,6 +87,7 @@ pub use state::{band_mass_fractions, ContactStats, Profile, State, PICTURE_BANDS
 use crate::checkpoint::Timer;
 use crate::error::Error;
 use crate::io::StagedDir;
+use crate::scenario::SedimentationSpec;
 use crate::scenes::{Prepared, RunContext, SceneReport};
 use output::Recorded;
 
@@ -95,10 +96,15 @@ use output::Recorded;
 /// checkpoints in `ctx` it saves its state and what it recorded every period and when
 /// interrupted (part `state`, see [`crate::checkpoint`]); with `ctx.resume` it continues from
 /// the saved state.
-pub fn run(p: &Prepared, stage: &StagedDir, ctx: &RunContext) -> Result<SceneReport, Error> {
+pub fn run(
+    p: &Prepared,
+    spec: &SedimentationSpec,
+    stage: &StagedDir,
+    ctx: &RunContext,
+) -> Result<SceneReport, Error> {
     let s = &p.scenario;
-    let sm = s.sample.as_ref().expect("validated");
-    let setup = setup_of(p)?;
+    let sm = &spec.sample;
+    let setup = setup_of(p, spec)?;
     let instruments = InstrumentSet::new(s, &setup);
     let (start, recorded) = match (&ctx.checkpoints, ctx.resume) {
         (Some(c), true) => c.load::<(State, Recorded)>(&s.name, "state")?,

@@ -3,7 +3,9 @@
 
 use crate::sample::{discretize, representative_grains, Distribution, Grain, SizeClass};
 use crate::scenario::inputs::read_sample;
-use crate::scenario::{Contacts, Scenario, ScenarioError};
+use crate::scenario::{
+    Contacts, Parsed, RheologyModel, Scenario, ScenarioError, SceneSpec, SedimentationSpec,
+};
 use std::path::Path;
 
 /// Largest travel of the fastest grain of a contact cluster per Rapier step, in diameters of
@@ -46,11 +48,13 @@ pub struct Setup {
     /// Projection thickness h_z, m.
     pub thickness_m: f64,
     /// Viscosity of the fluid for the drag, the squeeze film and the analysis, Pa s (η of a
-    /// Newtonian fluid, η_B of a Bingham one: [`crate::scenario::Fluid::drag_viscosity_pa_s`]).
+    /// Newtonian fluid, η_B of a Bingham one: [`RheologyModel::drag_viscosity_pa_s`]).
     pub viscosity_pa_s: f64,
     /// Contact properties of the grains' contact solve (`[contacts]`; without it frictionless
     /// grains with restitution 0).
     pub contacts: GrainContacts,
+    /// The scenario's sedimentation spec: sample, cylinder, instruments, contacts.
+    pub spec: SedimentationSpec,
 }
 
 /// Friction and restitution of the grains' contacts in the cylinder's contact solve, from the
@@ -84,47 +88,48 @@ impl GrainContacts {
     }
 }
 
-/// Builds the sample of the scenario file `path`, reading its `sample.csv`
-/// ([`crate::scenario::inputs::read_sample`]); see [`setup_with`].
+/// Builds the sample of scenario `s` (the file `path`), reading its `sample.csv`
+/// ([`crate::scenario::inputs::read_sample`]); see [`setup_with`]. The scenario is validated
+/// here: one that is invalid or of another kind is a bad input.
 pub fn setup(s: &Scenario, path: &Path) -> Result<Setup, ScenarioError> {
-    let sm = s.sample.as_ref().ok_or_else(|| {
-        ScenarioError::new(
+    let parsed = Parsed::new(s.clone(), path)?;
+    let SceneSpec::Sedimentation(spec) = &parsed.scene else {
+        return Err(ScenarioError::new(
             path,
-            Some("sample"),
-            "missing: a sedimentation scenario needs a [sample] table",
-        )
-    })?;
-    setup_with(s, path, read_sample(sm, path)?)
-}
-
-/// Builds the sample of a prepared scenario from the distribution read while it was prepared
-/// ([`crate::scenes::Prepared::sample`]; read now if absent).
-pub fn setup_of(p: &crate::scenes::Prepared) -> Result<Setup, ScenarioError> {
-    match &p.sample {
-        Some(d) => setup_with(&p.scenario, &p.path, d.clone()),
-        None => setup(&p.scenario, &p.path),
-    }
-}
-
-/// Builds the sample of the scenario file `path` from its particle-size `distribution`
-/// (read while the scenario was prepared, [`crate::scenes::Prepared::sample`]). A missing
-/// `[sample]`, `[container]` or `container.width_m` is a bad input naming the key.
-pub fn setup_with(
-    s: &Scenario,
-    path: &Path,
-    distribution: Distribution,
-) -> Result<Setup, ScenarioError> {
-    let missing = |key: &str| {
-        ScenarioError::new(
-            path,
-            Some(key),
-            "missing: a sedimentation scenario needs it",
-        )
+            Some("kind"),
+            format!(
+                "`{}` has no sample: allowed kind = \"sedimentation\"",
+                s.kind.name()
+            ),
+        ));
     };
-    let sm = s.sample.as_ref().ok_or_else(|| missing("sample"))?;
-    let ct = s.container.as_ref().ok_or_else(|| missing("container"))?;
-    let width = ct.width_m.ok_or_else(|| missing("container.width_m"))?;
-    let viscosity_pa_s = s.fluid.drag_viscosity_pa_s();
+    let distribution = read_sample(&spec.sample, path)?;
+    Ok(setup_with(spec, parsed.rheology, distribution))
+}
+
+/// Builds the sample of a prepared sedimentation scenario of spec `spec` from the distribution
+/// read while it was prepared ([`crate::scenes::Prepared::sample`]; read now if absent).
+pub fn setup_of(
+    p: &crate::scenes::Prepared,
+    spec: &SedimentationSpec,
+) -> Result<Setup, ScenarioError> {
+    let distribution = match &p.sample {
+        Some(d) => d.clone(),
+        None => read_sample(&spec.sample, &p.path)?,
+    };
+    Ok(setup_with(spec, p.rheology, distribution))
+}
+
+/// Builds the sample of a sedimentation scenario of spec `spec` in a fluid of rheology
+/// `rheology` from its particle-size `distribution` (read while the scenario was prepared,
+/// [`crate::scenes::Prepared::sample`]).
+pub fn setup_with(
+    spec: &SedimentationSpec,
+    rheology: RheologyModel,
+    distribution: Distribution,
+) -> Setup {
+    let sm = &spec.sample;
+    let (width, height) = (spec.width_m, spec.height_m);
     let classes = discretize(&distribution, sm.n_diameters);
     let model_mass = sm.mass_kg * sm.wedge_fraction;
     let grains = representative_grains(
@@ -133,20 +138,21 @@ pub fn setup_with(
         model_mass,
         sm.density_kg_m3,
         width,
-        ct.height_m,
+        height,
         sm.seed,
     );
-    Ok(Setup {
+    Setup {
         distribution,
         classes,
         grains,
         model_mass_kg: model_mass,
         width_m: width,
-        height_m: ct.height_m,
+        height_m: height,
         thickness_m: sm.projection_thickness_m(width),
-        viscosity_pa_s,
-        contacts: GrainContacts::of(s.contacts.as_ref()),
-    })
+        viscosity_pa_s: rheology.drag_viscosity_pa_s(),
+        contacts: GrainContacts::of(spec.contacts.as_ref()),
+        spec: spec.clone(),
+    }
 }
 
 /// Default record times: every 10 s to 60 s, then ×1.25 up to `end_s` (and `end_s`).

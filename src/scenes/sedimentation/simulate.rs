@@ -26,7 +26,7 @@ pub fn simulate(
     reading_times_s: &[f64],
     obs: &mut impl Observer,
 ) -> State {
-    let sm: &SampleSpec = s.sample.as_ref().expect("validated");
+    let sm: &SampleSpec = &setup.spec.sample;
     let mut st = state;
     st.interrupted = false;
     let schedule = Schedule::new(s, sm, reading_times_s);

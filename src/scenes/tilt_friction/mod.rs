@@ -42,6 +42,7 @@ use crate::engine::dim3::World;
 use crate::engine::EngineSettings;
 use crate::error::Error;
 use crate::io::StagedDir;
+use crate::scenario::TiltFrictionSpec;
 use crate::scenes::{Prepared, SceneReport};
 
 /// Console lines: one per given angle, then the threshold against atan(μ) = `expected_deg`.
@@ -80,17 +81,11 @@ fn lines(
 
 /// Tilt friction (kind `tilt_friction`): runs the threshold search and writes `summary.csv`,
 /// `threshold.csv` and `tilt_displacement.svg`.
-pub fn run(p: &Prepared, stage: &StagedDir) -> Result<SceneReport, Error> {
+pub fn run(p: &Prepared, tf: &TiltFrictionSpec, stage: &StagedDir) -> Result<SceneReport, Error> {
     let s = &p.scenario;
     let io = |e: std::io::Error| Error::Io(stage.dest().to_path_buf(), e);
-    let spec = s.tilt.as_ref().ok_or_else(|| {
-        Error::bad_input(
-            &p.path,
-            Some("tilt"),
-            "missing: a tilt_friction scenario needs it",
-        )
-    })?;
-    let setup = TiltSetup::from_scenario(s, spec);
+    let spec = &tf.tilt;
+    let setup = TiltSetup::from_scenario(s, tf);
     let search = tilt_threshold(&setup, &spec.angles_deg, spec.bisection_tolerance_deg)
         .map_err(|u| Error::Unstable(p.path.clone(), u))?;
     let found = search.threshold_deg();

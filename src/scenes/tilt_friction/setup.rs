@@ -2,7 +2,7 @@
 //! step.
 
 use crate::engine::EngineSettings;
-use crate::scenario::{Scenario, TiltSpec};
+use crate::scenario::{Scenario, TiltFrictionSpec};
 
 /// Everything one tilt run needs. SI units, angles in degrees.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -31,10 +31,9 @@ impl TiltSetup {
     /// The setup of a `tilt_friction` scenario: its `[tilt]` table, `[contacts]`, gravity and
     /// `time.dt_s`; engine settings for the block's smallest edge and the fastest slide over
     /// the largest angle.
-    pub fn from_scenario(s: &Scenario, spec: &TiltSpec) -> Self {
-        let size = [0, 1, 2].map(|i| spec.block_size_m.get(i).copied().unwrap_or(f64::NAN));
-        let c = s.contacts.as_ref();
-        let friction = c.map_or(0.0, |c| c.friction);
+    pub fn from_scenario(s: &Scenario, tf: &TiltFrictionSpec) -> Self {
+        let (spec, size) = (&tf.tilt, tf.block_size_m);
+        let friction = tf.contacts.friction;
         let max_angle = spec.angles_deg.iter().copied().fold(0.0, f64::max);
         let max_speed = s.gravity_m_s2 * max_angle.to_radians().sin() * spec.duration_s;
         let mut settings = EngineSettings::for_scene(
@@ -46,7 +45,7 @@ impl TiltSetup {
             block_size_m: size,
             block_density_kg_m3: spec.block_density_kg_m3,
             friction,
-            restitution: c.map_or(0.0, |c| c.restitution),
+            restitution: tf.contacts.restitution,
             gravity_m_s2: s.gravity_m_s2,
             duration_s: spec.duration_s,
             dt_s: s.time.dt_s,
