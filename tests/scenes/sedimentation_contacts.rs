@@ -351,13 +351,16 @@ fn full_physics_with_contacts_accounts_for_every_grain() {
         &ov_off,
     )
     .unwrap();
+    // The same grains (the switches do not change the sample), without contacts.
+    let su_off = setup(&p.scenario, &p.path).unwrap();
+    assert_eq!(su_off.grains.len(), su.grains.len());
     let mut deep_off = 0;
     let st = simulate(
         &p.scenario,
-        &su,
-        State::initial(&su),
+        &su_off,
+        State::initial(&su_off),
         &[],
-        &mut OnRecord(|st: &State| deep_off += overlaps(st, su.width_m).1),
+        &mut OnRecord(|st: &State| deep_off += overlaps(st, su_off.width_m).1),
     );
     assert_eq!(st.contacts.pairs, 0);
     assert!(deep_off > 10, "without contacts: {deep_off} deep overlaps");

@@ -9,9 +9,10 @@ use super::step::{advance_clock, StepStart, Stepper};
 use super::voidage::VoidageGrid;
 use crate::scenario::{SampleSpec, Scenario};
 
-/// Runs scenario `s` (prepared as `setup`) from `state` (the initial one, [`State::initial`], or
-/// one saved by a checkpoint) to `time.end_s`, landing on every record and snapshot time and on
-/// every time of `reading_times_s`, and telling `obs` at each (and after every step). Returns
+/// Runs scenario `s` (prepared as `setup`, whose spec gives the `[sample]` settings) from
+/// `state` (the initial one, [`State::initial`], or one saved by a checkpoint) to `time.end_s`,
+/// landing on every record and snapshot time and on every time of `reading_times_s`, and
+/// telling `obs` at each (and after every step). Returns
 /// the final state: `interrupted` if a stop was requested (Ctrl-C/SIGTERM; honoured within a
 /// step, which is then undone so that the state stays resumable), `fault` if the run went
 /// unstable. The same state gives the same continuation, bit for bit: every step depends on the
