@@ -5,6 +5,10 @@
 //! record. Every quantity is in SI units with the unit in the key name. Unknown keys are errors,
 //! and so is a table the kind does not use. See `README.md` ("Scenario format") for a commented
 //! example of every table.
+//!
+//! Parse, don't validate: [`parse`] returns a [`Parsed`] scenario with the typed parts the
+//! scenes take, the [`SceneSpec`] of its kind (every table the kind needs present and checked)
+//! and its [`RheologyModel`]; the dimension is read straight into a [`Dim`].
 
 mod check;
 pub mod cost;
