@@ -24,18 +24,6 @@ pub struct DropOutcome {
     pub steps: u64,
 }
 
-/// Engine settings of a drop scene: [`EngineSettings::for_scene`] for the ball's diameter and the
-/// largest impact speed √(2 g H_max), with the scenario's friction.
-pub fn drop_settings(s: &Scenario, ball: &SphereSpec, max_drop_height_m: f64) -> EngineSettings {
-    let v_impact = (2.0 * s.gravity_m_s2 * max_drop_height_m).sqrt();
-    let mut settings = EngineSettings::for_scene(ball.diameter_m, v_impact);
-    settings.friction = s
-        .contacts
-        .as_ref()
-        .map_or(settings.friction, |c| c.friction);
-    settings
-}
-
 /// Drops `ball` from `drop_height_m` (lowest point above the plate) in the scenario's fluid with
 /// the scenario's restitution, time step and integrator, and returns the first rebound. Errors
 /// with the engine's [`Unstable`], or with a message when no apex is reached within
