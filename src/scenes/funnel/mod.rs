@@ -49,7 +49,7 @@
 //!
 //! # Layout
 //!
-//! The same shape as every scene: [`setup`] (the geometry and its colliders), [`simulate`] (the
+//! The same shape as every scene: [`setup`] (the geometry and its colliders), [`simulate`](mod@simulate) (the
 //! step loop of one repeat as named stages, with checkpoints, and the parallel repeats),
 //! [`output`] (the files); and for this kind [`placement`] (the random start), [`census`]
 //! (where the balls are, what a repeat records), [`report`] (the console summary).
