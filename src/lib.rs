@@ -6,7 +6,8 @@
 //!
 //! # Layers
 //!
-//! Each layer imports only from the layers above it in this table:
+//! Each layer imports only from its own layer and the layers above it in this table
+//! (`tests/architecture/layers.rs` checks every `crate::` path in `src/` against it):
 //!
 //! | layer | modules | what |
 //! |---|---|---|
@@ -17,20 +18,26 @@
 //! | 4 scenes | [`scenes`] | one folder per kind, and the scene API ([`scenes::Prepared`], [`scenes::RunContext`], [`scenes::SceneReport`]) |
 //! | 5 application | [`run`], [`sweep`], [`bench`](mod@bench), [`cli`] | the commands |
 
-pub mod bench;
+// Layer 0: infrastructure.
 pub mod checkpoint;
-pub mod cli;
-pub mod contact;
-pub mod dynamics;
-pub mod engine;
 pub mod error;
-pub mod fluid;
-pub mod instruments;
 pub mod interrupt;
 pub mod io;
 pub mod progress;
-pub mod run;
+// Layer 1: physics.
+pub mod contact;
+pub mod dynamics;
+pub mod fluid;
+pub mod instruments;
 pub mod sample;
+// Layer 2: engine.
+pub mod engine;
+// Layer 3: scenario.
 pub mod scenario;
+// Layer 4: scenes.
 pub mod scenes;
+// Layer 5: application.
+pub mod bench;
+pub mod cli;
+pub mod run;
 pub mod sweep;

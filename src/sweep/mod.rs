@@ -49,15 +49,24 @@ pub fn run_cases_with(
 ) -> Result<Vec<Row>, Error> {
     use rayon::prelude::*;
     let target = Target::of(p)?;
-    Ok(cases
+    let rows: Vec<Row> = cases
         .par_iter()
         .map(|c| {
+            // Ctrl-C/SIGTERM: no new case starts, and the running ones stop within their
+            // interrupt checks (about a millisecond of work on the free engine).
+            if crate::interrupt::requested() {
+                return Vec::new();
+            }
             let rows = target.run_case(p, c);
             done();
             rows
         })
         .flatten()
-        .collect())
+        .collect();
+    if crate::interrupt::requested() {
+        return Err(Error::InterruptedUnwritten(p.path.clone()));
+    }
+    Ok(rows)
 }
 
 /// Runs the plan's cases of one scenario: finished rows (see [`finish`]) for a whole grid, the

@@ -9,7 +9,7 @@ use super::table::{rel, Row, Status};
 use crate::error::Error;
 use crate::run::Prepared;
 use crate::scenario::{FunnelPourSpec, Kind, SceneSpec};
-use crate::scenes::free_settling::{self, RunOptions, SphereResult};
+use crate::scenes::free_settling::{self, Halt, RunOptions, SphereResult};
 use std::time::Instant;
 
 /// The kinds a sweep can run.
@@ -21,7 +21,8 @@ pub const SWEEPABLE_NAMES: [&str; 3] = ["free_settling", "drop", "funnel_pour"];
 /// How the cases of a scenario run.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Target<'a> {
-    /// Every sphere alone ([`free_settling::run`]): kinds `free_settling` and `drop`.
+    /// Every sphere alone ([`free_settling::run_interruptible`]): kinds `free_settling` and
+    /// `drop`.
     Spheres,
     /// The first repeat of a funnel pour ([`crate::scenes::funnel::run_repeat`]), of this spec.
     FunnelPour(&'a FunnelPourSpec),
@@ -108,7 +109,12 @@ fn spheres_case(p: &Prepared, c: &Case) -> Vec<Row> {
         timeseries: false,
     };
     let t0 = Instant::now();
-    let res = free_settling::run(&p.scenario, p.rheology, &p.spheres, opts);
+    let res = match free_settling::run_interruptible(&p.scenario, p.rheology, &p.spheres, opts) {
+        Ok(r) => Ok(r),
+        Err(Halt::Unstable(u)) => Err(u),
+        // The caller discards every row of an interrupted sweep.
+        Err(Halt::Interrupted) => return Vec::new(),
+    };
     let wall = t0.elapsed().as_secs_f64();
     match res {
         Ok(results) => results

@@ -13,6 +13,7 @@
 //! Every `crate::X` path in the code of `src/` (comments excluded) is checked against this table.
 //! A module missing from the table fails the test too, so a new top-level module must be placed.
 
+use super::sources;
 use std::path::{Path, PathBuf};
 
 /// The layer of a top-level module of the crate, or None if the table does not place it.
@@ -127,26 +128,6 @@ fn violations(files: &[(PathBuf, String)]) -> Vec<String> {
         }
     }
     bad
-}
-
-/// Every `.rs` file under `src/`, relative to it, with its text.
-fn sources() -> Vec<(PathBuf, String)> {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
-    let mut out = Vec::new();
-    let mut stack = vec![src.clone()];
-    while let Some(d) = stack.pop() {
-        for e in std::fs::read_dir(&d).expect("read src") {
-            let p = e.expect("entry").path();
-            if p.is_dir() {
-                stack.push(p);
-            } else if p.extension().is_some_and(|x| x == "rs") {
-                let text = std::fs::read_to_string(&p).expect("read source");
-                out.push((p.strip_prefix(&src).expect("prefix").to_path_buf(), text));
-            }
-        }
-    }
-    out.sort();
-    out
 }
 
 #[test]

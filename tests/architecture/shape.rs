@@ -2,7 +2,8 @@
 //! function longer than 150 (issue 12), counted from the line of `fn` to its closing brace.
 //! A function that is clearer whole goes into [`ALLOWED`] with the reason.
 
-use std::path::{Path, PathBuf};
+use super::sources;
+use std::path::Path;
 
 /// Longest file, lines.
 const MAX_FILE_LINES: usize = 700;
@@ -103,25 +104,6 @@ fn strip(line: &str) -> String {
             out.push(c);
         }
     }
-    out
-}
-
-fn sources() -> Vec<(PathBuf, String)> {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
-    let mut out = Vec::new();
-    let mut stack = vec![src.clone()];
-    while let Some(d) = stack.pop() {
-        for e in std::fs::read_dir(&d).expect("read src") {
-            let p = e.expect("entry").path();
-            if p.is_dir() {
-                stack.push(p);
-            } else if p.extension().is_some_and(|x| x == "rs") {
-                let text = std::fs::read_to_string(&p).expect("read source");
-                out.push((p.strip_prefix(&src).expect("prefix").to_path_buf(), text));
-            }
-        }
-    }
-    out.sort();
     out
 }
 

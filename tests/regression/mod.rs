@@ -6,6 +6,7 @@ mod issue_12_accepted_silently;
 mod issue_12_cost_guard;
 mod issue_12_interrupt_free_settling;
 mod issue_12_interrupt_sedimentation;
+mod issue_12_interrupt_sweep;
 mod issue_12_out_dot_keeps_foreign_folder;
 mod issue_12_rerun_keeps_user_files;
 mod issue_12_reserved_names;

@@ -49,22 +49,22 @@
 //!
 //! # Layout
 //!
-//! [`geometry`] (the scene and its colliders), [`placement`] (the random start), [`census`]
-//! (where the balls are, what a repeat records), [`repeat`] (the step loop of one repeat, with
-//! checkpoints, and the parallel repeats), [`report`] (the console summary), [`output`] (the
-//! files).
+//! The same shape as every scene: [`setup`] (the geometry and its colliders), [`simulate`](mod@simulate) (the
+//! step loop of one repeat as named stages, with checkpoints, and the parallel repeats),
+//! [`output`] (the files); and for this kind [`placement`] (the random start), [`census`]
+//! (where the balls are, what a repeat records), [`report`] (the console summary).
 
 pub mod census;
-pub mod geometry;
 pub mod output;
 pub mod placement;
-pub mod repeat;
 pub mod report;
+pub mod setup;
+pub mod simulate;
 
 pub use census::{z_range, Ball, Census, Place, RepeatResult, Sample};
-pub use geometry::Geometry;
 pub use placement::{place_balls, Unplaceable};
-pub use repeat::{run_repeat, run_repeat_with, simulate, simulate_with, RepeatOutcome};
+pub use setup::Geometry;
+pub use simulate::{run_repeat, run_repeat_with, simulate, simulate_with, RepeatOutcome};
 
 use crate::error::Error;
 use crate::io::StagedDir;

@@ -39,13 +39,21 @@
 //!
 //! `summary.csv` (one row per drop height), `fit.csv` (the restitution models calibrated on the
 //! measurements, when given) and `rebound_height.svg` (see [`output`]).
+//!
+//! # Layout
+//!
+//! [`setup`] (the Rapier settings of the scene), [`simulate`] (one drop to its first apex),
+//! [`output`] (the files); and for this kind [`fit`] (the measured against the simulated
+//! rebounds).
 
 pub mod fit;
 pub mod output;
+pub mod setup;
 pub mod simulate;
 
 pub use fit::{Comparison, Tally};
-pub use simulate::{drop_settings, simulate_drop, DropError, DropOutcome};
+pub use setup::drop_settings;
+pub use simulate::{simulate_drop, DropError, DropOutcome};
 
 #[cfg(doc)]
 use crate::contact::ConstantFit;

@@ -24,17 +24,9 @@ pub struct DropOutcome {
     pub steps: u64,
 }
 
-/// Engine settings of a drop scene: [`EngineSettings::for_scene`] for the ball's diameter and the
-/// largest impact speed √(2 g H_max), with the contact's friction.
-pub fn drop_settings(s: &Scenario, setup: &Setup, max_drop_height_m: f64) -> EngineSettings {
-    let v_impact = (2.0 * s.gravity_m_s2 * max_drop_height_m).sqrt();
-    let mut settings = EngineSettings::for_scene(setup.ball.diameter_m, v_impact);
-    settings.friction = setup.friction;
-    settings
-}
-
 /// Drops the ball of `setup` from `drop_height_m` (lowest point above the plate) in the
-/// scenario's fluid with the setup's restitution law and the scenario's time step and integrator, and returns the first rebound. Errors
+/// scenario's fluid with the setup's restitution law and the scenario's time step and
+/// integrator, and returns the first rebound. Errors
 /// with the engine's [`Unstable`], or with a message when no apex is reached within
 /// `time.end_s`.
 pub fn simulate_drop(

@@ -88,7 +88,7 @@ fn initial_repeat(p: &Prepared, f: &FunnelPourSpec, seed: u64) -> Result<RepeatS
     settings.friction = ct.friction;
     let mut world = dim3::World::new(settings, g);
     world.add_floor(0.0);
-    let plug = super::geometry::add_walls(&mut world, &geo, ct.restitution, ct.friction);
+    let plug = super::setup::add_walls(&mut world, &geo, ct.restitution, ct.friction);
     let ids: Vec<_> = specs
         .iter()
         .zip(&centres)
