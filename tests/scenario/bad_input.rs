@@ -508,6 +508,29 @@ fn set_lubrication_without_contacts() {
     );
 }
 
+/// A `[contacts]` key the cylinder's contact solve does not model is refused, not ignored
+/// (issue 12: `[contacts]` on a sedimentation scenario used to be accepted and ignored whole).
+#[test]
+fn set_rolling_resistance_on_sedimentation() {
+    let o = settle_run(
+        &[good("sedimentation_sample1.toml")],
+        &[
+            "--set",
+            "contacts.restitution=0.0",
+            "--set",
+            "contacts.friction=0.3",
+            "--set",
+            "contacts.rolling_resistance=0.002",
+        ],
+    );
+    assert_refused(
+        &o,
+        "sedimentation_sample1.toml",
+        Some("contacts.rolling_resistance"),
+        &["0.002", "not modelled", "allowed 0"],
+    );
+}
+
 /// `--set` naming an unknown key is refused like a typo in the file.
 #[test]
 fn set_unknown_key() {

@@ -224,6 +224,21 @@ impl SampleSpec {
                 ),
             ],
         )?;
+        // The cylinder's contact solve is 2D discs with friction and restitution only: a key it
+        // would ignore is refused rather than accepted silently.
+        if let Some(ct) = s
+            .contacts
+            .as_ref()
+            .filter(|ct| ct.rolling_resistance != 0.0)
+        {
+            return Err(c.err(
+                "contacts.rolling_resistance",
+                format!(
+                    "{} is not modelled in the sedimentation cylinder (its grains are discs with friction and restitution only): allowed 0",
+                    ct.rolling_resistance
+                ),
+            ));
+        }
         if self.lubrication && !self.contacts {
             return Err(c.err(
                 "sample.lubrication",
