@@ -212,6 +212,17 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> io::Result<()> {
     fs::rename(&tmp, path)
 }
 
+/// Writes a CSV table (header, then rows) atomically ([`write_atomic`]).
+pub fn write_csv(path: &Path, header: &[&str], rows: &[Vec<String>]) -> io::Result<()> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record(header).map_err(io::Error::other)?;
+    for r in rows {
+        w.write_record(r).map_err(io::Error::other)?;
+    }
+    let bytes = w.into_inner().map_err(io::Error::other)?;
+    write_atomic(path, &bytes)
+}
+
 /// Formats a number for CSV: shortest round-trip form, in exponent notation when very small or
 /// very large.
 pub fn num(x: f64) -> String {

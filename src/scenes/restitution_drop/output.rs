@@ -13,20 +13,9 @@ use super::fit::heights_within;
 use super::{Comparison, DropOutcome, Setup, Tally};
 use crate::contact::{LawFit, RestitutionLaw};
 use crate::io::chart::{scatter_svg, Scale, Series};
-use crate::io::{num, write_atomic};
+use crate::io::{num, write_csv};
 use std::io;
 use std::path::Path;
-
-/// Writes a CSV table (header, then rows) atomically.
-fn write_csv(path: &Path, header: &[&str], rows: &[Vec<String>]) -> io::Result<()> {
-    let mut w = csv::Writer::from_writer(Vec::new());
-    w.write_record(header).map_err(io::Error::other)?;
-    for r in rows {
-        w.write_record(r).map_err(io::Error::other)?;
-    }
-    let bytes = w.into_inner().map_err(io::Error::other)?;
-    write_atomic(path, &bytes)
-}
 
 /// Writes `summary.csv`: one row per drop and its comparison.
 pub fn write_summary(path: &Path, outcomes: &[DropOutcome], rows: &[Comparison]) -> io::Result<()> {
