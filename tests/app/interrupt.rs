@@ -1,49 +1,35 @@
 //! Ctrl-C during a long run: the run stops at the end of the current step, writes what it has
 //! with `status = "interrupted"` in run.toml, leaves no partial folder, and exits with 130.
 
+#[cfg(unix)]
+use crate::common::signalled;
 use crate::common::{settle, tmp};
 
 #[cfg(unix)]
 #[test]
 fn sigint_stops_a_long_run_and_keeps_what_was_done() {
-    use std::process::{Command, Stdio};
-    use std::time::{Duration, Instant};
+    use std::time::Duration;
     let dir = tmp();
-    let child = settle()
-        .args([
-            "run",
-            "scenarios/sedimentation_sample5.toml",
-            "--set",
-            "sample.particles=200000",
-            "--set",
-            "sample.max_step_s=0.5",
-            "--quiet",
-            "--out",
-        ])
-        .arg(dir.path())
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    std::thread::sleep(Duration::from_millis(1500));
-    let pid = child.id().to_string();
-    assert!(Command::new("kill")
-        .args(["-INT", &pid])
-        .status()
-        .unwrap()
-        .success());
-    let t0 = Instant::now();
-    let out = child.wait_with_output().unwrap();
-    assert!(
-        t0.elapsed() < Duration::from_secs(30),
-        "did not stop promptly"
+    let mut cmd = settle();
+    cmd.args([
+        "run",
+        "scenarios/sedimentation_sample5.toml",
+        "--set",
+        "sample.particles=200000",
+        "--set",
+        "sample.max_step_s=0.5",
+        "--quiet",
+        "--out",
+    ])
+    .arg(dir.path());
+    let o = signalled(
+        cmd,
+        "INT",
+        Duration::from_millis(1500),
+        Duration::from_secs(30),
     );
-    assert_eq!(
-        out.status.code(),
-        Some(130),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert!(o.waited < Duration::from_secs(30), "did not stop promptly");
+    assert_eq!(o.code, Some(130), "{}", o.stderr);
     let run = std::fs::read_to_string(dir.path().join("sedimentation_sample5/run.toml")).unwrap();
     assert!(run.contains("status = \"interrupted\""), "{run}");
     assert!(dir

@@ -5,9 +5,10 @@
 //! interrupted free-settling run writes nothing (a partial set of spheres is no result) and exits
 //! with 130, leaving neither a result folder nor a staging folder.
 
+#[cfg(unix)]
+use crate::common::signalled;
 use crate::common::{isolated, settle, tmp};
 use std::path::Path;
-use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 /// A scenario of `n` Stokes spheres in water, each taking 10⁶ steps (dt = 1 µs, 1 s): hours of
@@ -54,40 +55,21 @@ fn sigterm_stops(engine: &str) {
     let file = dir.path().join("many.toml");
     std::fs::write(&file, many_spheres_toml(engine, 20_000)).unwrap();
     let out = dir.path().join("out");
-    let mut child = settle()
-        .args(["run", "--force", "--quiet", "--out"])
+    let mut cmd = settle();
+    cmd.args(["run", "--force", "--quiet", "--out"])
         .arg(&out)
-        .arg(&file)
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    std::thread::sleep(Duration::from_millis(1500));
-    assert!(
-        child.try_wait().unwrap().is_none(),
-        "{engine}: the run ended before the signal"
+        .arg(&file);
+    let o = signalled(
+        cmd,
+        "TERM",
+        Duration::from_millis(1500),
+        Duration::from_secs(5),
     );
-    let pid = child.id().to_string();
-    assert!(Command::new("kill")
-        .args(["-TERM", &pid])
-        .status()
-        .unwrap()
-        .success());
-    let t0 = Instant::now();
-    let status = loop {
-        if let Some(status) = child.try_wait().unwrap() {
-            break status;
-        }
-        if t0.elapsed() > Duration::from_secs(5) {
-            let _ = child.kill();
-            let _ = child.wait();
-            panic!("{engine}: SIGTERM not honoured within 5 s");
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    };
-    let mut stderr = String::new();
-    std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut stderr).unwrap();
-    assert_eq!(status.code(), Some(130), "{engine}: {stderr}");
+    assert!(
+        o.waited < Duration::from_secs(5),
+        "{engine}: SIGTERM not honoured within 5 s"
+    );
+    assert_eq!(o.code, Some(130), "{engine}: {}", o.stderr);
     assert_no_result(&out, engine);
 }
 

@@ -4,9 +4,8 @@
 //! work). Now no case starts after SIGTERM, the running ones stop at their next interrupt check,
 //! nothing is written for the unfinished sweep and the exit code is 130.
 
-use crate::common::{settle, tmp};
-use std::process::Stdio;
-use std::time::{Duration, Instant};
+use crate::common::{settle, signalled, tmp};
+use std::time::Duration;
 
 #[cfg(unix)]
 #[test]
@@ -14,48 +13,30 @@ fn sigterm_stops_a_long_sweep_and_writes_nothing() {
     let dir = tmp();
     let out = dir.path().join("out");
     // 27 spheres at dt = 1e-7 s over up to 120 s: far more than the test's patience.
-    let mut child = settle()
-        .args([
-            "sweep",
-            "scenarios/valentik_susp1.toml",
-            "--dt",
-            "1e-7,2e-7",
-            "--integrator",
-            "exponential",
-            "--quiet",
-            "--out",
-        ])
-        .arg(&out)
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("spawn settle");
-    std::thread::sleep(Duration::from_millis(1500));
-    assert!(
-        child.try_wait().expect("wait").is_none(),
-        "the sweep ended before the signal: make it longer"
+    let mut cmd = settle();
+    cmd.args([
+        "sweep",
+        "scenarios/valentik_susp1.toml",
+        "--dt",
+        "1e-7,2e-7",
+        "--integrator",
+        "exponential",
+        "--quiet",
+        "--out",
+    ])
+    .arg(&out);
+    let o = signalled(
+        cmd,
+        "TERM",
+        Duration::from_millis(1500),
+        Duration::from_secs(5),
     );
-    let pid = child.id().to_string();
-    let sent = std::process::Command::new("kill")
-        .args(["-TERM", &pid])
-        .status()
-        .expect("kill");
-    assert!(sent.success());
-    let t0 = Instant::now();
-    let status = loop {
-        if let Some(s) = child.try_wait().expect("wait") {
-            break s;
-        }
-        if t0.elapsed() > Duration::from_secs(5) {
-            let _ = child.kill();
-            panic!("the sweep did not stop within 5 s of SIGTERM");
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    };
-    let o = child.wait_with_output().expect("output");
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(status.code(), Some(130), "stderr: {err}");
-    assert!(err.contains("interrupted"), "stderr: {err}");
+    assert!(
+        o.waited < Duration::from_secs(5),
+        "the sweep did not stop within 5 s of SIGTERM"
+    );
+    assert_eq!(o.code, Some(130), "stderr: {}", o.stderr);
+    assert!(o.stderr.contains("interrupted"), "stderr: {}", o.stderr);
     let left: Vec<_> = std::fs::read_dir(&out)
         .map(|d| d.flatten().map(|e| e.file_name()).collect())
         .unwrap_or_default();
