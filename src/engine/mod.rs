@@ -119,7 +119,9 @@ pub use crate::dynamics::Unstable;
 pub(crate) use faults::unstable;
 pub use settings::{ContactDrag, EngineSettings, RapierIntegrationParameters};
 
+use crate::dynamics::Integrator;
 use crate::fluid::{DragLaw, SphereDrag};
+use nalgebra::SVector;
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
@@ -151,4 +153,27 @@ pub fn rotational_drag_n_m_s(drag: &SphereDrag) -> f64 {
 /// Moment of inertia of a sphere about a diameter, kg m²: m d²/10.
 pub fn sphere_inertia_kg_m2(mass_kg: f64, diameter_m: f64) -> f64 {
     0.1 * mass_kg * diameter_m * diameter_m
+}
+
+/// A Rapier world of `D` dimensions as a scene generic over the dimension drives it: one sphere
+/// added, steps taken, its state read ([`dim2::World`] and [`dim3::World`]).
+pub trait SphereWorld<const D: usize>: Sized {
+    /// A world with one sphere of diameter `d_m`, density `rho_kg_m3` and drag `drag`, centred
+    /// at `centre_m`, moving at `velocity_m_s`.
+    #[allow(clippy::too_many_arguments)]
+    fn with_sphere(
+        settings: EngineSettings,
+        g_m_s2: f64,
+        centre_m: SVector<f64, D>,
+        velocity_m_s: SVector<f64, D>,
+        d_m: f64,
+        rho_kg_m3: f64,
+        drag: SphereDrag,
+    ) -> (Self, BodyId);
+    /// One step of `dt_s`.
+    fn step_s(&mut self, dt_s: f64, integrator: Integrator) -> Result<(), Unstable>;
+    /// Position of the body's centre, m.
+    fn centre_m(&self, id: BodyId) -> SVector<f64, D>;
+    /// Velocity of the body, m/s.
+    fn speed_m_s(&self, id: BodyId) -> SVector<f64, D>;
 }

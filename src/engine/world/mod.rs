@@ -304,6 +304,38 @@ fn unboost(rb: &mut rapier::prelude::RigidBody, body: &mut Body) {
     }
 }
 
+/// The dimension-generic view of the world that scenes drive ([`crate::engine::SphereWorld`]).
+impl crate::engine::SphereWorld<DIM> for World {
+    fn with_sphere(
+        settings: EngineSettings,
+        g_m_s2: f64,
+        centre_m: Vector,
+        velocity_m_s: Vector,
+        d_m: f64,
+        rho_kg_m3: f64,
+        drag: SphereDrag,
+    ) -> (Self, BodyId) {
+        let mut world = Self::new(settings, g_m_s2);
+        let mut body = FluidBody::at_rest(centre_m, d_m, rho_kg_m3, drag, g_m_s2);
+        body.velocity_m_s = velocity_m_s;
+        let id = world.add_sphere(body);
+        (world, id)
+    }
+    fn step_s(
+        &mut self,
+        dt_s: f64,
+        integrator: crate::dynamics::Integrator,
+    ) -> Result<(), crate::engine::Unstable> {
+        self.step(dt_s, integrator)
+    }
+    fn centre_m(&self, id: BodyId) -> Vector {
+        self.position_m(id)
+    }
+    fn speed_m_s(&self, id: BodyId) -> Vector {
+        self.velocity_m_s(id)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -6,10 +6,10 @@
 use super::setup::{uses_rapier, RunOptions, SphereSetup};
 use crate::contact::rayleigh_time_s;
 use crate::dynamics::{advance, explicit_stable_dt_s, Monitor, Motion, Step, Unstable};
-use crate::engine::{dim2, dim3, BodyId, EngineSettings};
+use crate::engine::{dim2, dim3, EngineSettings, SphereWorld};
 use crate::fluid::bingham::reynolds_bingham;
 use crate::fluid::immersion;
-use crate::fluid::{sphere_mass_kg, DragLaw, DragRegime, SphereDrag};
+use crate::fluid::{sphere_mass_kg, DragLaw, DragRegime};
 use crate::scenario::inputs::SphereCase;
 use crate::scenario::{Dim, RheologyModel};
 use crate::scenario::{Scenario, Submergence};
@@ -532,94 +532,6 @@ fn finish<const D: usize>(
         entry_velocity_m_s: st.entry,
         final_bottom_depth_m: st.depth + 0.5 * d,
         stop_time_s: (stop == StopReason::Static).then_some(st.t),
-    }
-}
-
-/// A Rapier world of one dimension holding one sphere, as this scene uses it.
-trait SphereWorld<const D: usize>: Sized {
-    /// A world with one sphere of diameter `d_m`, density `rho_kg_m3` and drag `drag`, centred
-    /// at `centre_m`, moving at `velocity_m_s`.
-    #[allow(clippy::too_many_arguments)]
-    fn with_sphere(
-        settings: EngineSettings,
-        g_m_s2: f64,
-        centre_m: SVector<f64, D>,
-        velocity_m_s: SVector<f64, D>,
-        d_m: f64,
-        rho_kg_m3: f64,
-        drag: SphereDrag,
-    ) -> (Self, BodyId);
-    /// One step of `dt_s`.
-    fn step_s(
-        &mut self,
-        dt_s: f64,
-        integrator: crate::dynamics::Integrator,
-    ) -> Result<(), Unstable>;
-    /// Position of the body's centre, m.
-    fn centre_m(&self, id: BodyId) -> SVector<f64, D>;
-    /// Velocity of the body, m/s.
-    fn speed_m_s(&self, id: BodyId) -> SVector<f64, D>;
-}
-
-impl SphereWorld<2> for dim2::World {
-    fn with_sphere(
-        settings: EngineSettings,
-        g_m_s2: f64,
-        centre_m: SVector<f64, 2>,
-        velocity_m_s: SVector<f64, 2>,
-        d_m: f64,
-        rho_kg_m3: f64,
-        drag: SphereDrag,
-    ) -> (Self, BodyId) {
-        let mut world = Self::new(settings, g_m_s2);
-        let mut body = dim2::FluidBody::at_rest(centre_m, d_m, rho_kg_m3, drag, g_m_s2);
-        body.velocity_m_s = velocity_m_s;
-        let id = world.add_sphere(body);
-        (world, id)
-    }
-    fn step_s(
-        &mut self,
-        dt_s: f64,
-        integrator: crate::dynamics::Integrator,
-    ) -> Result<(), Unstable> {
-        self.step(dt_s, integrator)
-    }
-    fn centre_m(&self, id: BodyId) -> SVector<f64, 2> {
-        self.position_m(id)
-    }
-    fn speed_m_s(&self, id: BodyId) -> SVector<f64, 2> {
-        self.velocity_m_s(id)
-    }
-}
-
-impl SphereWorld<3> for dim3::World {
-    fn with_sphere(
-        settings: EngineSettings,
-        g_m_s2: f64,
-        centre_m: SVector<f64, 3>,
-        velocity_m_s: SVector<f64, 3>,
-        d_m: f64,
-        rho_kg_m3: f64,
-        drag: SphereDrag,
-    ) -> (Self, BodyId) {
-        let mut world = Self::new(settings, g_m_s2);
-        let mut body = dim3::FluidBody::at_rest(centre_m, d_m, rho_kg_m3, drag, g_m_s2);
-        body.velocity_m_s = velocity_m_s;
-        let id = world.add_sphere(body);
-        (world, id)
-    }
-    fn step_s(
-        &mut self,
-        dt_s: f64,
-        integrator: crate::dynamics::Integrator,
-    ) -> Result<(), Unstable> {
-        self.step(dt_s, integrator)
-    }
-    fn centre_m(&self, id: BodyId) -> SVector<f64, 3> {
-        self.position_m(id)
-    }
-    fn speed_m_s(&self, id: BodyId) -> SVector<f64, 3> {
-        self.velocity_m_s(id)
     }
 }
 
