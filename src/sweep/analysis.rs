@@ -22,6 +22,8 @@ pub struct CaseSummary {
     pub steps: u64,
     /// quantity → (max |error vs finest|, max |error vs reference|), relative.
     pub errors: BTreeMap<String, (f64, f64)>,
+    /// Why the case is unstable (the first body's report); empty for a stable case.
+    pub reason: String,
 }
 
 /// Summarises rows per case, in row order (integrator order, dt descending).
@@ -36,7 +38,11 @@ pub fn summarise(rows: &[Row]) -> Vec<CaseSummary> {
             wall_time_s: r.wall_time_s,
             steps: 0,
             errors: BTreeMap::new(),
+            reason: String::new(),
         });
+        if e.reason.is_empty() && r.status != Status::Stable {
+            e.reason = r.reason.clone();
+        }
         e.steps += r.steps;
         let q = e
             .errors
@@ -77,6 +83,15 @@ pub fn recommended_dt(summaries: &[CaseSummary], integrator: Integrator, tol: f6
         best = Some(c.dt_s);
     }
     best
+}
+
+/// Whether a recommended `dt_s` of `integrator` is verified: a finer stable dt of the grid
+/// confirms it. The finest stable dt is the reference of every error, so its own error is 0 by
+/// construction and says nothing about it.
+pub fn verified(summaries: &[CaseSummary], integrator: Integrator, dt_s: f64) -> bool {
+    summaries
+        .iter()
+        .any(|s| s.integrator == integrator && s.stable && s.dt_s < dt_s)
 }
 
 /// Rayleigh time of the first sphere with elastic properties (f-EDEM eq. 22, see

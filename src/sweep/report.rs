@@ -1,7 +1,7 @@
 //! The outputs of a finished sweep: `sweep.csv`, the charts `quantity_vs_dt.svg` and
 //! `speed_accuracy.svg`, `recommended_dt.csv`, and the console table.
 
-use super::analysis::{recommended_dt, summarise, CaseSummary, RAYLEIGH_FRACTION};
+use super::analysis::{recommended_dt, summarise, verified, CaseSummary, RAYLEIGH_FRACTION};
 use super::table::{write_rows, Row};
 use crate::dynamics::Integrator;
 use crate::error::Error;
@@ -34,24 +34,45 @@ pub fn write_results(dir: &Path, rows: &[Row], cx: &Context) -> Result<(), Error
     let sums = summarise(rows);
     charts(dir, cx.title, &sums)?;
     if !cx.quiet {
-        print_table(cx.title, &sums);
+        println!("{}", table_lines(cx.title, &sums).join("\n"));
     }
-    let recommended: Vec<(Integrator, Option<f64>)> = Integrator::ALL
+    let recommended: Vec<Recommended> = Integrator::ALL
         .into_iter()
         .filter(|i| sums.iter().any(|s| s.integrator == *i))
-        .map(|i| (i, recommended_dt(&sums, i, cx.tol)))
+        .map(|i| {
+            let dt_s = recommended_dt(&sums, i, cx.tol);
+            Recommended {
+                integrator: i,
+                dt_s,
+                verified: dt_s.is_some_and(|d| verified(&sums, i, d)),
+            }
+        })
         .collect();
     let csv = recommended_csv(&recommended, cx).map_err(io_err("recommended_dt.csv"))?;
     write_atomic(&dir.join("recommended_dt.csv"), &csv).map_err(io_err("recommended_dt.csv"))?;
     if !cx.quiet {
-        print_recommended(&recommended, cx);
+        for r in &recommended {
+            println!("{}", recommended_line(r, cx));
+        }
     }
     Ok(())
 }
 
+/// The recommended dt of one integrator.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Recommended {
+    /// Integrator.
+    pub integrator: Integrator,
+    /// Largest dt of the grid whose error against the finest stable dt is within the tolerance
+    /// at every finer dt too, s (None: none in the grid).
+    pub dt_s: Option<f64>,
+    /// A finer stable dt confirms it ([`verified`]); false when it is the finest stable dt tried.
+    pub verified: bool,
+}
+
 /// `recommended_dt.csv`: integrator, recommended dt (empty if none in the grid), tol, Rayleigh
 /// time and its 20 % rule.
-fn recommended_csv(rec: &[(Integrator, Option<f64>)], cx: &Context) -> io::Result<Vec<u8>> {
+fn recommended_csv(rec: &[Recommended], cx: &Context) -> io::Result<Vec<u8>> {
     let mut w = csv::Writer::from_writer(Vec::new());
     w.write_record([
         "integrator",
@@ -59,63 +80,79 @@ fn recommended_csv(rec: &[(Integrator, Option<f64>)], cx: &Context) -> io::Resul
         "tol",
         "rayleigh_time_s",
         "rayleigh_20pct_dt_s",
+        "verified",
     ])?;
-    for (integ, dt) in rec {
+    for r in rec {
         w.write_record([
-            integ.name().to_string(),
-            dt.map(num).unwrap_or_default(),
+            r.integrator.name().to_string(),
+            r.dt_s.map(num).unwrap_or_default(),
             num(cx.tol),
             cx.rayleigh_time_s.map(num).unwrap_or_default(),
             cx.rayleigh_time_s
-                .map(|r| num(RAYLEIGH_FRACTION * r))
+                .map(|t| num(RAYLEIGH_FRACTION * t))
                 .unwrap_or_default(),
+            r.verified.to_string(),
         ])?;
     }
     w.into_inner().map_err(|e| io::Error::other(e.to_string()))
 }
 
-fn print_table(title: &str, sums: &[CaseSummary]) {
-    println!("{title}: {} cases", sums.len());
-    println!(
-        "  {:<12} {:>10} {:>9} {:>10} {:>9}  max |error vs finest| per quantity",
-        "integrator", "dt_s", "status", "wall_s", "steps"
-    );
+/// The console table of a sweep, one line per case. An unstable case shows `unstable` and its
+/// reason instead of errors (its values are NaN in `sweep.csv`).
+pub fn table_lines(title: &str, sums: &[CaseSummary]) -> Vec<String> {
+    let mut lines = vec![
+        format!("{title}: {} cases", sums.len()),
+        format!(
+            "  {:<12} {:>10} {:>9} {:>10} {:>9}  max |error vs finest| per quantity",
+            "integrator", "dt_s", "status", "wall_s", "steps"
+        ),
+    ];
     for s in sums {
-        let errs: Vec<String> = s
-            .errors
-            .iter()
-            .map(|(q, (f, _))| format!("{q}={f:.1e}"))
-            .collect();
-        println!(
+        let errs = if s.stable {
+            s.errors
+                .iter()
+                .map(|(q, (f, _))| format!("{q}={f:.1e}"))
+                .collect::<Vec<_>>()
+                .join(" ")
+        } else {
+            // The reason is the engine's report, which starts with "unstable:".
+            s.reason.clone()
+        };
+        lines.push(format!(
             "  {:<12} {:>10.1e} {:>9} {:>10.4} {:>9}  {}",
             s.integrator.name(),
             s.dt_s,
             if s.stable { "stable" } else { "UNSTABLE" },
             s.wall_time_s,
             s.steps,
-            errs.join(" ")
-        );
+            errs
+        ));
     }
+    lines
 }
 
-fn print_recommended(rec: &[(Integrator, Option<f64>)], cx: &Context) {
-    for (integ, dt) in rec {
-        let r = dt
-            .map(|d| format!("{d:.1e} s"))
-            .unwrap_or_else(|| "none in the grid".into());
-        print!(
-            "  recommended dt ({}, error vs finest < {}): {r}",
-            integ.name(),
-            cx.tol
-        );
-        if let Some(tr) = cx.rayleigh_time_s {
-            print!(
-                "   [Rayleigh time {tr:.3e} s; 20 % rule {:.3e} s]",
-                RAYLEIGH_FRACTION * tr
-            );
+/// The console line of one recommended dt; `unverified` when it is the finest stable dt tried.
+pub fn recommended_line(r: &Recommended, cx: &Context) -> String {
+    let mut line = format!(
+        "  recommended dt ({}, error vs finest < {}): {}",
+        r.integrator.name(),
+        cx.tol,
+        match r.dt_s {
+            None => "none in the grid".to_string(),
+            Some(d) if r.verified => format!("{d:.1e} s"),
+            Some(d) => format!(
+                "{d:.1e} s, unverified: it is the finest stable dt tried (the reference of every \
+                 error); add a finer dt to confirm it"
+            ),
         }
-        println!();
+    );
+    if let Some(tr) = cx.rayleigh_time_s {
+        line.push_str(&format!(
+            "   [Rayleigh time {tr:.3e} s; 20 % rule {:.3e} s]",
+            RAYLEIGH_FRACTION * tr
+        ));
     }
+    line
 }
 
 /// Draws `quantity_vs_dt.svg` (max error against the finest dt, per quantity and integrator,
@@ -173,4 +210,79 @@ pub fn charts(dir: &Path, title: &str, summaries: &[CaseSummary]) -> Result<(), 
         &series,
     )
     .map_err(chart_err("speed_accuracy.svg"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn case(integrator: Integrator, dt_s: f64, stable: bool, err: f64) -> CaseSummary {
+        CaseSummary {
+            integrator,
+            dt_s,
+            stable,
+            wall_time_s: 0.1,
+            steps: 10,
+            errors: [("terminal_velocity_m_s".to_string(), (err, f64::NAN))].into(),
+            reason: if stable {
+                String::new()
+            } else {
+                "unstable: velocity oscillates with growing amplitude".into()
+            },
+        }
+    }
+
+    fn cx() -> Context<'static> {
+        Context {
+            title: "t",
+            tol: 0.01,
+            rayleigh_time_s: None,
+            quiet: true,
+        }
+    }
+
+    /// Issue 13: unstable rows printed an error of `0.0e0` (their values are NaN).
+    #[test]
+    fn an_unstable_case_shows_its_reason_not_an_error() {
+        let sums = [
+            case(Integrator::Explicit, 1e-2, false, 0.0),
+            case(Integrator::Explicit, 1e-3, true, 0.0),
+        ];
+        let lines = table_lines("t", &sums);
+        assert!(lines[2].contains("UNSTABLE"), "{}", lines[2]);
+        assert!(lines[2].contains("velocity oscillates"), "{}", lines[2]);
+        assert!(!lines[2].contains("0.0e0"), "{}", lines[2]);
+        assert!(
+            lines[3].contains("terminal_velocity_m_s=0.0e0"),
+            "{}",
+            lines[3]
+        );
+    }
+
+    /// Issue 13: the recommended dt was simply the finest dt tried, with nothing saying that no
+    /// finer step confirms it.
+    #[test]
+    fn the_finest_stable_dt_is_recommended_as_unverified() {
+        let sums = [
+            case(Integrator::Explicit, 1e-2, false, 0.0),
+            case(Integrator::Explicit, 1e-3, true, 0.0),
+            case(Integrator::Exponential, 1e-2, true, 1e-4),
+            case(Integrator::Exponential, 1e-3, true, 0.0),
+        ];
+        for (integ, dt, ok) in [
+            (Integrator::Explicit, 1e-3, false),
+            (Integrator::Exponential, 1e-2, true),
+        ] {
+            let d = recommended_dt(&sums, integ, 0.01);
+            assert_eq!(d, Some(dt), "{integ:?}");
+            let r = Recommended {
+                integrator: integ,
+                dt_s: d,
+                verified: verified(&sums, integ, dt),
+            };
+            assert_eq!(r.verified, ok, "{integ:?}");
+            let line = recommended_line(&r, &cx());
+            assert_eq!(line.contains("unverified"), !ok, "{line}");
+        }
+    }
 }
