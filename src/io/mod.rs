@@ -226,6 +226,11 @@ pub fn write_csv(path: &Path, header: &[&str], rows: &[Vec<String>]) -> io::Resu
 /// Formats a number for CSV: shortest round-trip form, in exponent notation when very small or
 /// very large.
 pub fn num(x: f64) -> String {
+    // −0 (e.g. the velocity of a sphere at rest, −0·v) reads as a sign a person looks for
+    // meaning in: it is written 0.
+    if x == 0.0 {
+        return "0".to_string();
+    }
     let a = x.abs();
     if a != 0.0 && a.is_finite() && !(1e-4..1e7).contains(&a) {
         format!("{x:e}")
@@ -237,4 +242,26 @@ pub fn num(x: f64) -> String {
 /// Formats an optional number for CSV (empty when absent).
 pub fn opt(x: Option<f64>) -> String {
     x.map(num).unwrap_or_default()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::num;
+
+    /// Issue 13: CSVs carried `-0`. Every number still reads back to the same value.
+    #[test]
+    fn numbers_round_trip_and_zero_has_no_sign() {
+        assert_eq!(num(-0.0), "0");
+        assert_eq!(num(0.0), "0");
+        for x in [1.5, -2.25e-7, 3.0e9, 1e-4, 9_999_999.0, -0.1, f64::NAN] {
+            let back: f64 = num(x).parse().unwrap();
+            assert!(
+                back == x || (x.is_nan() && back.is_nan()),
+                "{x} → {}",
+                num(x)
+            );
+        }
+        assert_eq!(num(1.25e-7), "1.25e-7");
+        assert_eq!(num(0.5), "0.5");
+    }
 }
