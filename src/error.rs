@@ -22,7 +22,7 @@ pub const EXIT_IO: i32 = 4;
 /// Exit code of an interrupted run (128 + SIGINT).
 pub const EXIT_INTERRUPTED: i32 = 130;
 
-/// Bad input: one line naming the file (or `<command line>` argument), the key or row/column,
+/// Bad input: one line naming the file (or the value of a command-line argument), the key or row/column,
 /// and what is wrong and what is allowed.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BadInput {

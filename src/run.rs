@@ -364,33 +364,44 @@ pub fn check_destinations(out_dir: &Path, prepared: &[Prepared]) -> Result<(), E
             "exists and is not a folder: give a folder (it is created if absent)",
         ));
     }
-    let mut dests: Vec<(PathBuf, &Path)> = prepared
-        .iter()
-        .map(|p| (out_dir.join(&p.scenario.name), p.path.as_path()))
-        .collect();
-    if prepared.len() > 1 {
-        dests.push((out_dir.join("combined"), Path::new("<command line>")));
+    for p in prepared {
+        destination_allowed(&out_dir.join(&p.scenario.name), &p.path)?;
     }
-    for (dest, file) in dests {
-        let why = match output::check_destination(&dest) {
-            Ok(()) => continue,
-            Err(output::Refusal::NotAFolder) => "exists and is not a folder",
-            Err(output::Refusal::NotOurs) => {
-                "is a folder settle did not create (it has no .settle-run marker), so settle \
-                 will not delete or replace it"
-            }
-        };
-        return Err(Error::bad_input(
-            file,
-            Some("name"),
+    let combined = out_dir.join("combined");
+    if prepared.len() > 1 && output::check_destination(&combined).is_err() {
+        return Err(Error::bad_argument(
+            "--out",
+            out_dir,
             format!(
-                "the output folder {} {why}: choose another --out or another name (if it holds \
-                 the outputs of an older settle, delete or rename it)",
-                dest.display()
+                "{} (the joint summary of several files) exists and was not created by settle, \
+                 which will not replace it: choose another --out",
+                combined.display()
             ),
         ));
     }
     Ok(())
+}
+
+/// Refuses (bad input naming `file` and its key `name`) an output folder `dest` that settle may
+/// not write: a file, or a folder settle did not create ([`output::check_destination`]).
+pub fn destination_allowed(dest: &Path, file: &Path) -> Result<(), Error> {
+    let why = match output::check_destination(dest) {
+        Ok(()) => return Ok(()),
+        Err(output::Refusal::NotAFolder) => "exists and is not a folder",
+        Err(output::Refusal::NotOurs) => {
+            "is a folder settle did not create (it has no .settle-run marker), so settle will not \
+             delete or replace it"
+        }
+    };
+    Err(Error::bad_input(
+        file,
+        Some("name"),
+        format!(
+            "the output folder {} {why}: choose another --out or another name (if it holds the \
+             outputs of an older settle, delete or rename it)",
+            dest.display()
+        ),
+    ))
 }
 
 fn write_combined(out_dir: &Path, reports: &[FileReport]) -> Result<(), Error> {
@@ -428,6 +439,7 @@ fn write_combined(out_dir: &Path, reports: &[FileReport]) -> Result<(), Error> {
         )
         .map_err(io)?;
     }
-    commit(stage, Path::new("<command line>"))?;
+    // Checked before the run (check_destinations); a folder appearing since is an I/O error.
+    stage.commit().map_err(io)?;
     Ok(())
 }

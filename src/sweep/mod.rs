@@ -93,6 +93,14 @@ pub fn main(args: &Args) -> Result<(), Error> {
         jobs.push((p, plan));
     }
     let out = args.out.clone().unwrap_or_else(|| PathBuf::from("out"));
+    // A whole sweep replaces OUT/<name>_sweep/: refused before any case runs if settle did not
+    // create it. (Shards only add their part files to it.)
+    for (p, plan) in &jobs {
+        if plan.shard.is_none() {
+            let dest = out.join(format!("{}_sweep", p.scenario.name));
+            crate::run::destination_allowed(&dest, &p.path)?;
+        }
+    }
     for (p, plan) in &jobs {
         sweep_file(p, plan, &out, args.quiet)?;
     }

@@ -6,7 +6,7 @@
 //!
 //! Set `SETTLE_BIN` to run these checks against another binary (e.g. the one before the fix).
 
-use crate::common::{settle, tmp};
+use crate::common::{assert_exit, settle, tmp};
 
 #[test]
 fn out_dot_never_replaces_the_folder_of_the_scenario() {
@@ -60,11 +60,33 @@ fn out_naming_a_file_is_bad_input() {
         ))
         .output()
         .unwrap();
-    assert_eq!(
-        o.status.code(),
-        Some(2),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    assert_exit(&o, 2);
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "not a folder");
+}
+
+/// The same for a sweep: a folder `<name>_sweep` settle did not create is refused before any
+/// case runs (it used to be found only when the results moved into place, exit 4).
+#[test]
+fn a_sweep_never_replaces_a_folder_settle_did_not_create() {
+    let dir = tmp();
+    let mine = dir.path().join("stokes_single_sweep");
+    std::fs::create_dir(&mine).unwrap();
+    std::fs::write(mine.join("notes.txt"), "mine").unwrap();
+    let o = settle()
+        .args(["sweep", "-q", "--dt", "1e-3", "--out"])
+        .arg(dir.path())
+        .arg(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/scenarios/stokes_single.toml"
+        ))
+        .output()
+        .unwrap();
+    assert_exit(&o, 2);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("did not create"), "{err}");
+    let left: Vec<_> = std::fs::read_dir(&mine)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(left, vec!["notes.txt"], "the user's folder was touched");
 }
