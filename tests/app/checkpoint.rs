@@ -4,7 +4,7 @@
 //! checkpoint refuses a scenario changed since, and the cost guard refuses runs that would take
 //! days or more memory than allowed, naming the file, the key and the estimate.
 
-use crate::common::{settle, tmp, tree};
+use crate::common::{assert_exit, settle, tmp, tree};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
@@ -146,12 +146,7 @@ fn sedimentation_interrupted_and_resumed_matches_an_uninterrupted_run() {
     run(&SEDIMENTATION, &reference);
     let stopped = dir.path().join("stopped");
     let o = start_and_signal(&SEDIMENTATION, &stopped, "-INT", 600, 2500);
-    assert_eq!(
-        o.status.code(),
-        Some(130),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    assert_exit(&o, 130);
     let partial = std::fs::read_to_string(stopped.join("sedimentation_sample2/run.toml")).unwrap();
     assert!(partial.contains("status = \"interrupted\""), "{partial}");
     assert!(stopped

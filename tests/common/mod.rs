@@ -172,3 +172,13 @@ pub fn signalled(
         waited,
     }
 }
+
+/// Asserts that a finished run exited with `code`, showing its stderr otherwise.
+pub fn assert_exit(o: &std::process::Output, code: i32) {
+    assert_eq!(
+        o.status.code(),
+        Some(code),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+}

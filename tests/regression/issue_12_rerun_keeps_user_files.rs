@@ -4,7 +4,7 @@
 //!
 //! Set `SETTLE_BIN` to run these checks against another binary (e.g. the one before the fix).
 
-use crate::common::{settle, tmp};
+use crate::common::{assert_exit, settle, tmp};
 
 fn scenario(name: &str) -> String {
     std::fs::read_to_string(concat!(
@@ -30,12 +30,7 @@ fn a_rerun_replaces_only_what_settle_wrote() {
             .unwrap()
     };
     let o = run();
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    assert_exit(&o, 0);
     let folder = out.join("stokes");
     std::fs::write(folder.join("notes.txt"), "my notes").unwrap();
     std::fs::create_dir(folder.join("plots")).unwrap();
@@ -48,12 +43,7 @@ fn a_rerun_replaces_only_what_settle_wrote() {
     )
     .unwrap();
     let o = run();
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    assert_exit(&o, 0);
     assert_eq!(
         std::fs::read_to_string(folder.join("notes.txt")).unwrap(),
         "my notes",

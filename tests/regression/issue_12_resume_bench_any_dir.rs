@@ -6,7 +6,7 @@
 //!
 //! Set `SETTLE_BIN` to run these checks against another binary (e.g. the one before the fix).
 
-use crate::common::{settle, tmp};
+use crate::common::{assert_exit, settle, tmp};
 use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -39,24 +39,14 @@ fn resume_works_from_another_directory() {
         .unwrap()
         .success());
     let o = child.wait_with_output().unwrap();
-    assert_eq!(
-        o.status.code(),
-        Some(130),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    assert_exit(&o, 130);
     // Resumed from the temporary folder, with a relative DIR.
     let o = settle()
         .current_dir(dir.path())
         .args(["run", "--resume", "out", "--quiet"])
         .output()
         .unwrap();
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    assert_exit(&o, 0);
     assert!(out.join("sedimentation_sample2/summary.csv").exists());
     assert!(!out.join("checkpoint").exists());
 }
@@ -69,12 +59,7 @@ fn bench_works_from_another_directory() {
         .args(["bench", "--quick", "--out", "b"])
         .output()
         .unwrap();
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    assert_exit(&o, 0);
     let csv = std::fs::read_to_string(Path::new(dir.path()).join("b/bench.csv")).unwrap();
     assert!(csv.contains("valentik_121"), "{csv}");
 }

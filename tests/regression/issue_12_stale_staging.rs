@@ -5,7 +5,7 @@
 //!
 //! Set `SETTLE_BIN` to run these checks against another binary (e.g. the one before the fix).
 
-use crate::common::{settle, tmp};
+use crate::common::{assert_exit, settle, tmp};
 use std::path::Path;
 
 /// A process id that no process has (above any pid handed out so far on this machine).
@@ -35,12 +35,7 @@ fn staging_folders_of_dead_processes_are_removed_whatever_their_name() {
         ))
         .output()
         .unwrap();
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    assert_exit(&o, 0);
     assert!(!dead.exists(), "the dead process's staging folder stayed");
     assert!(
         alive.exists(),

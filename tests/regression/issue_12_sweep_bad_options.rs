@@ -6,7 +6,7 @@
 //! naming the option (and for `--tol` the allowed range 0 < TOL ≤ 1: a relative error against
 //! the finest stable dt), writing nothing.
 
-use crate::common::{settle, tmp};
+use crate::common::{assert_exit, settle, tmp};
 use std::path::Path;
 use std::process::Output;
 
@@ -55,12 +55,7 @@ fn a_tolerance_of_one_is_accepted() {
         &["--tol", "1", "--dt", "1e-3", "--integrator", "exponential"],
         &out,
     );
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    assert_exit(&o, 0);
     let rec = std::fs::read_to_string(out.join("stokes_single_sweep/recommended_dt.csv")).unwrap();
     assert!(rec.contains("exponential,0.001,1,"), "{rec}");
 }
