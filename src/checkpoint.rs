@@ -206,8 +206,10 @@ impl Checkpoints {
             let name = name.to_string_lossy();
             let ours = name == "request.toml"
                 || name.ends_with(".bin")
-                || name.ends_with(".bin.tmp")
-                || name == "request.toml.tmp";
+                || crate::io::is_tmp_of(&name, "request.toml")
+                || name
+                    .rsplit_once(".bin.")
+                    .is_some_and(|(stem, _)| crate::io::is_tmp_of(&name, &format!("{stem}.bin")));
             if ours && entry.file_type().is_ok_and(|t| t.is_file()) {
                 std::fs::remove_file(entry.path())?;
             }

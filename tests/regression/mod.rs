@@ -17,3 +17,4 @@ mod issue_12_sedimentation_contacts_honoured;
 mod issue_12_stale_staging;
 mod issue_12_sweep_bad_options;
 mod issue_12_sweep_unsweepable_kind;
+mod issue_8_concurrent_checkpoint_saves;
