@@ -192,6 +192,13 @@ fn print_overall(reports: &[FileReport]) {
 }
 
 fn print_report(r: &FileReport) {
+    print_table(r);
+    for w in &r.warnings {
+        println!("  warning: {w}");
+    }
+}
+
+fn print_table(r: &FileReport) {
     let s = &r.prepared.scenario;
     if r.results.is_empty() {
         println!(

@@ -123,6 +123,8 @@ pub struct FileReport {
     pub out: PathBuf,
     /// Wall time of the simulation, s.
     pub wall_time_s: f64,
+    /// Validity warnings ([`SceneReport::warnings`]).
+    pub warnings: Vec<String>,
 }
 
 #[derive(Serialize)]
@@ -139,6 +141,8 @@ struct RunMeta<'a> {
     wall_time_s: f64,
     /// Continued from a checkpoint (`--resume`).
     resumed: bool,
+    /// Validity warnings of the run ([`SceneReport::warnings`]); empty when none.
+    warnings: &'a [String],
 }
 
 #[derive(Serialize)]
@@ -197,6 +201,7 @@ pub fn run_one_with(p: &Prepared, out_dir: &Path, ctx: &RunContext) -> Result<Fi
             bodies: report.bodies,
             wall_time_s: wall,
             resumed: ctx.resume,
+            warnings: &report.warnings,
         },
         engine_settings: report.engine_settings,
         scenario: s,
@@ -213,6 +218,7 @@ pub fn run_one_with(p: &Prepared, out_dir: &Path, ctx: &RunContext) -> Result<Fi
         lines: report.lines,
         out,
         wall_time_s: wall,
+        warnings: report.warnings,
     })
 }
 

@@ -52,6 +52,9 @@ pub struct SceneReport {
     pub lines: Vec<String>,
     /// The run stopped early on Ctrl-C/SIGTERM (outputs hold what was done).
     pub interrupted: bool,
+    /// Validity warnings (a law used outside its range, a Reynolds number too high for Stokes
+    /// drag, …): printed after the run and written to run.toml's `[run] warnings` (issue 13).
+    pub warnings: Vec<String>,
 }
 
 /// The drag law a scenario asks for in a fluid of rheology `rheology`, after the `physics`

@@ -1,6 +1,8 @@
 //! Helpers shared by the tests: one way to spawn the `settle` binary, temporary output folders,
 //! the files a run left, the CSV files it wrote and the figures it printed.
 
+pub mod chart;
+
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;

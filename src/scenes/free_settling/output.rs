@@ -87,6 +87,7 @@ pub fn write_all(
         crate::engine::EngineSettings::for_scene(d_min, 2.0 * v_max)
     });
     Ok(SceneReport {
+        warnings: Vec::new(),
         steps: results.iter().map(|r| r.steps).sum(),
         bodies: results.len(),
         engine_settings,

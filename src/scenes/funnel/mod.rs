@@ -102,6 +102,7 @@ pub fn run(
     let wall_s = t0.elapsed().as_secs_f64();
     output::write_all(p, f, &results, stage)?;
     Ok(SceneReport {
+        warnings: Vec::new(),
         steps: results.iter().map(|r| r.steps).sum(),
         bodies: f.funnel.count * results.len(),
         engine_settings: Some(report::engine_settings(p, f)),

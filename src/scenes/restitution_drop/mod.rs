@@ -193,6 +193,7 @@ pub fn run(p: &Prepared, rd: &RestitutionSpec, stage: &StagedDir) -> Result<Scen
     .map_err(io)?;
 
     Ok(SceneReport {
+        warnings: Vec::new(),
         steps: outcomes.iter().map(|o| o.steps).sum(),
         bodies: outcomes.len(),
         engine_settings: Some(settings),

@@ -114,6 +114,7 @@ pub fn run(p: &Prepared, tf: &TiltFrictionSpec, stage: &StagedDir) -> Result<Sce
     .map_err(io)?;
 
     Ok(SceneReport {
+        warnings: Vec::new(),
         steps: runs.len() as u64 * setup.steps(),
         bodies: runs.len(),
         engine_settings: Some(setup.settings),

@@ -299,6 +299,7 @@ fn report(
     instrument_errors: &[granulometry::ErrorRow],
 ) -> SceneReport {
     SceneReport {
+        warnings: Vec::new(),
         steps: st.steps,
         bodies: st.grains.len(),
         engine_settings: None,
