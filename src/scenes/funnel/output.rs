@@ -285,6 +285,19 @@ fn err(e: impl std::fmt::Display) -> io::Error {
     io::Error::other(e.to_string())
 }
 
+/// A tick label with at most 4 significant digits, no float noise and never `-0`.
+fn tick(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return if v.is_finite() {
+            "0".into()
+        } else {
+            format!("{v}")
+        };
+    }
+    let rounded: f64 = format!("{v:.3e}").parse().unwrap_or(v);
+    format!("{rounded}")
+}
+
 /// The vertical distribution as horizontal bars (balls per repeat against Z, in cm), with
 /// f-EDEM's range 8.5–13.5 cm and the paste surface marked (f-EDEM Fig. 21).
 pub fn write_z_chart(
@@ -313,7 +326,11 @@ pub fn write_z_chart(
         .map_err(err)?;
     chart
         .configure_mesh()
-        .x_desc("ball centres per repeat")
+        .x_label_formatter(&|v| tick(*v))
+        .y_label_formatter(&|v| tick(*v))
+        .label_style(("sans-serif", 13))
+        .axis_desc_style(("sans-serif", 14))
+        .x_desc("ball centres in the bin, mean per repeat (balls)")
         .y_desc("Z above the cylinder bottom (cm)")
         .draw()
         .map_err(err)?;
@@ -375,13 +392,37 @@ pub fn write_presence_chart(
     let cols = planes_z_m.len().clamp(1, 3);
     let rows = planes_z_m.len().div_ceil(3).max(1);
     let root =
-        SVGBackend::new(path, (320 * cols as u32, 340 * rows as u32 + 60)).into_drawing_area();
+        SVGBackend::new(path, (360 * cols as u32, 380 * rows as u32 + 95)).into_drawing_area();
     root.fill(&WHITE).map_err(err)?;
-    let (top, body) = root.split_vertically(60);
+    let (top, body) = root.split_vertically(95);
     top.titled(title, ("sans-serif", 18)).map_err(err)?;
     top.draw(&Text::new(
-        "probability: white 0 → dark red 1 (fraction of repeats in which the point lies inside a ball)",
+        "colour: white 0 → dark red 1, the fraction of the repeats in which the point lies inside a ball",
         (10, 40),
+        ("sans-serif", 12),
+    ))
+    .map_err(err)?;
+    // Colour bar of the probability, 0 … 1.
+    for i in 0..50 {
+        let x = 10 + 5 * i;
+        top.draw(&Rectangle::new(
+            [(x, 55), (x + 5, 70)],
+            heat((i as f64 + 0.5) / 50.0).filled(),
+        ))
+        .map_err(err)?;
+    }
+    top.draw(&Rectangle::new(
+        [(10, 55), (260, 70)],
+        BLACK.stroke_width(1),
+    ))
+    .map_err(err)?;
+    for (p, x) in [(0.0, 10), (0.5, 135), (1.0, 260)] {
+        top.draw(&Text::new(tick(p), (x - 4, 74), ("sans-serif", 12)))
+            .map_err(err)?;
+    }
+    top.draw(&Text::new(
+        "presence probability (-)",
+        (275, 57),
         ("sans-serif", 12),
     ))
     .map_err(err)?;
@@ -390,10 +431,13 @@ pub fn write_presence_chart(
     let h = 0.5 * cell_m * 1e3;
     for (area, &z) in panels.iter().zip(planes_z_m) {
         let mut chart = ChartBuilder::on(area)
-            .caption(format!("Z = {:.1} cm", z * 100.0), ("sans-serif", 16))
+            .caption(
+                format!("plane Z = {} cm above the bottom", tick(z * 100.0)),
+                ("sans-serif", 15),
+            )
             .margin(8)
-            .x_label_area_size(25)
-            .y_label_area_size(35)
+            .x_label_area_size(40)
+            .y_label_area_size(55)
             .build_cartesian_2d(-r_mm * 1.05..r_mm * 1.05, -r_mm * 1.05..r_mm * 1.05)
             .map_err(err)?;
         chart
@@ -401,6 +445,12 @@ pub fn write_presence_chart(
             .disable_mesh()
             .x_labels(5)
             .y_labels(5)
+            .x_label_formatter(&|v| tick(*v))
+            .y_label_formatter(&|v| tick(*v))
+            .label_style(("sans-serif", 12))
+            .axis_desc_style(("sans-serif", 13))
+            .x_desc("x from the axis (mm)")
+            .y_desc("y from the axis (mm)")
             .draw()
             .map_err(err)?;
         chart

@@ -149,7 +149,7 @@ pub fn run(
         return Err(Error::Io(p.path.clone(), e));
     }
     let wall = t0.elapsed().as_secs_f64();
-    output::write_all(stage, s, sm, &setup, &instruments, &st, obs.rec, wall)
+    output::write_all(stage, s, sm, &setup, &st, obs.rec, wall)
 }
 
 /// The observer of [`run`]: records profiles, pictures, snapshots and instrument readings, moves

@@ -4,31 +4,31 @@
 //! Figs. 15–17), `bulb_density.csv` (seed Fig. 13), `instrument_errors.csv` (each instrument
 //! against the input curve) and the combined `instrument_errors.csv` of several runs.
 
+use super::charts;
 use crate::io::chart::{scatter_svg, Scale, Series};
 use crate::io::{num, opt, StagedDir};
 use crate::sample::Distribution;
 use crate::scenario::{SampleSpec, Scenario};
-use crate::scenes::sedimentation::instruments::{
-    BulbRow, InstrumentKind, InstrumentReading, InstrumentSet,
-};
+use crate::scenes::sedimentation::instruments::{BulbRow, InstrumentKind, InstrumentReading};
 use crate::scenes::sedimentation::setup::Setup;
 use std::io;
 use std::path::Path;
 
 /// Writes every instrument file of a run into `stage`: `granulometry.csv`/`.svg`,
-/// `instruments.csv`/`.svg`, `bulb_density.csv`/`.svg` and `instrument_errors.csv`; returns the
-/// error rows (each instrument against the input curve).
+/// `instruments.csv`/`.svg`, `instrument_depths.svg`, `instrument_diameters.svg`,
+/// `bulb_density.csv`/`.svg`, `bulb_mean_density.svg` (with hydrometer readings) and
+/// `instrument_errors.csv`; returns the error rows (each instrument against the input curve).
 pub fn write_all(
     stage: &StagedDir,
     s: &Scenario,
     sm: &SampleSpec,
     setup: &Setup,
-    instruments: &InstrumentSet,
     readings: &[InstrumentReading],
     bulb: &[BulbRow],
 ) -> io::Result<Vec<ErrorRow>> {
     let instrument_errors = errors(&setup.distribution, readings);
     let full = super::physics_label(s, true);
+    let name = &s.name;
     write_granulometry(
         &stage.path("granulometry.csv"),
         sm.sample,
@@ -39,21 +39,37 @@ pub fn write_all(
     write_bulb_density(&stage.path("bulb_density.csv"), bulb)?;
     write_chart(
         &stage.path("granulometry.svg"),
-        &format!("{}: percent finer, input and instruments ({full})", s.name),
+        &format!("{name}: percent finer, input and instruments ({full}; seed 000 Fig. 18)"),
         &setup.distribution,
         readings,
     )?;
-    write_time_chart(
+    charts::write_time_chart(
         &stage.path("instruments.svg"),
-        &format!("{}: percent finer read against time", s.name),
+        &format!("{name}: percent finer read against time (seed 000 Figs. 15–17, bottom)"),
         readings,
     )?;
-    write_bulb_chart(
-        &stage.path("bulb_density.svg"),
-        &format!("{}: suspension density along the hydrometer bulb", s.name),
-        bulb,
-        instruments.hydrometer.spec.bulb_length_m,
+    charts::write_depth_chart(
+        &stage.path("instrument_depths.svg"),
+        &format!("{name}: depth of each reading (seed 000 Figs. 15–17, top)"),
+        readings,
     )?;
+    charts::write_diameter_chart(
+        &stage.path("instrument_diameters.svg"),
+        &format!("{name}: limiting diameter of each reading (seed 000 Figs. 15–17, middle)"),
+        readings,
+    )?;
+    charts::write_bulb_chart(
+        &stage.path("bulb_density.svg"),
+        &format!("{name}: suspension density along the hydrometer bulb (seed 000 Fig. 13)"),
+        bulb,
+    )?;
+    if readings.iter().any(|r| r.hydrometer.is_some()) {
+        charts::write_bulb_mean_chart(
+            &stage.path("bulb_mean_density.svg"),
+            &format!("{name}: mean density around the bulb against eq. 19 (seed 000 Fig. 14)"),
+            readings,
+        )?;
+    }
     write_errors(
         &stage.path("instrument_errors.csv"),
         &s.name,
@@ -81,7 +97,8 @@ pub fn input_diameters(input: &Distribution) -> Vec<f64> {
     d
 }
 
-/// `granulometry.csv`: `sample, instrument, time_s, depth_m, diameter_m, percent_finer`, then
+/// `granulometry.csv`: `sample, instrument, time_s, time_min, depth_m, diameter_m, percent_finer`,
+/// then
 /// `input_percent_finer` (the input curve at that diameter), `sd_percent` (1σ of w_o from the
 /// grain count) and `ideal_percent_finer` (the same instrument on the ideal Stokes suspension of
 /// the input curve: its own approximation). Instrument `input` rows are the input curve.
@@ -96,6 +113,7 @@ pub fn write_granulometry(
         "sample",
         "instrument",
         "time_s",
+        "time_min",
         "depth_m",
         "diameter_m",
         "percent_finer",
@@ -109,6 +127,7 @@ pub fn write_granulometry(
         w.write_record([
             sample.to_string(),
             "input".into(),
+            String::new(),
             String::new(),
             String::new(),
             num(d),
@@ -125,6 +144,7 @@ pub fn write_granulometry(
             sample.to_string(),
             r.kind.name().into(),
             num(p.time_s),
+            num(p.time_s / 60.0),
             num(p.depth_m),
             num(p.diameter_m),
             num(p.percent_finer),
@@ -138,13 +158,14 @@ pub fn write_granulometry(
 }
 
 /// `instruments.csv`: the raw readings over time (seed Figs. 15–17), one row per instrument and
-/// time. Hydrometer: tip depth, stem immersed, reading R (g/L, G_s = 2.65), ASTM effective depth
+/// time (`time_s` and `time_min`). Hydrometer: tip depth, stem immersed, reading R (g/L, G_s = 2.65), ASTM effective depth
 /// and the mean density over the bulb; sphere: apparent mass; pipette: dry mass drawn (real
 /// cylinder) and grains in the sampled disc. All: the suspension density measured, φ_o and w_o.
 pub fn write_instruments(path: &Path, readings: &[InstrumentReading]) -> io::Result<()> {
     let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
     w.write_record([
         "time_s",
+        "time_min",
         "instrument",
         "depth_m",
         "tip_depth_m",
@@ -167,6 +188,7 @@ pub fn write_instruments(path: &Path, readings: &[InstrumentReading]) -> io::Res
         let h = r.hydrometer;
         w.write_record([
             num(r.point.time_s),
+            num(r.point.time_s / 60.0),
             r.kind.name().into(),
             num(r.point.depth_m),
             opt(h.map(|h| h.tip_depth_m)),
@@ -189,15 +211,21 @@ pub fn write_instruments(path: &Path, readings: &[InstrumentReading]) -> io::Res
     w.flush()
 }
 
-/// `bulb_density.csv`: `time_s, position_m` (below the top of the bulb, seed Fig. 13's h_hd),
+/// `bulb_density.csv`: `time_s, time_min, position_m` (below the top of the bulb, seed Fig. 13's h_hd),
 /// `depth_m, density_kg_m3`, per layer crossed by the bulb at each hydrometer reading (and at
 /// t = 0).
 pub fn write_bulb_density(path: &Path, rows: &[BulbRow]) -> io::Result<()> {
     let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
-    w.write_record(["time_s", "position_m", "depth_m", "density_kg_m3"])
-        .map_err(csv_err)?;
+    w.write_record([
+        "time_s",
+        "time_min",
+        "position_m",
+        "depth_m",
+        "density_kg_m3",
+    ])
+    .map_err(csv_err)?;
     for (t, p, y, rho) in rows {
-        w.write_record([num(*t), num(*p), num(*y), num(*rho)])
+        w.write_record([num(*t), num(*t / 60.0), num(*p), num(*y), num(*rho)])
             .map_err(csv_err)?;
     }
     w.flush()
@@ -244,7 +272,7 @@ pub fn write_chart(
     scatter_svg(
         path,
         title,
-        "diameter (µm, log)",
+        "diameter, log scale (µm)",
         "percent finer (%)",
         Scale::Log,
         Scale::Linear,
@@ -377,93 +405,4 @@ pub fn write_combined_errors(path: &Path, run_dirs: &[&Path]) -> io::Result<()> 
         }
     }
     w.flush()
-}
-
-/// Chart of the percent finer of each instrument against time (log), seed Figs. 15–17 bottom.
-pub fn write_time_chart(
-    path: &Path,
-    title: &str,
-    readings: &[InstrumentReading],
-) -> io::Result<()> {
-    let series: Vec<Series> = [
-        InstrumentKind::Hydrometer,
-        InstrumentKind::Buoyancy,
-        InstrumentKind::Pipette,
-    ]
-    .into_iter()
-    .enumerate()
-    .map(|(i, k)| Series {
-        label: k.name().into(),
-        points: readings
-            .iter()
-            .filter(|r| r.kind == k)
-            .map(|r| (r.point.time_s, r.point.percent_finer))
-            .collect(),
-        colour: [1, 4, 3][i],
-        filled: true,
-        line: true,
-    })
-    .collect();
-    scatter_svg(
-        path,
-        title,
-        "time (s, log)",
-        "percent finer (%)",
-        Scale::Log,
-        Scale::Linear,
-        &series,
-    )
-}
-
-/// Chart of the suspension density along the bulb at each hydrometer reading (seed Fig. 13),
-/// averaged over 2 mm of bulb: density against the height above the tip (the top of the chart
-/// is the top of the bulb).
-pub fn write_bulb_chart(
-    path: &Path,
-    title: &str,
-    rows: &[BulbRow],
-    bulb_length_m: f64,
-) -> io::Result<()> {
-    let mut times: Vec<f64> = rows.iter().map(|r| r.0).collect();
-    times.dedup();
-    let bin = 2e-3;
-    let series: Vec<Series> = times
-        .iter()
-        .enumerate()
-        .map(|(i, &t)| {
-            let mut acc: Vec<(f64, usize)> = Vec::new();
-            for r in rows.iter().filter(|r| r.0 == t) {
-                let k = (r.1 / bin) as usize;
-                if acc.len() <= k {
-                    acc.resize(k + 1, (0.0, 0));
-                }
-                acc[k].0 += r.3;
-                acc[k].1 += 1;
-            }
-            Series {
-                label: format!("{t} s"),
-                points: acc
-                    .iter()
-                    .enumerate()
-                    .filter(|(_, a)| a.1 > 0)
-                    .map(|(k, a)| {
-                        let mid = ((k as f64 + 0.5) * bin).min(bulb_length_m);
-                        (a.0 / a.1 as f64, (bulb_length_m - mid) * 100.0)
-                    })
-                    .collect(),
-                colour: i,
-                filled: true,
-                line: true,
-            }
-        })
-        .collect();
-    scatter_svg(
-        path,
-        title,
-        "suspension density (kg/m³)",
-        "height above the bulb tip (cm)",
-        Scale::Linear,
-        Scale::Linear,
-        &series,
-    )
 }

@@ -1,11 +1,16 @@
-//! Every file a sedimentation run writes: `profiles.csv`, `bed.csv`, `max_diameter.csv`,
-//! `summary.csv`, `snapshots/` and `cylinder.png` ([`pictures`]), and the instruments' files
-//! ([`granulometry`]).
+//! Every file a sedimentation run writes: `profiles.csv`, `bed.csv`, `max_diameter.csv`/`.svg`
+//! ([`charts`]), `summary.csv`, `snapshots/` ([`pictures`]), `cylinder.csv`/`.svg`
+//! ([`cylinder`]), `transient.csv`/`.svg` and `terminal_time.csv`/`.svg` ([`transient`]), and
+//! the instruments' files ([`granulometry`], [`charts`]).
 
+pub mod charts;
+pub mod cylinder;
 pub mod granulometry;
 pub mod pictures;
+pub mod plot;
+pub mod transient;
 
-use super::instruments::{BulbRow, InstrumentReading, InstrumentSet};
+use super::instruments::{BulbRow, InstrumentReading};
 use super::setup::{limiting_diameter_m, Setup};
 use super::state::{concentration, Profile, State};
 use crate::error::Error;
@@ -20,7 +25,8 @@ use std::path::Path;
 pub struct Recorded {
     /// The profiles at the record times.
     pub profiles: Vec<Profile>,
-    /// (time, band mass fractions) of each snapshot, for `cylinder.png`.
+    /// (time, band mass fractions, bed included) of each snapshot (kept for checkpoints;
+    /// `cylinder.svg` is drawn from the snapshots, the bed apart).
     pub pictures: Vec<(f64, Vec<f64>)>,
     /// The states at the snapshot times (written to `snapshots/` at the end).
     pub snapshots: Vec<State>,
@@ -43,7 +49,6 @@ pub fn write_all(
     s: &Scenario,
     sm: &SampleSpec,
     setup: &Setup,
-    instruments: &InstrumentSet,
     st: &State,
     rec: Recorded,
     wall_s: f64,
@@ -51,7 +56,7 @@ pub fn write_all(
     let io = |e: io::Error| Error::Io(stage.dest().to_path_buf(), e);
     let Recorded {
         profiles,
-        pictures,
+        pictures: _,
         snapshots,
         readings,
         bulb,
@@ -61,25 +66,56 @@ pub fn write_all(
         pictures::write_snapshot(&snap_dir, snap).map_err(io)?;
     }
     let instrument_errors =
-        granulometry::write_all(stage, s, sm, setup, instruments, &readings, &bulb).map_err(io)?;
-    if !pictures.is_empty() {
-        pictures::draw_cylinder(&stage.path("cylinder.png"), &pictures).map_err(io)?;
+        granulometry::write_all(stage, s, sm, setup, &readings, &bulb).map_err(io)?;
+    if !snapshots.is_empty() {
+        let panels = cylinder::panels(&snapshots, setup);
+        cylinder::write_csv(&stage.path("cylinder.csv"), &panels, setup.height_m).map_err(io)?;
+        cylinder::write_svg(
+            &stage.path("cylinder.svg"),
+            &format!(
+                "{}: the cylinder at {} (seed 000 Fig. 11)",
+                s.name,
+                times_text(&panels.iter().map(|p| p.time_s).collect::<Vec<_>>())
+            ),
+            &panels,
+            setup.width_m,
+            setup.height_m,
+        )
+        .map_err(io)?;
     }
+    let classes: Vec<f64> = setup
+        .classes
+        .iter()
+        .filter(|c| c.mass_fraction > 0.0)
+        .map(|c| c.diameter_m)
+        .collect();
+    let grains = transient::Grains {
+        density_kg_m3: sm.density_kg_m3,
+        fluid_density_kg_m3: s.fluid.density_kg_m3,
+        viscosity_pa_s: setup.viscosity_pa_s,
+        gravity_m_s2: s.gravity_m_s2,
+        stokes: s.physics == Physics::IdealStokes,
+    };
+    transient::write_all(stage, &s.name, grains, &classes).map_err(io)?;
     let k = Densities {
         grain_kg_m3: sm.density_kg_m3,
         fluid_kg_m3: s.fluid.density_kg_m3,
     };
     write_profiles(&stage.path("profiles.csv"), &profiles, setup, sm.layers, k).map_err(io)?;
     write_bed(&stage.path("bed.csv"), &profiles, setup).map_err(io)?;
-    write_max_diameter(
-        &stage.path("max_diameter.csv"),
-        &profiles,
-        setup,
-        sm.layers,
-        k,
-        s.gravity_m_s2,
-    )
-    .map_err(io)?;
+    let dmax = max_diameter_rows(&profiles, setup, sm.layers, k, s.gravity_m_s2);
+    write_max_diameter(&stage.path("max_diameter.csv"), &dmax).map_err(io)?;
+    if !dmax.is_empty() {
+        charts::write_max_diameter_chart(
+            &stage.path("max_diameter.svg"),
+            &format!(
+                "{}: largest grain above each depth against eq. 16 (seed 000 Fig. 12)",
+                s.name
+            ),
+            &dmax,
+        )
+        .map_err(io)?;
+    }
     let summary = Summary::of(st);
     write_summary(&stage.path("summary.csv"), sm, setup, st, &summary).map_err(io)?;
     Ok(report(sm, setup, st, &summary, wall_s, &instrument_errors))
@@ -170,26 +206,18 @@ fn write_bed(path: &Path, profiles: &[Profile], setup: &Setup) -> io::Result<()>
     w.flush()
 }
 
-/// `max_diameter.csv`: at 60, 120, 300 and 900 s, the largest grain above each depth (every
-/// hundredth of the layers) against the limiting diameter of seed eq. 16.
-fn write_max_diameter(
-    path: &Path,
+/// The rows of `max_diameter.csv`: at 60, 120, 300 and 900 s (those recorded), the largest grain
+/// above each depth (every hundredth of the layers) against the limiting diameter of seed eq. 16.
+fn max_diameter_rows(
     profiles: &[Profile],
     setup: &Setup,
     layers: usize,
     k: Densities,
     gravity_m_s2: f64,
-) -> io::Result<()> {
+) -> Vec<charts::MaxDiameterRow> {
     let h_ly = setup.height_m / layers as f64;
     let (rho_p, rho_f, mu) = (k.grain_kg_m3, k.fluid_kg_m3, setup.viscosity_pa_s);
-    let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
-    w.write_record([
-        "time_s",
-        "depth_m",
-        "d_max_above_m",
-        "limiting_diameter_eq16_m",
-    ])
-    .map_err(csv_err)?;
+    let mut rows = Vec::new();
     for pr in profiles.iter().filter(|pr| {
         [60.0, 120.0, 300.0, 900.0]
             .iter()
@@ -200,24 +228,39 @@ fn write_max_diameter(
             dmax = dmax.max(pr.d_max_m[k]);
             if (k + 1) % (layers / 100).max(1) == 0 {
                 let depth = (k as f64 + 1.0) * h_ly;
-                w.write_record([
-                    num(pr.time_s),
-                    num(depth),
-                    num(dmax),
-                    num(limiting_diameter_m(
-                        depth,
-                        pr.time_s,
-                        mu,
-                        rho_p,
-                        rho_f,
-                        gravity_m_s2,
-                    )),
-                ])
-                .map_err(csv_err)?;
+                let limit = limiting_diameter_m(depth, pr.time_s, mu, rho_p, rho_f, gravity_m_s2);
+                rows.push((pr.time_s, depth, dmax, limit));
             }
         }
     }
+    rows
+}
+
+/// `max_diameter.csv` of the `rows` of [`max_diameter_rows`].
+fn write_max_diameter(path: &Path, rows: &[charts::MaxDiameterRow]) -> io::Result<()> {
+    let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
+    w.write_record([
+        "time_s",
+        "depth_m",
+        "d_max_above_m",
+        "limiting_diameter_eq16_m",
+    ])
+    .map_err(csv_err)?;
+    for &(t, depth, dmax, limit) in rows {
+        w.write_record([num(t), num(depth), num(dmax), num(limit)])
+            .map_err(csv_err)?;
+    }
     w.flush()
+}
+
+/// The times of the panels as a title says them: `60, 300 and 900 s`.
+fn times_text(times_s: &[f64]) -> String {
+    let t: Vec<String> = times_s.iter().map(|t| plot::sig(*t, 6)).collect();
+    match t.split_last() {
+        None => String::new(),
+        Some((last, [])) => format!("{last} s"),
+        Some((last, rest)) => format!("{} and {last} s", rest.join(", ")),
+    }
 }
 
 /// Figures of the final state shared by `summary.csv` and the report.

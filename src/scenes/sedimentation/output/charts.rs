@@ -1,0 +1,251 @@
+//! Charts of a sedimentation run drawn with the shared chart module ([`crate::io::chart`]):
+//! `max_diameter.svg` (seed 000 Fig. 12), `bulb_density.svg` (Fig. 13), `bulb_mean_density.svg`
+//! (Fig. 14) and the instruments against time in minutes on a log axis, as labs read them
+//! (Figs. 15–17): `instrument_depths.svg`, `instrument_diameters.svg`, `instruments.svg`.
+
+use super::plot::time_text;
+use crate::io::chart::{scatter_svg, Scale, Series};
+use crate::scenes::sedimentation::instruments::{BulbRow, InstrumentKind, InstrumentReading};
+use std::io;
+use std::path::Path;
+
+/// The three instruments, in chart order, with their colour indices.
+const KINDS: [(InstrumentKind, usize); 3] = [
+    (InstrumentKind::Hydrometer, 0),
+    (InstrumentKind::Buoyancy, 1),
+    (InstrumentKind::Pipette, 2),
+];
+
+/// One row of `max_diameter.csv`: time (s), depth (m), largest grain above that depth (m) and
+/// the limiting diameter of seed eq. 16 (m).
+pub type MaxDiameterRow = (f64, f64, f64, f64);
+
+/// Seed Fig. 12: the largest diameter above each depth (markers) against eq. 16,
+/// d = √(18 μ z / ((ρ_p − ρ_f) g t)) (lines), one colour per time; every fourth row of
+/// `max_diameter.csv` so the markers stay apart. Eq. 16 is drawn up to 1.5 × the largest grain
+/// (beyond it no grain exists and the bound says nothing).
+pub fn write_max_diameter_chart(
+    path: &Path,
+    title: &str,
+    rows: &[MaxDiameterRow],
+) -> io::Result<()> {
+    let mut times: Vec<f64> = rows.iter().map(|r| r.0).collect();
+    times.dedup();
+    let d_top = rows.iter().map(|r| r.2).fold(0.0, f64::max) * 1.5;
+    let mut series = Vec::new();
+    for (i, &t) in times.iter().enumerate() {
+        let of_t: Vec<&MaxDiameterRow> = rows.iter().filter(|r| r.0 == t).collect();
+        series.push(Series {
+            label: format!("simulation, {}", time_text(t)),
+            points: of_t
+                .iter()
+                .step_by(4)
+                .map(|r| (r.1 * 100.0, r.2 * 1e6))
+                .collect(),
+            colour: i,
+            filled: true,
+            line: false,
+        });
+        series.push(Series {
+            label: format!("eq. 16, {}", time_text(t)),
+            points: of_t
+                .iter()
+                .step_by(4)
+                .filter(|r| r.3 <= d_top)
+                .map(|r| (r.1 * 100.0, r.3 * 1e6))
+                .collect(),
+            colour: i,
+            filled: false,
+            line: true,
+        });
+    }
+    scatter_svg(
+        path,
+        title,
+        "depth below the surface (cm)",
+        "largest diameter above the depth (µm)",
+        Scale::Linear,
+        Scale::Linear,
+        &series,
+    )
+}
+
+/// Seed Fig. 13: the suspension density along the hydrometer bulb at each reading, averaged over
+/// 1 cm of bulb, against the distance below the top of the bulb (h_hd), one line per time.
+pub fn write_bulb_chart(path: &Path, title: &str, rows: &[BulbRow]) -> io::Result<()> {
+    let mut times: Vec<f64> = rows.iter().map(|r| r.0).collect();
+    times.dedup();
+    let bin = 0.01;
+    let series: Vec<Series> = times
+        .iter()
+        .enumerate()
+        .map(|(i, &t)| {
+            let mut acc: Vec<(f64, f64, usize)> = Vec::new();
+            for r in rows.iter().filter(|r| r.0 == t) {
+                let k = (r.1 / bin).max(0.0) as usize;
+                if acc.len() <= k {
+                    acc.resize(k + 1, (0.0, 0.0, 0));
+                }
+                acc[k].0 += r.1;
+                acc[k].1 += r.3;
+                acc[k].2 += 1;
+            }
+            let points = acc
+                .iter()
+                .filter(|a| a.2 > 0)
+                .map(|a| (a.0 / a.2 as f64 * 100.0, a.1 / a.2 as f64))
+                .collect();
+            Series::sorted_line(time_text(t), points, i)
+        })
+        .collect();
+    scatter_svg(
+        path,
+        title,
+        "distance below the top of the bulb h_hd (cm)",
+        "suspension density, mean over 1 cm (kg/m³)",
+        Scale::Linear,
+        Scale::Linear,
+        &series,
+    )
+}
+
+/// Seed Fig. 14: the mean suspension density over the bulb (simulation) and the density the
+/// hydrometer infers from its depth with eq. 19, ρ_s = ρ_f m / (m − A_s (y_ow − y_o) ρ_f),
+/// against time in minutes.
+pub fn write_bulb_mean_chart(
+    path: &Path,
+    title: &str,
+    readings: &[InstrumentReading],
+) -> io::Result<()> {
+    let hyd: Vec<(f64, f64, f64)> = readings
+        .iter()
+        .filter_map(|r| {
+            r.hydrometer.map(|h| {
+                (
+                    r.point.time_s / 60.0,
+                    h.bulb_mean_density_kg_m3,
+                    h.density_kg_m3,
+                )
+            })
+        })
+        .collect();
+    let series = [
+        Series {
+            label: "mean over the bulb (simulation)".into(),
+            points: hyd.iter().map(|h| (h.0, h.1)).collect(),
+            colour: 0,
+            filled: true,
+            line: false,
+        },
+        Series {
+            label: "eq. 19 from the hydrometer's depth".into(),
+            points: hyd.iter().map(|h| (h.0, h.2)).collect(),
+            colour: 1,
+            filled: false,
+            line: true,
+        },
+    ];
+    scatter_svg(
+        path,
+        title,
+        "time, log scale (min)",
+        "suspension density around the bulb (kg/m³)",
+        Scale::Log,
+        Scale::Linear,
+        &series,
+    )
+}
+
+/// One series per instrument of `value` against the reading time in minutes.
+fn per_instrument(
+    readings: &[InstrumentReading],
+    value: impl Fn(&InstrumentReading) -> Option<f64>,
+) -> Vec<Series> {
+    KINDS
+        .iter()
+        .map(|&(k, colour)| Series {
+            label: k.name().into(),
+            points: readings
+                .iter()
+                .filter(|r| r.kind == k)
+                .filter_map(|r| value(r).map(|v| (r.point.time_s / 60.0, v)))
+                .collect(),
+            colour,
+            // Hollow pipette markers: the sphere and the pipette read at the same depth.
+            filled: k != InstrumentKind::Pipette,
+            line: true,
+        })
+        .filter(|s| !s.points.is_empty())
+        .collect()
+}
+
+/// Seed Figs. 15–17, top: the depth each instrument's reading stands for (eq. 16's depth:
+/// hydrometer bulb centre, sphere centre, pipette tip), and the hydrometer's ASTM D422 effective
+/// depth from its reading, in cm against time in minutes.
+pub fn write_depth_chart(
+    path: &Path,
+    title: &str,
+    readings: &[InstrumentReading],
+) -> io::Result<()> {
+    let mut series = per_instrument(readings, |r| Some(r.point.depth_m * 100.0));
+    let astm: Vec<(f64, f64)> = readings
+        .iter()
+        .filter_map(|r| {
+            r.hydrometer
+                .map(|h| (r.point.time_s / 60.0, h.astm_effective_depth_m * 100.0))
+        })
+        .collect();
+    if !astm.is_empty() {
+        series.push(Series {
+            label: "hydrometer, ASTM D422 effective depth".into(),
+            points: astm,
+            colour: 0,
+            filled: false,
+            line: true,
+        });
+    }
+    scatter_svg(
+        path,
+        title,
+        "time, log scale (min)",
+        "depth below the surface (cm)",
+        Scale::Log,
+        Scale::Linear,
+        &series,
+    )
+}
+
+/// Seed Figs. 15–17, middle: the limiting diameter φ_o of eq. 16 of each reading, µm (log),
+/// against time in minutes.
+pub fn write_diameter_chart(
+    path: &Path,
+    title: &str,
+    readings: &[InstrumentReading],
+) -> io::Result<()> {
+    scatter_svg(
+        path,
+        title,
+        "time, log scale (min)",
+        "limiting diameter φ_o, log scale (µm)",
+        Scale::Log,
+        Scale::Log,
+        &per_instrument(readings, |r| Some(r.point.diameter_m * 1e6)),
+    )
+}
+
+/// Seed Figs. 15–17, bottom: the percent finer w_o of each reading against time in minutes.
+pub fn write_time_chart(
+    path: &Path,
+    title: &str,
+    readings: &[InstrumentReading],
+) -> io::Result<()> {
+    scatter_svg(
+        path,
+        title,
+        "time, log scale (min)",
+        "percent finer w_o (%)",
+        Scale::Log,
+        Scale::Linear,
+        &per_instrument(readings, |r| Some(r.point.percent_finer)),
+    )
+}
