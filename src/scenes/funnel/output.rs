@@ -362,8 +362,11 @@ pub fn write_z_chart(
         .map_err(err)?
         .label("paste surface")
         .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], surface));
+    // Lower right: below f-EDEM's range, where no ball rests.
     chart
         .configure_series_labels()
+        .position(SeriesLabelPosition::LowerRight)
+        .label_font(("sans-serif", 13))
         .background_style(WHITE.mix(0.8))
         .border_style(BLACK)
         .draw()
@@ -507,7 +510,10 @@ pub fn write_all(
     write_z_distribution(&stage.path("z_distribution.csv"), &bins, reps).map_err(io)?;
     write_z_chart(
         &stage.path("z_distribution.svg"),
-        &format!("{}: ball centres in the paste ({reps} repeat(s))", s.name),
+        &format!(
+            "{}: ball centres in the paste ({reps} repeat(s); f-EDEM Fig. 21)",
+            s.name
+        ),
         &bins,
         reps,
         geo.paste_height_m,
@@ -519,7 +525,7 @@ pub fn write_all(
         write_presence_chart(
             &stage.path("presence.svg"),
             &format!(
-                "{}: presence probability on horizontal planes ({reps} repeat(s))",
+                "{}: presence probability on horizontal planes ({reps} repeat(s); f-EDEM Fig. 22)",
                 s.name
             ),
             &cells,

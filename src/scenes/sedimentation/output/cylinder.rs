@@ -150,7 +150,9 @@ pub fn write_svg(
         let bands = p.suspended_fraction.len() as f64;
         chart
             .draw_series(p.suspended_fraction.iter().enumerate().map(|(k, f)| {
-                let (y0, y1) = (-(k as f64) / bands * h_cm, -(k as f64 + 1.0) / bands * h_cm);
+                // Each band reaches a third into the next, drawn over it, so no hairline seam shows.
+                let y0 = -(k as f64) / bands * h_cm;
+                let y1 = (-(k as f64 + 1.3) / bands * h_cm).max(-h_cm);
                 Rectangle::new([(0.0, y0), (b_cm, y1)], grey(*f, max).filled())
             }))
             .map_err(err)?;
@@ -203,7 +205,10 @@ fn draw_scale<DB: DrawingBackend>(
         .draw_series((0..steps).map(|i| {
             let (a, b) = (i as f64 / steps as f64, (i + 1) as f64 / steps as f64);
             Rectangle::new(
-                [(0.0, a * max_pct), (1.0, b * max_pct)],
+                [
+                    (0.0, a * max_pct),
+                    (1.0, (b + 0.3 / steps as f64).min(1.0) * max_pct),
+                ],
                 grey(0.5 * (a + b) * max, max).filled(),
             )
         }))
