@@ -82,7 +82,8 @@ fn the_cylinder_shows_each_time_with_a_depth_axis_and_a_grey_scale() {
     assert!(bed(900.0) > bed(60.0) && bed(60.0) > 0.0);
 }
 
-/// Seed Fig. 12: the largest diameter above each depth against eq. 16, in µm against cm.
+/// Seed Fig. 12: the largest diameter above each depth against eq. 16, in µm against cm, at the
+/// record and snapshot times among 60, 120, 300 and 900 s.
 #[test]
 fn the_largest_diameter_is_charted_against_eq_16() {
     let texts = assert_readable_chart(
@@ -93,9 +94,20 @@ fn the_largest_diameter_is_charted_against_eq_16() {
             "largest diameter above the depth (µm)",
         ],
     );
-    for l in ["simulation, t = 60 s (1 min)", "eq. 16, t = 900 s (15 min)"] {
+    for l in [
+        "simulation, t = 60 s (1 min)",
+        "simulation, t = 300 s (5 min)",
+        "eq. 16, t = 900 s (15 min)",
+    ] {
         assert!(texts.iter().any(|x| x == l), "no legend `{l}` in {texts:?}");
     }
+    // 300 s is no record time of this run: its rows come from the snapshot at 300 s.
+    let rows = read_csv_records(&out().join("max_diameter.csv"));
+    for t in [60.0, 300.0, 900.0] {
+        let n = rows.iter().filter(|r| num(r, "time_s") == t).count();
+        assert_eq!(n, 100, "t = {t}");
+    }
+    assert_eq!(rows.len(), 300);
 }
 
 /// Seed Fig. 13: one line per hydrometer time (t = 0 and 2, 5, 15 min), labelled with the time.

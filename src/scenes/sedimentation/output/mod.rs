@@ -103,7 +103,16 @@ pub fn write_all(
     };
     write_profiles(&stage.path("profiles.csv"), &profiles, setup, sm.layers, k).map_err(io)?;
     write_bed(&stage.path("bed.csv"), &profiles, setup).map_err(io)?;
-    let dmax = max_diameter_rows(&profiles, setup, sm.layers, k, s.gravity_m_s2);
+    // Fig. 12's times: those recorded, and the snapshot times (60, 300, 900 s by default) that
+    // the default record times miss.
+    let from_snapshots: Vec<Profile> = snapshots
+        .iter()
+        .filter(|st| !profiles.iter().any(|p| p.time_s == st.time_s))
+        .map(|st| super::state::profile(st, setup, sm.layers, sm.density_kg_m3))
+        .collect();
+    let mut at: Vec<&Profile> = profiles.iter().chain(&from_snapshots).collect();
+    at.sort_by(|a, b| a.time_s.total_cmp(&b.time_s));
+    let dmax = max_diameter_rows(&at, setup, sm.layers, k, s.gravity_m_s2);
     write_max_diameter(&stage.path("max_diameter.csv"), &dmax).map_err(io)?;
     if !dmax.is_empty() {
         charts::write_max_diameter_chart(
@@ -206,10 +215,11 @@ fn write_bed(path: &Path, profiles: &[Profile], setup: &Setup) -> io::Result<()>
     w.flush()
 }
 
-/// The rows of `max_diameter.csv`: at 60, 120, 300 and 900 s (those recorded), the largest grain
-/// above each depth (every hundredth of the layers) against the limiting diameter of seed eq. 16.
+/// The rows of `max_diameter.csv`: at 60, 120, 300 and 900 s (those among the `profiles`), the
+/// largest grain above each depth (every hundredth of the layers) against the limiting diameter
+/// of seed eq. 16.
 fn max_diameter_rows(
-    profiles: &[Profile],
+    profiles: &[&Profile],
     setup: &Setup,
     layers: usize,
     k: Densities,
