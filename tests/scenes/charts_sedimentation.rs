@@ -194,6 +194,26 @@ fn the_instruments_are_charted_against_time_in_minutes() {
             assert_eq!(num(r, "time_min") * 60.0, num(r, "time_s"), "{file}");
         }
     }
+    for (file, title, y, k) in [
+        (
+            "sphere_mass.svg",
+            "apparent mass of the buoyancy sphere",
+            "apparent mass of the sphere (g)",
+            "buoyancy",
+        ),
+        (
+            "pipette_mass.svg",
+            "dry mass drawn by the pipette",
+            "dry mass in the pipette (g)",
+            "pipette",
+        ),
+    ] {
+        let texts = assert_readable_chart(&out().join(file), title, &["time, log scale (min)", y]);
+        assert!(
+            texts.iter().any(|x| x == k),
+            "{file}: no `{k}` in {texts:?}"
+        );
+    }
     let header = std::fs::read_to_string(out().join("instruments.csv")).unwrap();
     assert!(header.starts_with("time_s,time_min,instrument,"));
 }
@@ -258,7 +278,7 @@ fn every_svg_of_the_run_is_a_chart_with_units() {
         .map(|e| e.unwrap().path())
         .filter(|p| p.extension().is_some_and(|x| x == "svg"))
         .collect();
-    assert_eq!(svgs.len(), 10, "{svgs:?}");
+    assert_eq!(svgs.len(), 12, "{svgs:?}");
     for p in svgs {
         assert!(svg_texts(&p).len() > 5, "{}", p.display());
     }

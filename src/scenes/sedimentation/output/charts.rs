@@ -1,7 +1,8 @@
 //! Charts of a sedimentation run drawn with the shared chart module ([`crate::io::chart`]):
 //! `max_diameter.svg` (seed 000 Fig. 12), `bulb_density.svg` (Fig. 13), `bulb_mean_density.svg`
 //! (Fig. 14) and the instruments against time in minutes on a log axis, as labs read them
-//! (Figs. 15–17): `instrument_depths.svg`, `instrument_diameters.svg`, `instruments.svg`.
+//! (Figs. 15–17): `instrument_depths.svg`, `instrument_diameters.svg`, `sphere_mass.svg`,
+//! `pipette_mass.svg`, `instruments.svg`.
 
 use super::plot::time_text;
 use crate::io::chart::{scatter_svg, Scale, Series};
@@ -247,5 +248,40 @@ pub fn write_time_chart(
         Scale::Log,
         Scale::Linear,
         &per_instrument(readings, |r| Some(r.point.percent_finer)),
+    )
+}
+
+/// Seed Fig. 16 top: the buoyancy sphere's apparent mass in the suspension (eq. 22), and what
+/// the pipette draws (dry mass, real cylinder), each on its own axis in g against time in
+/// minutes (the sphere's changes are a few % of its mass).
+pub fn write_mass_charts(
+    sphere_path: &Path,
+    pipette_path: &Path,
+    name: &str,
+    readings: &[InstrumentReading],
+) -> io::Result<()> {
+    let one =
+        |path: &Path, title: String, y: &str, mass: &dyn Fn(&InstrumentReading) -> Option<f64>| {
+            scatter_svg(
+                path,
+                &title,
+                "time, log scale (min)",
+                y,
+                Scale::Log,
+                Scale::Linear,
+                &per_instrument(readings, mass),
+            )
+        };
+    one(
+        sphere_path,
+        format!("{name}: apparent mass of the buoyancy sphere (seed 000 Fig. 16, top)"),
+        "apparent mass of the sphere (g)",
+        &|r| r.buoyancy.map(|b| b.apparent_mass_kg * 1e3),
+    )?;
+    one(
+        pipette_path,
+        format!("{name}: dry mass drawn by the pipette (seed 000 Fig. 17)"),
+        "dry mass in the pipette (g)",
+        &|r| r.pipette.map(|p| p.mass_kg * 1e3),
     )
 }

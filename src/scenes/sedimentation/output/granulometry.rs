@@ -16,6 +16,7 @@ use std::path::Path;
 
 /// Writes every instrument file of a run into `stage`: `granulometry.csv`/`.svg`,
 /// `instruments.csv`/`.svg`, `instrument_depths.svg`, `instrument_diameters.svg`,
+/// `sphere_mass.svg`, `pipette_mass.svg`,
 /// `bulb_density.csv`/`.svg`, `bulb_mean_density.svg` (with hydrometer readings) and
 /// `instrument_errors.csv`; returns the error rows (each instrument against the input curve).
 pub fn write_all(
@@ -56,6 +57,12 @@ pub fn write_all(
     charts::write_diameter_chart(
         &stage.path("instrument_diameters.svg"),
         &format!("{name}: limiting diameter of each reading (seed 000 Figs. 15–17, middle)"),
+        readings,
+    )?;
+    charts::write_mass_charts(
+        &stage.path("sphere_mass.svg"),
+        &stage.path("pipette_mass.svg"),
+        name,
         readings,
     )?;
     charts::write_bulb_chart(
