@@ -294,6 +294,17 @@ fn data_area<DB: DrawingBackend>(
         .light_line_style(BLACK.mix(0.05))
         .draw()
         .map_err(err)?;
+    // Series lines, then reference curves over them (a dashed analytic curve stays visible on
+    // the line it matches), then markers on top.
+    for it in &c.items {
+        if let Item::Series(Plotted { series: s, .. }) = it {
+            if s.line {
+                let pts = mapped(&s.points, xa, ya);
+                cc.draw_series(LineSeries::new(pts, palette(s.colour).stroke_width(2)))
+                    .map_err(err)?;
+            }
+        }
+    }
     for it in &c.items {
         if let Item::Curve(k) = it {
             let style = curve_colour(k.colour).stroke_width(2);
@@ -303,15 +314,6 @@ fn data_area<DB: DrawingBackend>(
                     .map_err(err)?;
             } else {
                 cc.draw_series(LineSeries::new(pts, style)).map_err(err)?;
-            }
-        }
-    }
-    for it in &c.items {
-        if let Item::Series(Plotted { series: s, .. }) = it {
-            if s.line {
-                let pts = mapped(&s.points, xa, ya);
-                cc.draw_series(LineSeries::new(pts, palette(s.colour).stroke_width(2)))
-                    .map_err(err)?;
             }
         }
     }

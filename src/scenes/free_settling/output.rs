@@ -1,21 +1,27 @@
 //! Every file a free-settling or drop run writes.
 //!
 //! - `kind = "free_settling"`: `summary.csv` (one row per sphere), `metrics.csv` and
-//!   `terminal_velocity.svg` (like f-EDEM Fig. 11) when measurements exist;
+//!   `terminal_velocity.svg` (like f-EDEM Fig. 11) when measurements exist; in a Bingham fluid
+//!   `cd_re.csv` and `cd_re.svg` (C_d against Re′ with eq. 19, like f-EDEM Fig. 1);
 //! - `kind = "drop"`: `summary.csv` with one row per sphere and fall height, and
 //!   `settling_distance.svg` (settling distance against fall height, one series per diameter,
 //!   like f-EDEM Fig. 16);
-//! - both: `timeseries.csv` when `record.timeseries`, `probes.csv` when probe times are set.
+//! - both: `timeseries.csv` and `velocity.svg` (v(t), with the analytic Stokes curve under
+//!   Stokes drag, like f-EDEM Figs. 5–6) when `record.timeseries`, `probes.csv` when probe times
+//!   are set.
+//!
+//! A several-file run also gets the charts of [`write_combined_charts`] in `OUT/combined/`.
 //!
 //! `run.toml` is written by [`crate::run`] from the returned [`SceneReport`].
 
+use super::charts;
 use super::setup::uses_rapier;
 use super::SphereResult;
 use crate::error::Error;
 use crate::io::chart::{scatter_svg, Scale, Series};
 use crate::io::metrics::ErrorStats;
 use crate::io::{num, opt, StagedDir};
-use crate::scenario::{Kind, Submergence};
+use crate::scenario::{Kind, Scenario, Submergence};
 use crate::scenes::{Prepared, SceneReport};
 use std::collections::BTreeMap;
 use std::io;
@@ -60,16 +66,26 @@ pub fn write_all(
             write_chart(
                 &stage.path("terminal_velocity.svg"),
                 &format!(
-                    "{}: terminal velocity, measured (o) and simulated (•)",
+                    "{}: terminal velocity, measured (hollow) and simulated (filled)",
                     s.name
                 ),
                 results,
             )
             .map_err(io)?;
         }
+        let cd_re = charts::cd_re_points(s, results);
+        if !cd_re.is_empty() {
+            charts::write_cd_re_csv(&stage.path("cd_re.csv"), &cd_re).map_err(io)?;
+            let title = format!("{}: drag coefficient against Bingham Reynolds number", s.name);
+            charts::write_cd_re_chart(&stage.path("cd_re.svg"), &title, &cd_re).map_err(io)?;
+        }
     }
     if s.record.timeseries {
         write_timeseries(&stage.path("timeseries.csv"), results).map_err(io)?;
+        let title = format!("{}: settling velocity against time", s.name);
+        let v0 = s.release.velocity_m_s;
+        charts::write_velocity_chart(&stage.path("velocity.svg"), &title, results, v0)
+            .map_err(io)?;
     }
     if results.iter().any(|r| !r.probes.is_empty()) {
         write_probes(&stage.path("probes.csv"), results).map_err(io)?;
@@ -271,6 +287,38 @@ pub fn write_metrics(path: &Path, stats: &[ErrorStats]) -> io::Result<()> {
         w.write_record(s.row()).map_err(csv_err)?;
     }
     w.flush()
+}
+
+/// Writes the charts of a several-file run into `stage` (`OUT/combined/`) from each file's
+/// scenario and results: `parity.svg` and `terminal_velocity.svg` when spheres are measured, and
+/// `cd_re.csv` with `cd_re.svg` over every Bingham run (see [`charts`]).
+pub fn write_combined_charts<'a>(
+    stage: &StagedDir,
+    runs: impl IntoIterator<Item = (&'a Scenario, &'a [SphereResult])>,
+) -> io::Result<()> {
+    let runs: Vec<(&Scenario, &[SphereResult])> = runs.into_iter().collect();
+    let all: Vec<&SphereResult> = runs.iter().flat_map(|r| r.1.iter()).collect();
+    let n = runs.len();
+    charts::write_parity_chart(
+        &stage.path("parity.svg"),
+        &format!("{n} scenarios: simulated against measured terminal velocity"),
+        &all,
+    )?;
+    charts::write_combined_terminal_chart(
+        &stage.path("terminal_velocity.svg"),
+        &format!("{n} scenarios: terminal velocity, measured (hollow) and simulated (filled)"),
+        &all,
+    )?;
+    let cd_re: Vec<charts::CdRe> = runs
+        .iter()
+        .flat_map(|(s, r)| charts::cd_re_points(s, r))
+        .collect();
+    if !cd_re.is_empty() {
+        charts::write_cd_re_csv(&stage.path("cd_re.csv"), &cd_re)?;
+        let title = format!("{n} scenarios: drag coefficient against Bingham Reynolds number");
+        charts::write_cd_re_chart(&stage.path("cd_re.svg"), &title, &cd_re)?;
+    }
+    Ok(())
 }
 
 /// Terminal velocity against sphere density, one colour per diameter: measured (hollow) and
