@@ -428,7 +428,13 @@ fn write_combined(out_dir: &Path, reports: &[FileReport]) -> Result<(), Error> {
         all.extend(r.results.iter().cloned());
     }
     out_fs::write_summary(&stage.path("summary.csv"), &rows).map_err(io)?;
-    out_fs::write_combined_charts(&stage, reports.iter().map(|r| (&r.prepared.scenario, &r.results[..]))).map_err(io)?;
+    out_fs::write_combined_charts(
+        &stage,
+        reports
+            .iter()
+            .map(|r| (&r.prepared.scenario, &r.results[..])),
+    )
+    .map_err(io)?;
     let stats = out_fs::metrics(&all);
     if !stats.is_empty() {
         out_fs::write_metrics(&stage.path("metrics.csv"), &stats).map_err(io)?;

@@ -250,7 +250,11 @@ pub fn counts_chart(dir: &Path, title: &str, rows: &[Row]) -> Result<bool, Error
         let shape = quantities.iter().position(|x| *x == q).unwrap_or(0);
         let integ = Integrator::ALL.get(rank).map_or("?", |i| i.name());
         chart = chart.series_marked(
-            Series::sorted_line(format!("{integ}: {q}"), pts, rank * quantities.len() + shape),
+            Series::sorted_line(
+                format!("{integ}: {q}"),
+                pts,
+                rank * quantities.len() + shape,
+            ),
             Marker::nth(shape),
         );
     }

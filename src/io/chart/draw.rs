@@ -26,12 +26,15 @@ const PALETTE: [RGBColor; 10] = [
 /// Text, axes and reference curves.
 const INK: RGBColor = RGBColor(34, 34, 34);
 const FONT: &str = "sans-serif";
-const TITLE_PX: u32 = 20;
-const AXIS_PX: u32 = 16;
-const TICK_PX: u32 = 14;
-const LEGEND_PX: u32 = 14;
-/// Average glyph width of the sans-serif font, as a fraction of its size.
-const GLYPH_W: f64 = 0.6;
+// Font sizes as given to plotters, whose SVG backend writes them scaled by 1/1.24 (a title of 22
+// is drawn at 17.7 px).
+const TITLE_PX: u32 = 22;
+const AXIS_PX: u32 = 18;
+const TICK_PX: u32 = 16;
+const LEGEND_PX: u32 = 16;
+/// Average glyph width of the sans-serif font as drawn, as a fraction of the size given (with a
+/// margin: 0.62 of the drawn size).
+const GLYPH_W: f64 = 0.5;
 /// Marker radius, px.
 const R: i32 = 5;
 /// Longest legend line, characters (longer labels wrap).
@@ -231,8 +234,10 @@ pub fn svg(c: &Chart, path: &Path) -> io::Result<()> {
         + 24;
     let (pw, ph) = c.plot_size;
     let w = pw + legend_w;
-    // Titles wrap at the width of the chart (glyphs of a title average ~0.52 of its size).
-    let title = wrap(&c.title, (w as f64 / (0.52 * TITLE_PX as f64)) as usize - 4);
+    let title = wrap(
+        &c.title,
+        (w as f64 / (GLYPH_W * TITLE_PX as f64)) as usize - 4,
+    );
     let title_h = title.len() as u32 * (TITLE_PX + 6) + 14;
     let h = ph.max(legend_h as u32 + 20) + title_h;
     let root = SVGBackend::new(path, (w, h)).into_drawing_area();
@@ -335,7 +340,13 @@ fn data_area<DB: DrawingBackend>(
             let skip = if every > 1 { s.colour % every } else { 0 };
             for q in pts.into_iter().skip(skip).step_by(every) {
                 if inside(q) {
-                    marker(root, p.marker, cc.backend_coord(&q), palette(s.colour), s.filled)?;
+                    marker(
+                        root,
+                        p.marker,
+                        cc.backend_coord(&q),
+                        palette(s.colour),
+                        s.filled,
+                    )?;
                 }
             }
         }

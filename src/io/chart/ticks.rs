@@ -211,10 +211,7 @@ fn log_ticks(lo: f64, hi: f64) -> AxisLayout {
     AxisLayout {
         lo,
         hi,
-        ticks: values
-            .iter()
-            .map(|&(m, e)| m.log10() + e as f64)
-            .collect(),
+        ticks: values.iter().map(|&(m, e)| m.log10() + e as f64).collect(),
         labels,
         minor,
         log: true,
@@ -293,9 +290,18 @@ mod tests {
         assert!(a.labels.contains(&"0.001".to_string()), "{:?}", a.labels);
         let a = lin(0.0006, 0.0011);
         assert!(a.labels.contains(&"0.0007".to_string()), "{:?}", a.labels);
-        for a in [lin(0.0, 0.0006), lin(0.0, 0.006), lin(2700.0, 8200.0), lin(-3.2, 7.7)] {
+        for a in [
+            lin(0.0, 0.0006),
+            lin(0.0, 0.006),
+            lin(2700.0, 8200.0),
+            lin(-3.2, 7.7),
+        ] {
             for l in &a.labels {
-                assert!(l.len() <= 8 && !l.starts_with("-0"), "{l} in {:?}", a.labels);
+                assert!(
+                    l.len() <= 8 && !l.starts_with("-0"),
+                    "{l} in {:?}",
+                    a.labels
+                );
             }
         }
     }
@@ -303,7 +309,11 @@ mod tests {
     #[test]
     fn a_log_axis_is_labelled_at_decades() {
         let a = layout([1e-16, 1e-1].into_iter(), Scale::Log, None, false);
-        assert!(a.labels.iter().all(|l| l.starts_with("1e-")), "{:?}", a.labels);
+        assert!(
+            a.labels.iter().all(|l| l.starts_with("1e-")),
+            "{:?}",
+            a.labels
+        );
         assert!(a.labels.len() <= 9, "{:?}", a.labels);
         let a = layout([1e-5, 1e-3].into_iter(), Scale::Log, None, false);
         assert_eq!(a.labels, ["1e-5", "1e-4", "1e-3"]);

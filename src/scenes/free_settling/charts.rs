@@ -70,7 +70,10 @@ pub fn write_velocity_chart(
             let law = if v0_m_s == 0.0 {
                 "v_t (1 − e^(−t/τ))".to_string()
             } else {
-                format!("v_t + (v₀ − v_t) e^(−t/τ), v₀ = {} m/s", significant(v0_m_s, 4))
+                format!(
+                    "v_t + (v₀ − v_t) e^(−t/τ), v₀ = {} m/s",
+                    significant(v0_m_s, 4)
+                )
             };
             chart = chart.curve(
                 Curve::new(
@@ -197,7 +200,9 @@ pub fn write_cd_re_chart(path: &Path, title: &str, points: &[CdRe]) -> io::Resul
     let (lo, hi) = meas
         .iter()
         .chain(&sim)
-        .fold((f64::INFINITY, 0.0f64), |(a, b), p| (a.min(p.0), b.max(p.0)));
+        .fold((f64::INFINITY, 0.0f64), |(a, b), p| {
+            (a.min(p.0), b.max(p.0))
+        });
     let (lo, hi) = if lo <= hi {
         (lo / 1.5, hi * 1.5)
     } else {
@@ -207,7 +212,11 @@ pub fn write_cd_re_chart(path: &Path, title: &str, points: &[CdRe]) -> io::Resul
     let mut xs: Vec<f64> = (0..=240)
         .map(|k| lo * (hi / lo).powf(k as f64 / 240.0))
         .collect();
-    xs.extend([1.0 - 1e-9, 1.0, 150.0 - 1e-9, 150.0].iter().filter(|x| **x > lo && **x < hi));
+    xs.extend(
+        [1.0 - 1e-9, 1.0, 150.0 - 1e-9, 150.0]
+            .iter()
+            .filter(|x| **x > lo && **x < hi),
+    );
     xs.sort_by(f64::total_cmp);
     let curve = xs.iter().map(|&x| (x, cd_fedem(x))).collect();
     let mut chart = Chart::new(title)
@@ -215,7 +224,10 @@ pub fn write_cd_re_chart(path: &Path, title: &str, points: &[CdRe]) -> io::Resul
         .y("drag coefficient C_d (-)", Scale::Log);
     if !meas.is_empty() {
         chart = chart.series(Series {
-            label: format!("from measured velocities ({} spheres; f-EDEM Table 3)", meas.len()),
+            label: format!(
+                "from measured velocities ({} spheres; f-EDEM Table 3)",
+                meas.len()
+            ),
             points: meas,
             colour: 0,
             filled: false,
@@ -287,7 +299,11 @@ pub fn write_parity_chart(path: &Path, title: &str, results: &[&SphereResult]) -
     if all.is_empty() {
         return Ok(false);
     }
-    let lo = all.iter().map(|p| p.0.min(p.1)).fold(f64::INFINITY, f64::min) / 1.4;
+    let lo = all
+        .iter()
+        .map(|p| p.0.min(p.1))
+        .fold(f64::INFINITY, f64::min)
+        / 1.4;
     let hi = all.iter().map(|p| p.0.max(p.1)).fold(0.0, f64::max) * 1.4;
     let line = |k: f64| -> Vec<(f64, f64, f64)> {
         (0..=60)
@@ -311,14 +327,21 @@ pub fn write_parity_chart(path: &Path, title: &str, results: &[&SphereResult]) -
             points: line(0.10),
             shade: 0.18,
         })
-        .curve(Curve::new("parity: simulated = measured", vec![(lo, lo), (hi, hi)]));
+        .curve(Curve::new(
+            "parity: simulated = measured",
+            vec![(lo, lo), (hi, hi)],
+        ));
     for (k, g) in &groups {
         let pts: Vec<(f64, f64)> = g[2].iter().filter(shown).copied().collect();
         if g[2].is_empty() {
             continue;
         }
         let hidden = g[2].len() - pts.len();
-        let within = |tol: f64| pts.iter().filter(|p| (p.1 / p.0 - 1.0).abs() <= tol).count();
+        let within = |tol: f64| {
+            pts.iter()
+                .filter(|p| (p.1 / p.0 - 1.0).abs() <= tol)
+                .count()
+        };
         let mut label = format!(
             "{} ({} spheres: {} within ±10 %, {} within ±25 %",
             suspension_name(*k),

@@ -76,7 +76,10 @@ pub fn write_all(
         let cd_re = charts::cd_re_points(s, results);
         if !cd_re.is_empty() {
             charts::write_cd_re_csv(&stage.path("cd_re.csv"), &cd_re).map_err(io)?;
-            let title = format!("{}: drag coefficient against Bingham Reynolds number", s.name);
+            let title = format!(
+                "{}: drag coefficient against Bingham Reynolds number",
+                s.name
+            );
             charts::write_cd_re_chart(&stage.path("cd_re.svg"), &title, &cd_re).map_err(io)?;
         }
     }

@@ -100,7 +100,10 @@ pub fn write_chart(
         })
         .curve(
             Curve::new(
-                format!("expected threshold θ = atan(μ) = {}°", significant(expected_deg, 4)),
+                format!(
+                    "expected threshold θ = atan(μ) = {}°",
+                    significant(expected_deg, 4)
+                ),
                 vec![(expected_deg, 0.0), (expected_deg, y_max)],
             )
             .dashed(),
