@@ -158,7 +158,7 @@ fn linear_ticks(lo: f64, hi: f64) -> AxisLayout {
     // The exponent of the last digit a tick needs: 2.5 × 10^e needs one more.
     let last = if m == 2.5 { e - 1 } else { e };
     let max_abs = values.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-    let sci = max_abs >= 1e6 || max_abs < 1e-3;
+    let sci = !(1e-3..1e6).contains(&max_abs);
     let labels = values.iter().map(|&v| label(v, last, sci)).collect();
     // Light lines: five (or four, for a 2 or 2.5 step) per interval.
     let parts = if m == 1.0 || m == 5.0 { 5.0 } else { 4.0 };
