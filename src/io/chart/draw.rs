@@ -216,9 +216,17 @@ fn mapped(pts: &[(f64, f64)], xa: &AxisLayout, ya: &AxisLayout) -> Vec<(f64, f64
         .collect()
 }
 
-/// Draws `c` as SVG at `path`.
-pub fn svg(c: &Chart, path: &Path) -> io::Result<()> {
-    let (xa, ya) = axes(c);
+/// Where the parts of a chart go: legend entries and sizes, title lines, total size (px).
+struct Frame {
+    legend: Vec<Entry>,
+    legend_w: u32,
+    line_h: i32,
+    title: Vec<String>,
+    title_h: u32,
+    size: (u32, u32),
+}
+
+fn frame(c: &Chart) -> Frame {
     let legend = entries(c);
     let line_h = LEGEND_PX as i32 + 4;
     let legend_w = legend
@@ -234,26 +242,88 @@ pub fn svg(c: &Chart, path: &Path) -> io::Result<()> {
         + 24;
     let (pw, ph) = c.plot_size;
     let w = pw + legend_w;
-    let title = wrap(
-        &c.title,
-        (w as f64 / (GLYPH_W * TITLE_PX as f64)) as usize - 4,
-    );
+    let title = title_lines(&c.title, w);
     let title_h = title.len() as u32 * (TITLE_PX + 6) + 14;
     let h = ph.max(legend_h as u32 + 20) + title_h;
-    let root = SVGBackend::new(path, (w, h)).into_drawing_area();
-    root.fill(&WHITE).map_err(err)?;
-    for (i, line) in title.iter().enumerate() {
+    Frame {
+        legend,
+        legend_w,
+        line_h,
+        title,
+        title_h,
+        size: (w, h),
+    }
+}
+
+fn title_lines(title: &str, width: u32) -> Vec<String> {
+    wrap(
+        title,
+        ((width as f64 / (GLYPH_W * TITLE_PX as f64)) as usize).max(24) - 4,
+    )
+}
+
+/// Writes title lines centred at the top of `area`.
+fn draw_title<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    lines: &[String],
+) -> io::Result<()> {
+    let w = area.dim_in_pixel().0;
+    for (i, line) in lines.iter().enumerate() {
         let style = TextStyle::from((FONT, TITLE_PX).into_font())
             .color(&INK)
             .pos(Pos::new(HPos::Center, VPos::Top));
         let y = 10 + i as i32 * (TITLE_PX as i32 + 6);
-        root.draw(&Text::new(line.clone(), ((w / 2) as i32, y), style))
+        area.draw(&Text::new(line.clone(), ((w / 2) as i32, y), style))
             .map_err(err)?;
     }
+    Ok(())
+}
+
+/// Draws `c` (title, data area, legend) in `area`, laid out as `f`.
+fn draw_chart<DB: DrawingBackend>(
+    c: &Chart,
+    f: &Frame,
+    area: &DrawingArea<DB, Shift>,
+) -> io::Result<()> {
+    let (xa, ya) = axes(c);
+    draw_title(area, &f.title)?;
+    let (_, body) = area.split_vertically(f.title_h);
+    let (plot, legend_area) = body.split_horizontally(c.plot_size.0);
+    data_area(c, area, &plot, &xa, &ya)?;
+    draw_legend(&legend_area, &f.legend, f.legend_w as i32, f.line_h)
+}
+
+/// Draws `c` as SVG at `path`.
+pub fn svg(c: &Chart, path: &Path) -> io::Result<()> {
+    let f = frame(c);
+    let root = SVGBackend::new(path, f.size).into_drawing_area();
+    root.fill(&WHITE).map_err(err)?;
+    draw_chart(c, &f, &root)?;
+    root.present().map_err(err)
+}
+
+/// Draws `charts` as panels of one SVG at `path`, `columns` per row, under `title`; every panel
+/// gets the size of the largest.
+pub fn grid_svg(path: &Path, title: &str, charts: &[Chart], columns: usize) -> io::Result<()> {
+    let frames: Vec<Frame> = charts.iter().map(frame).collect();
+    let cols = columns.clamp(1, charts.len().max(1));
+    let rows = charts.len().div_ceil(cols).max(1);
+    let cell = frames
+        .iter()
+        .fold((1, 1), |(w, h), f| (w.max(f.size.0), h.max(f.size.1)));
+    let width = cell.0 * cols as u32;
+    let lines = title_lines(title, width);
+    let title_h = lines.len() as u32 * (TITLE_PX + 6) + 14;
+    let root = SVGBackend::new(path, (width, title_h + cell.1 * rows as u32)).into_drawing_area();
+    root.fill(&WHITE).map_err(err)?;
+    draw_title(&root, &lines)?;
     let (_, body) = root.split_vertically(title_h);
-    let (plot, legend_area) = body.split_horizontally(pw);
-    data_area(c, &root, &plot, &xa, &ya)?;
-    draw_legend(&legend_area, &legend, legend_w as i32, line_h)?;
+    for (k, (c, f)) in charts.iter().zip(&frames).enumerate() {
+        let (r, q) = ((k / cols) as i32, (k % cols) as i32);
+        let (x0, y0) = (q * cell.0 as i32, r * cell.1 as i32);
+        let panel = body.clone().shrink((x0, y0), f.size);
+        draw_chart(c, f, &panel)?;
+    }
     root.present().map_err(err)
 }
 
@@ -322,6 +392,8 @@ fn data_area<DB: DrawingBackend>(
             }
         }
     }
+    // Markers are drawn in pixels on `root`, whose origin is at `base` on the backend.
+    let base = root.get_base_pixel();
     let inside = |(x, y): (f64, f64)| {
         x >= xa.lo.min(xa.hi)
             && x <= xa.hi.max(xa.lo)
@@ -340,13 +412,9 @@ fn data_area<DB: DrawingBackend>(
             let skip = if every > 1 { s.colour % every } else { 0 };
             for q in pts.into_iter().skip(skip).step_by(every) {
                 if inside(q) {
-                    marker(
-                        root,
-                        p.marker,
-                        cc.backend_coord(&q),
-                        palette(s.colour),
-                        s.filled,
-                    )?;
+                    let (px, py) = cc.backend_coord(&q);
+                    let at = (px - base.0, py - base.1);
+                    marker(root, p.marker, at, palette(s.colour), s.filled)?;
                 }
             }
         }

@@ -301,6 +301,13 @@ impl Chart {
     }
 }
 
+/// Draws `charts` as panels of one SVG at `path` (small multiples, like the six panels of f-EDEM
+/// Fig. 11), `columns` per row under the common `title`, each panel with its own title, axes and
+/// legend; a drawing failure is an [`std::io::Error`] of kind `Other`.
+pub fn grid_svg(path: &Path, title: &str, charts: &[Chart], columns: usize) -> std::io::Result<()> {
+    draw::grid_svg(path, title, charts, columns)
+}
+
 /// Draws a scatter/line chart as SVG at `path` (see [`Chart`]); a drawing failure is an
 /// [`std::io::Error`] of kind `Other` (the caller names the path).
 pub fn scatter_svg(

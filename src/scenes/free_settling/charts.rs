@@ -8,13 +8,14 @@
 //!   eq. 19 (f-EDEM Fig. 1);
 //! - `parity.svg` (combined): simulated against measured terminal velocity of every sphere, with
 //!   the parity line and ±10 % and ±25 % bands (f-EDEM Figs. 9–11 in one picture);
-//! - `terminal_velocity.svg` (combined): terminal velocity against sphere density, one colour and
-//!   shape per suspension, measured hollow and simulated filled.
+//! - `terminal_velocity.svg` (per run: [`terminal_velocity_chart`]; combined: one such panel per
+//!   suspension, like f-EDEM Fig. 11 a–f): terminal velocity against sphere density, one colour
+//!   and shape per diameter, measured hollow and simulated filled.
 
 use super::SphereResult;
 use crate::fluid::bingham::{cd_fedem, cd_from_terminal_velocity, reynolds_bingham};
 use crate::io::chart::ticks::significant;
-use crate::io::chart::{Band, Chart, Curve, Marker, Scale, Series};
+use crate::io::chart::{grid_svg, Band, Chart, Curve, Marker, Scale, Series};
 use crate::io::{opt, write_csv};
 use crate::scenario::{Rheology, Scenario};
 use std::collections::BTreeMap;
@@ -365,42 +366,69 @@ pub fn write_parity_chart(path: &Path, title: &str, results: &[&SphereResult]) -
     Ok(true)
 }
 
-/// Writes the combined `terminal_velocity.svg`: terminal velocity against sphere density of every
-/// sphere, one colour and shape per suspension, measured hollow and simulated filled. Returns
-/// false (nothing written) when no sphere is measured.
-pub fn write_combined_terminal_chart(
-    path: &Path,
-    title: &str,
-    results: &[&SphereResult],
-) -> io::Result<bool> {
-    let groups = by_suspension(results);
-    if groups.values().all(|g| g[0].is_empty()) {
-        return Ok(false);
+/// Terminal velocity against sphere density, one colour and shape per diameter: measured
+/// (hollow) and simulated (filled, joined by density), like one panel of f-EDEM Fig. 11.
+pub fn terminal_velocity_chart(title: &str, results: &[&SphereResult]) -> Chart {
+    type Points = Vec<(f64, f64)>;
+    let mut by_d: BTreeMap<u64, (Points, Points)> = BTreeMap::new();
+    for r in results {
+        let key = (r.case.spec.diameter_m * 1e6).round() as u64;
+        let e = by_d.entry(key).or_default();
+        if let Some(m) = r.case.spec.v_measured_m_s {
+            e.0.push((r.case.spec.density_kg_m3, m));
+        }
+        e.1.push((r.case.spec.density_kg_m3, r.v_simulated_m_s));
     }
     let mut chart = Chart::new(title)
         .x("sphere density (kg/m³)", Scale::Linear)
         .y("terminal velocity (m/s)", Scale::Linear);
-    for (k, g) in groups {
-        let [meas, sim, _] = g;
-        let i = k as usize;
-        let name = suspension_name(k);
+    for (i, (d_um, (meas, sim))) in by_d.into_iter().enumerate() {
+        let d_mm = d_um as f64 / 1000.0;
         if !meas.is_empty() {
             chart = chart.series(Series {
-                label: format!("{name}, measured"),
+                label: format!("d = {d_mm} mm, measured"),
                 points: meas,
                 colour: i,
                 filled: false,
                 line: false,
             });
         }
-        chart = chart.series(Series {
-            label: format!("{name}, simulated"),
-            points: sim,
-            colour: i,
-            filled: true,
-            line: false,
-        });
+        chart = chart.series(Series::sorted_line(
+            format!("d = {d_mm} mm, simulated"),
+            sim,
+            i,
+        ));
     }
-    chart.svg(path)?;
+    chart
+}
+
+/// Writes the combined `terminal_velocity.svg`: one panel per suspension (two per row, like
+/// f-EDEM Fig. 11 a–f), terminal velocity against sphere density, one colour and shape per
+/// diameter, measured hollow and simulated filled. Returns false (nothing written) when no
+/// sphere is measured.
+pub fn write_combined_terminal_chart(
+    path: &Path,
+    title: &str,
+    results: &[&SphereResult],
+) -> io::Result<bool> {
+    if results.iter().all(|r| r.case.spec.v_measured_m_s.is_none()) {
+        return Ok(false);
+    }
+    let mut groups: BTreeMap<u32, Vec<&SphereResult>> = BTreeMap::new();
+    for r in results {
+        groups
+            .entry(r.case.spec.suspension.unwrap_or(0))
+            .or_default()
+            .push(r);
+    }
+    let panels: Vec<Chart> = groups
+        .iter()
+        .map(|(k, g)| {
+            let n = g.len();
+            terminal_velocity_chart(&format!("{} ({n} spheres)", suspension_name(*k)), g)
+                .size(560, 400)
+        })
+        .collect();
+    grid_svg(path, title, &panels, 2)?;
     Ok(true)
 }

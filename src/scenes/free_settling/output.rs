@@ -327,46 +327,8 @@ pub fn write_combined_charts<'a>(
 /// Terminal velocity against sphere density, one colour per diameter: measured (hollow) and
 /// simulated (filled), like f-EDEM Fig. 11.
 pub fn write_chart(path: &Path, title: &str, results: &[SphereResult]) -> io::Result<()> {
-    type Points = Vec<(f64, f64)>;
-    let mut by_d: BTreeMap<u64, (Points, Points)> = BTreeMap::new();
-    for r in results {
-        let key = (r.case.spec.diameter_m * 1e6).round() as u64;
-        let e = by_d.entry(key).or_default();
-        if let Some(m) = r.case.spec.v_measured_m_s {
-            e.0.push((r.case.spec.density_kg_m3, m));
-        }
-        e.1.push((r.case.spec.density_kg_m3, r.v_simulated_m_s));
-    }
-    let mut series = Vec::new();
-    for (i, (d_um, (meas, mut sim))) in by_d.into_iter().enumerate() {
-        sim.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let d_mm = d_um as f64 / 1000.0;
-        if !meas.is_empty() {
-            series.push(Series {
-                label: format!("d = {d_mm} mm, measured"),
-                points: meas,
-                colour: i,
-                filled: false,
-                line: false,
-            });
-        }
-        series.push(Series {
-            label: format!("d = {d_mm} mm, simulated"),
-            points: sim,
-            colour: i,
-            filled: true,
-            line: true,
-        });
-    }
-    scatter_svg(
-        path,
-        title,
-        "sphere density (kg/m³)",
-        "terminal velocity (m/s)",
-        Scale::Linear,
-        Scale::Linear,
-        &series,
-    )
+    let all: Vec<&SphereResult> = results.iter().collect();
+    charts::terminal_velocity_chart(title, &all).svg(path)
 }
 
 /// Header of a drop `summary.csv`. `settling_distance_m` is the depth of the ball's lowest point
