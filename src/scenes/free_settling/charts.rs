@@ -22,6 +22,9 @@ use std::collections::BTreeMap;
 use std::io;
 use std::path::Path;
 
+/// Most points drawn per time-series line of `velocity.svg` (`timeseries.csv` keeps them all).
+const LINE_POINTS: usize = 2000;
+
 /// Markers shown on each time-series line of `velocity.svg` (the line goes through every sample).
 const MARKERS_PER_LINE: usize = 12;
 
@@ -44,10 +47,15 @@ pub fn write_velocity_chart(
             continue;
         }
         any = true;
+        // At most ~LINE_POINTS points per line (the last kept): a picture, not the data.
+        let every = r.samples.len().div_ceil(LINE_POINTS).max(1);
+        let last = r.samples.len() - 1;
         let points: Vec<(f64, f64)> = r
             .samples
             .iter()
-            .map(|s| (s.time_s, s.velocity_m_s))
+            .enumerate()
+            .filter(|(k, _)| k % every == 0 || *k == last)
+            .map(|(_, s)| (s.time_s, s.velocity_m_s))
             .collect();
         let t_end = points.last().map_or(0.0, |p| p.0);
         chart = chart.series_thinned(
