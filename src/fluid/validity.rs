@@ -31,19 +31,18 @@ pub const ONE_WAY_MASS_FRACTION_MAX: f64 = 0.04;
 /// is inside.
 const EDGE: f64 = 1e-9;
 
-fn g(x: f64) -> String {
-    crate::io::fmt::g(x)
-}
+use crate::io::fmt::{g, short};
 
 /// The warning for Stokes drag used above [`STOKES_RE_MAX`], or None. `spheres` holds
-/// (id, Reynolds number at the simulated terminal velocity) of every sphere run with Stokes drag.
+/// (id, Reynolds number at the sphere's largest terminal velocity, simulated or force balance)
+/// of every sphere run with Stokes drag.
 pub fn stokes_warning(spheres: &[(String, f64)]) -> Option<String> {
     let above: Vec<&(String, f64)> = spheres.iter().filter(|(_, re)| *re > STOKES_RE_MAX).collect();
     let (id, re) = above.iter().max_by(|a, b| a.1.total_cmp(&b.1))?;
     Some(format!(
-        "Stokes drag used above its range Re < {} (seed 000 §4.2): {} of {} sphere(s) above, largest Re = {} (sphere {id}); \
-         Stokes' law then underestimates the drag and overestimates the velocity; use drag.law = \"dallavalle\"",
-        g(STOKES_RE_MAX),
+        "Stokes drag used above its range Re < {} (seed 000 §4.2): {} of {} sphere(s) above, largest Re = {} (sphere {id}, at its \
+         simulated or force-balance terminal velocity); Stokes' law then underestimates the drag and overestimates the velocity; use drag.law = \"dallavalle\"",
+        short(STOKES_RE_MAX),
         above.len(),
         spheres.len(),
         g(*re),
@@ -64,7 +63,7 @@ pub fn bingham_fedem_warning(spheres: &[(String, f64, f64)]) -> Option<String> {
         .filter(|(_, rho, d)| {
             !inside(*rho, BINGHAM_FEDEM_DENSITY_KG_M3) || !inside(*d, BINGHAM_FEDEM_DIAMETER_M)
         })
-        .map(|(id, rho, d)| format!("{id} ({} kg/m³, {} mm)", g(*rho), g(d * 1e3)))
+        .map(|(id, rho, d)| format!("{id} ({} kg/m³, {} mm)", short(*rho), short(d * 1e3)))
         .collect();
     if out.is_empty() {
         return None;
@@ -78,10 +77,10 @@ pub fn bingham_fedem_warning(spheres: &[(String, f64, f64)]) -> Option<String> {
     Some(format!(
         "f-EDEM's Bingham drag used outside its validated range (sphere density {}–{} kg/m³, diameter {}–{} mm; f-EDEM §5): \
          {} of {} sphere(s): {}{more}",
-        g(BINGHAM_FEDEM_DENSITY_KG_M3.0),
-        g(BINGHAM_FEDEM_DENSITY_KG_M3.1),
-        g(BINGHAM_FEDEM_DIAMETER_M.0 * 1e3),
-        g(BINGHAM_FEDEM_DIAMETER_M.1 * 1e3),
+        short(BINGHAM_FEDEM_DENSITY_KG_M3.0),
+        short(BINGHAM_FEDEM_DENSITY_KG_M3.1),
+        short(BINGHAM_FEDEM_DIAMETER_M.0 * 1e3),
+        short(BINGHAM_FEDEM_DIAMETER_M.1 * 1e3),
         out.len(),
         spheres.len(),
         out[..out.len().min(SHOWN)].join(", "),
@@ -112,8 +111,8 @@ pub fn one_way_coupling_warning(
         "one-way coupling beyond its range (seed 000 §4.2: volume concentration < {} %, mass concentration < {} %): \
          the initial suspension has {} % by volume and {} % by mass; the grains' effect on the water (return flow, \
          hindered settling beyond the voidage factor) is not modelled",
-        g(100.0 * ONE_WAY_VOLUME_FRACTION_MAX),
-        g(100.0 * ONE_WAY_MASS_FRACTION_MAX),
+        short(100.0 * ONE_WAY_VOLUME_FRACTION_MAX),
+        short(100.0 * ONE_WAY_MASS_FRACTION_MAX),
         crate::io::fmt::sig(100.0 * volume_fraction, 3),
         crate::io::fmt::sig(100.0 * mass, 3),
     ))
@@ -144,8 +143,9 @@ pub type OverReading = (String, f64, f64, f64);
 
 /// The explanation of percent-finer readings above 100 %, or None when there are none: the
 /// noise of the grain count ([`percent_finer_sd`]), each reading with its time in minutes, its
-/// 1σ and how many σ it lies above 100 %, and the number of representative grains that would
-/// bring the 1σ at 100 % down to 1 % (σ = 100 %/√n ⇒ n = 10 000 in the volume).
+/// 1σ, the effective number of grains it counted, n = (w/σ)² (the inverse of the Poisson
+/// limit), and how many σ it lies above 100 %. `grains` is the number of representative grains
+/// of the run.
 pub fn percent_finer_above_100_warning(readings: &[OverReading], grains: usize) -> Option<String> {
     let over: Vec<&OverReading> = readings.iter().filter(|r| r.2 > 100.0).collect();
     if over.is_empty() {
@@ -155,10 +155,11 @@ pub fn percent_finer_above_100_warning(readings: &[OverReading], grains: usize) 
         .iter()
         .map(|(name, t, w, sd)| {
             format!(
-                "{name} {} % at {} min (1σ = {} %, {}σ above 100 %)",
+                "{name} {} % at {} min (1σ = {} %, n ≈ {:.0} grains, {}σ above 100 %)",
                 crate::io::fmt::sig(*w, 4),
-                g(t / 60.0),
+                short(t / 60.0),
                 crate::io::fmt::sig(*sd, 2),
+                (w / sd).powi(2),
                 crate::io::fmt::sig((w - 100.0) / sd, 2),
             )
         })
@@ -199,7 +200,7 @@ mod tests {
         ];
         assert_eq!(bingham_fedem_warning(&ok), None);
         let w = bingham_fedem_warning(&[("x".into(), 8135.0, 0.005)]).unwrap();
-        assert!(w.contains("x (8135 kg/m³, 5.000 mm)"), "{w}");
+        assert!(w.contains("x (8135 kg/m³, 5 mm)"), "{w}");
         assert!(bingham_fedem_warning(&[("y".into(), 1200.0, 0.01)]).is_some());
     }
 
@@ -263,7 +264,8 @@ mod tests {
             5000,
         )
         .unwrap();
-        assert!(w.contains("1 reading(s)") && w.contains("pipette 104.9 % at 0.5000 min"), "{w}");
-        assert!(w.contains("1σ = 3.5 %, 1.4σ above 100 %") && w.contains("within 3σ"), "{w}");
+        assert!(w.contains("1 reading(s)") && w.contains("pipette 104.9 % at 0.5 min"), "{w}");
+        assert!(w.contains("1σ = 3.5 %, n ≈ 898 grains, 1.4σ above 100 %"), "{w}");
+        assert!(w.contains("within 3σ"), "{w}");
     }
 }

@@ -44,6 +44,22 @@ pub fn g_opt(x: Option<f64>) -> String {
     x.map(g).unwrap_or_else(|| "-".into())
 }
 
+/// An input or a constant as it was written: up to 6 significant digits, trailing zeros
+/// dropped (`1e-5`, `105`, `57.1`, `0.5`); for a scenario's own figures in titles and warnings.
+pub fn short(x: f64) -> String {
+    let s = sig(x, 6);
+    let (body, exp) = match s.split_once('e') {
+        Some((b, e)) => (b.to_string(), format!("e{e}")),
+        None => (s.clone(), String::new()),
+    };
+    let body = if body.contains('.') {
+        body.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        body
+    };
+    format!("{body}{exp}")
+}
+
 /// A signed relative difference as a percentage with `digits` significant digits: `+1.523%`,
 /// `-0.04100%`, `0%` (no sign for zero).
 pub fn pct(fraction: f64, digits: usize) -> String {
@@ -87,5 +103,9 @@ mod tests {
         assert_eq!(pct(0.01523, 3), "+1.52%");
         assert_eq!(pct(-0.5, 3), "-50.0%");
         assert_eq!(sig(f64::NAN, 4), "NaN");
+        assert_eq!(short(1e-5), "1e-5");
+        assert_eq!(short(100.0 * 0.016), "1.6");
+        assert_eq!(short(0.105 * 1e3), "105");
+        assert_eq!(short(-0.0), "0");
     }
 }

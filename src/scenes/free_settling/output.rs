@@ -96,8 +96,8 @@ pub fn write_all(
     })
 }
 
-/// The validity warnings of the run: its drag law checked at every sphere's simulated terminal
-/// velocity (a drop also at its entry speed, the fastest it moves in the fluid).
+/// The validity warnings of the run: its drag law checked at every sphere's largest speed in the
+/// fluid: the simulated or force-balance terminal velocity (a drop also its entry speed).
 pub fn warnings(p: &Prepared, results: &[SphereResult]) -> Vec<String> {
     let spheres: Vec<crate::scenes::validity::SphereAt> = results
         .iter()
@@ -108,6 +108,7 @@ pub fn warnings(p: &Prepared, results: &[SphereResult]) -> Vec<String> {
             speed_m_s: r
                 .v_simulated_m_s
                 .abs()
+                .max(r.v_force_balance_m_s.abs())
                 .max(r.entry_velocity_m_s.unwrap_or(0.0).abs()),
         })
         .collect();
