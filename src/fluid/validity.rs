@@ -37,7 +37,10 @@ use crate::io::fmt::{g, short};
 /// (id, Reynolds number at the sphere's largest terminal velocity, simulated or force balance)
 /// of every sphere run with Stokes drag.
 pub fn stokes_warning(spheres: &[(String, f64)]) -> Option<String> {
-    let above: Vec<&(String, f64)> = spheres.iter().filter(|(_, re)| *re > STOKES_RE_MAX).collect();
+    let above: Vec<&(String, f64)> = spheres
+        .iter()
+        .filter(|(_, re)| *re > STOKES_RE_MAX)
+        .collect();
     let (id, re) = above.iter().max_by(|a, b| a.1.total_cmp(&b.1))?;
     Some(format!(
         "Stokes drag used above its range Re < {} (seed 000 §4.2): {} of {} sphere(s) above, largest Re = {} (sphere {id}, at its \
@@ -194,10 +197,7 @@ mod tests {
 
     #[test]
     fn bingham_range_ends_are_inside() {
-        let ok = [
-            ("lo".into(), 1314.0, 0.008),
-            ("hi".into(), 8135.0, 0.0571),
-        ];
+        let ok = [("lo".into(), 1314.0, 0.008), ("hi".into(), 8135.0, 0.0571)];
         assert_eq!(bingham_fedem_warning(&ok), None);
         let w = bingham_fedem_warning(&[("x".into(), 8135.0, 0.005)]).unwrap();
         assert!(w.contains("x (8135 kg/m³, 5 mm)"), "{w}");
@@ -264,8 +264,14 @@ mod tests {
             5000,
         )
         .unwrap();
-        assert!(w.contains("1 reading(s)") && w.contains("pipette 104.9 % at 0.5 min"), "{w}");
-        assert!(w.contains("1σ = 3.5 %, n ≈ 898 grains, 1.4σ above 100 %"), "{w}");
+        assert!(
+            w.contains("1 reading(s)") && w.contains("pipette 104.9 % at 0.5 min"),
+            "{w}"
+        );
+        assert!(
+            w.contains("1σ = 3.5 %, n ≈ 898 grains, 1.4σ above 100 %"),
+            "{w}"
+        );
         assert!(w.contains("within 3σ"), "{w}");
     }
 }

@@ -255,8 +255,16 @@ mod tests {
         let lines = table_lines("t", &sums);
         assert!(lines[2].contains("UNSTABLE"), "{}", lines[2]);
         assert!(lines[2].contains("velocity oscillates"), "{}", lines[2]);
-        assert!(!lines[2].contains("0.0e0") && !lines[2].contains("=0"), "{}", lines[2]);
-        assert!(lines[3].ends_with("terminal_velocity_m_s=0"), "{}", lines[3]);
+        assert!(
+            !lines[2].contains("0.0e0") && !lines[2].contains("=0"),
+            "{}",
+            lines[2]
+        );
+        assert!(
+            lines[3].ends_with("terminal_velocity_m_s=0"),
+            "{}",
+            lines[3]
+        );
         assert!(lines[3].contains(" 0.001 "), "dt as given: {}", lines[3]);
     }
 

@@ -2,9 +2,9 @@
 
 use super::{Census, Geometry, Place, RepeatResult};
 use crate::engine::EngineSettings;
+use crate::io::fmt::{g, short};
 use crate::scenario::FunnelPourSpec;
 use crate::scenario::Submergence;
-use crate::io::fmt::{g, short};
 use crate::scenes::Prepared;
 
 /// The engine settings of the scene: [`EngineSettings::for_scene`] for the smallest ball and the
@@ -115,7 +115,10 @@ fn settling(results: &[RepeatResult]) -> String {
     format!(
         "largest ball speed when the outlet opened: {} m/s; runs ended at t = {}–{} s",
         g(slowest_fill),
-        g(results.iter().map(|r| r.end_time_s).fold(f64::INFINITY, f64::min)),
+        g(results
+            .iter()
+            .map(|r| r.end_time_s)
+            .fold(f64::INFINITY, f64::min)),
         g(results.iter().map(|r| r.end_time_s).fold(0.0, f64::max))
     )
 }

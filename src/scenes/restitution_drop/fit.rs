@@ -41,7 +41,8 @@ impl Comparison {
             short(o.drop_height_m * 1e3),
             g(o.rebound_height_m * 1e3),
             match (self.measured_rebound_m, self.rel_error) {
-                (Some(m), Some(err)) => format!(", measured {} mm, {}", short(m * 1e3), pct(err, 3)),
+                (Some(m), Some(err)) =>
+                    format!(", measured {} mm, {}", short(m * 1e3), pct(err, 3)),
                 _ => String::new(),
             },
             g(self.ideal_rebound_m * 1e3),

@@ -407,7 +407,13 @@ fn instrument_table(rows: &[granulometry::ErrorRow]) -> Vec<String> {
         ]
     }));
     let width: Vec<usize> = (0..cells[0].len())
-        .map(|i| cells.iter().map(|r| r[i].chars().count()).max().unwrap_or(0))
+        .map(|i| {
+            cells
+                .iter()
+                .map(|r| r[i].chars().count())
+                .max()
+                .unwrap_or(0)
+        })
         .collect();
     cells
         .iter()
