@@ -146,8 +146,11 @@ pub fn main() -> i32 {
             };
             for f in &figs {
                 println!(
-                    "{:<16} {:<34} {:>14.6e} {}",
-                    f.benchmark, f.quantity, f.value, f.unit
+                    "{:<16} {:<34} {:>14} {}",
+                    f.benchmark,
+                    f.quantity,
+                    crate::io::fmt::g(f.value),
+                    f.unit
                 );
             }
             let path = out.join("bench.csv");

@@ -83,6 +83,9 @@ pub fn write_all(
     let summary = Summary::of(st);
     write_summary(&stage.path("summary.csv"), sm, setup, st, &summary).map_err(io)?;
     let mut report = report(sm, setup, st, &summary, wall_s, &instrument_errors);
+    report
+        .lines
+        .extend(instrument_table(&instrument_errors, &readings));
     report.warnings = warnings(s, sm, setup, &readings);
     Ok(report)
 }
@@ -370,7 +373,6 @@ fn report(
             "instruments against the input curve (|Δ percent finer|, percentage points; 1σ: counting noise):"
                 .into(),
         );
-        lines.extend(instrument_table(instrument_errors));
     }
     SceneReport {
         warnings: Vec::new(),
@@ -382,13 +384,30 @@ fn report(
     }
 }
 
-/// The instruments' errors as aligned rows: readings, largest and mean error on the simulation,
-/// largest error of the instrument's own approximation (on the ideal suspension), mean 1σ.
-fn instrument_table(rows: &[granulometry::ErrorRow]) -> Vec<String> {
-    use crate::io::fmt::g;
+/// The instruments' errors as aligned rows: readings and their times (min), largest and mean
+/// error on the simulation, largest error of the instrument's own approximation (on the ideal
+/// suspension), mean 1σ.
+fn instrument_table(
+    rows: &[granulometry::ErrorRow],
+    readings: &[InstrumentReading],
+) -> Vec<String> {
+    use crate::io::fmt::{g, short};
+    let times_min = |name: &str| {
+        let t: Vec<f64> = readings
+            .iter()
+            .filter(|r| r.kind.name() == name)
+            .map(|r| r.point.time_s / 60.0)
+            .collect();
+        match (t.first(), t.last()) {
+            (Some(a), Some(b)) if a != b => format!("{}–{}", short(*a), short(*b)),
+            (Some(a), _) => short(*a),
+            _ => "-".into(),
+        }
+    };
     let mut cells = vec![[
         "instrument",
         "readings",
+        "times_min",
         "max_error_%",
         "mean_error_%",
         "max_error_ideal_%",
@@ -400,6 +419,7 @@ fn instrument_table(rows: &[granulometry::ErrorRow]) -> Vec<String> {
         vec![
             e.instrument.clone(),
             e.readings.to_string(),
+            times_min(&e.instrument),
             g(e.max_abs_error),
             g(e.mean_abs_error),
             g(e.max_abs_ideal_error),
