@@ -5,6 +5,7 @@ pub mod funnel;
 pub mod restitution_drop;
 pub mod sedimentation;
 pub mod tilt_friction;
+pub mod validity;
 
 use crate::fluid::{DragLaw, SphereDrag};
 use crate::scenario::{DragLawName, Physics, RheologyModel, Scenario, SceneSpec};

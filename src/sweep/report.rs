@@ -7,6 +7,7 @@ use super::table::{integrator_rank, write_rows, Row, Status};
 use crate::dynamics::Integrator;
 use crate::error::Error;
 use crate::io::chart::{Chart, Marker, Scale, Series};
+use crate::io::fmt::{g, short, sig};
 use crate::io::{num, write_atomic};
 use std::collections::BTreeMap;
 use std::io;
@@ -99,7 +100,8 @@ fn recommended_csv(rec: &[Recommended], cx: &Context) -> io::Result<Vec<u8>> {
     w.into_inner().map_err(|e| io::Error::other(e.to_string()))
 }
 
-/// The console table of a sweep, one line per case. An unstable case shows `unstable` and its
+/// The console table of a sweep, one line per case, numbers as [`crate::io::fmt`] writes them
+/// (dt as given, errors with 2 significant digits). An unstable case shows `unstable` and its
 /// reason instead of errors (its values are NaN in `sweep.csv`).
 pub fn table_lines(title: &str, sums: &[CaseSummary]) -> Vec<String> {
     let mut lines = vec![
@@ -113,7 +115,7 @@ pub fn table_lines(title: &str, sums: &[CaseSummary]) -> Vec<String> {
         let errs = if s.stable {
             s.errors
                 .iter()
-                .map(|(q, (f, _))| format!("{q}={f:.1e}"))
+                .map(|(q, (f, _))| format!("{q}={}", sig(*f, 2)))
                 .collect::<Vec<_>>()
                 .join(" ")
         } else {
@@ -121,11 +123,11 @@ pub fn table_lines(title: &str, sums: &[CaseSummary]) -> Vec<String> {
             s.reason.clone()
         };
         lines.push(format!(
-            "  {:<12} {:>10.1e} {:>9} {:>10.4} {:>9}  {}",
+            "  {:<12} {:>10} {:>9} {:>10} {:>9}  {}",
             s.integrator.name(),
-            s.dt_s,
+            short(s.dt_s),
             if s.stable { "stable" } else { "UNSTABLE" },
-            s.wall_time_s,
+            g(s.wall_time_s),
             s.steps,
             errs
         ));
@@ -141,17 +143,19 @@ pub fn recommended_line(r: &Recommended, cx: &Context) -> String {
         cx.tol,
         match r.dt_s {
             None => "none in the grid".to_string(),
-            Some(d) if r.verified => format!("{d:.1e} s"),
+            Some(d) if r.verified => format!("{} s", short(d)),
             Some(d) => format!(
-                "{d:.1e} s, unverified: it is the finest stable dt tried (the reference of every \
-                 error); add a finer dt to confirm it"
+                "{} s, unverified: it is the finest stable dt tried (the reference of every \
+                 error); add a finer dt to confirm it",
+                short(d)
             ),
         }
     );
     if let Some(tr) = cx.rayleigh_time_s {
         line.push_str(&format!(
-            "   [Rayleigh time {tr:.3e} s; 20 % rule {:.3e} s]",
-            RAYLEIGH_FRACTION * tr
+            "   [Rayleigh time {} s; 20 % rule {} s]",
+            g(tr),
+            g(RAYLEIGH_FRACTION * tr)
         ));
     }
     line
@@ -302,12 +306,17 @@ mod tests {
         let lines = table_lines("t", &sums);
         assert!(lines[2].contains("UNSTABLE"), "{}", lines[2]);
         assert!(lines[2].contains("velocity oscillates"), "{}", lines[2]);
-        assert!(!lines[2].contains("0.0e0"), "{}", lines[2]);
         assert!(
-            lines[3].contains("terminal_velocity_m_s=0.0e0"),
+            !lines[2].contains("0.0e0") && !lines[2].contains("=0"),
+            "{}",
+            lines[2]
+        );
+        assert!(
+            lines[3].ends_with("terminal_velocity_m_s=0"),
             "{}",
             lines[3]
         );
+        assert!(lines[3].contains(" 0.001 "), "dt as given: {}", lines[3]);
     }
 
     /// Issue 13: the recommended dt was simply the finest dt tried, with nothing saying that no

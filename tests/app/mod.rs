@@ -2,5 +2,6 @@
 
 #[cfg(unix)]
 mod checkpoint;
+pub(crate) mod console;
 mod interrupt;
 mod sweep;

@@ -17,4 +17,5 @@ mod issue_12_sedimentation_contacts_honoured;
 mod issue_12_stale_staging;
 mod issue_12_sweep_bad_options;
 mod issue_12_sweep_unsweepable_kind;
+mod issue_13_console_tables;
 mod issue_8_concurrent_checkpoint_saves;

@@ -106,7 +106,7 @@ pub fn write_all(
         crate::engine::EngineSettings::for_scene(d_min, 2.0 * v_max)
     });
     Ok(SceneReport {
-        warnings: Vec::new(),
+        warnings: warnings(p, results),
         steps: results.iter().map(|r| r.steps).sum(),
         bodies: results.len(),
         engine_settings,
@@ -115,8 +115,28 @@ pub fn write_all(
     })
 }
 
-/// Header of `summary.csv`.
-pub const SUMMARY_HEADER: [&str; 23] = [
+/// The validity warnings of the run: its drag law checked at every sphere's largest speed in the
+/// fluid: the simulated or force-balance terminal velocity (a drop also its entry speed).
+pub fn warnings(p: &Prepared, results: &[SphereResult]) -> Vec<String> {
+    let spheres: Vec<crate::scenes::validity::SphereAt> = results
+        .iter()
+        .map(|r| crate::scenes::validity::SphereAt {
+            id: r.case.id.clone(),
+            diameter_m: r.case.spec.diameter_m,
+            density_kg_m3: r.case.spec.density_kg_m3,
+            speed_m_s: r
+                .v_simulated_m_s
+                .abs()
+                .max(r.v_force_balance_m_s.abs())
+                .max(r.entry_velocity_m_s.unwrap_or(0.0).abs()),
+        })
+        .collect();
+    crate::scenes::validity::drag_warnings(p, &spheres)
+}
+
+/// Header of `summary.csv` (`reynolds`: ρ_f |v| d / η at the simulated terminal velocity, for a
+/// Newtonian drag law; empty for Bingham drag, whose number is `re_bingham`).
+pub const SUMMARY_HEADER: [&str; 24] = [
     "sphere_id",
     "suspension",
     "diameter_m",
@@ -140,6 +160,7 @@ pub const SUMMARY_HEADER: [&str; 23] = [
     "rayleigh_time_s",
     "stop",
     "end_time_s",
+    "reynolds",
 ];
 
 /// Relative error of the simulated against the measured velocity, if measured.
@@ -188,6 +209,7 @@ pub fn summary_row(r: &SphereResult, dt_s: f64, integrator: &str) -> Vec<String>
         opt(r.rayleigh_time_s),
         r.stop.label().to_string(),
         num(r.end_time_s),
+        opt(r.reynolds),
     ]
 }
 
