@@ -1,3 +1,4 @@
 //! `src/scenario/`: loading and validating scenarios and their input files.
 
 mod bad_input;
+mod schema_docs;
