@@ -2,3 +2,4 @@
 
 mod bad_input;
 mod schema_docs;
+mod spheres_csv;

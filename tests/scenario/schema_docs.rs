@@ -179,7 +179,10 @@ struct Fields<'a> {
 
 impl<'de> de::MapAccess<'de> for Fields<'_> {
     type Error = Error;
-    fn next_key_seed<K: DeserializeSeed<'de>>(&mut self, seed: K) -> Result<Option<K::Value>, Error> {
+    fn next_key_seed<K: DeserializeSeed<'de>>(
+        &mut self,
+        seed: K,
+    ) -> Result<Option<K::Value>, Error> {
         let Some(&f) = self.fields.next() else {
             return Ok(None);
         };
@@ -346,7 +349,9 @@ fn kinds(schema: &BTreeMap<String, Leaf>) -> Vec<&'static str> {
 #[test]
 fn every_schema_key_is_documented_for_every_kind_that_accepts_it() {
     let schema = trace();
-    assert!(schema.contains_key("fluid.density_kg_m3") && schema.contains_key("spheres.diameter_m"));
+    assert!(
+        schema.contains_key("fluid.density_kg_m3") && schema.contains_key("spheres.diameter_m")
+    );
     assert!(schema.len() > 100, "{} keys traced", schema.len());
     let common = read_doc("common.md");
     let mut missing = Vec::new();
@@ -429,13 +434,15 @@ fn every_documented_key_exists_and_is_accepted_where_it_is_documented() {
         }
         let tables: BTreeSet<&str> = doc.rows.iter().map(|r| r.table.as_str()).collect();
         for t in tables {
-            let line = doc
-                .used_by
-                .get(t)
-                .unwrap_or_else(|| panic!("common.md: the section of [{t}] needs a `Used by:` line"));
+            let line = doc.used_by.get(t).unwrap_or_else(|| {
+                panic!("common.md: the section of [{t}] needs a `Used by:` line")
+            });
             let users: Vec<&str> = kinds.iter().copied().filter(|k| accepts(k, t)).collect();
             if users.len() == kinds.len() {
-                assert!(line.contains("every kind"), "common.md [{t}]: used by every kind: {line}");
+                assert!(
+                    line.contains("every kind"),
+                    "common.md [{t}]: used by every kind: {line}"
+                );
             } else {
                 for k in &kinds {
                     assert_eq!(
@@ -465,7 +472,10 @@ fn the_tracer_finds_nested_keys_and_enum_values() {
     ] {
         assert!(schema.contains_key(k), "`{k}` not traced");
     }
-    assert!(!schema.contains_key("spheres"), "a list of tables is not a leaf");
+    assert!(
+        !schema.contains_key("spheres"),
+        "a list of tables is not a leaf"
+    );
     assert_eq!(
         schema["sweep.integrators"].variants,
         ["explicit", "implicit", "exponential"]
