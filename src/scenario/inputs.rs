@@ -2,7 +2,8 @@
 //! bad file is refused (exit 2) before anything runs: the spheres of `[spheres_csv]` (with the
 //! inline `[[spheres]]`, [`spheres`]) and the sample distribution of a sedimentation run
 //! ([`read_sample`]). Every error names the scenario file, the key that names the input file,
-//! the input file, the line of the file and the data row (both 1-based: line 1 is the header, data row 1 the first line of data) and the column (1-based), and what is allowed.
+//! the input file, the line of the file and the data row (both 1-based: line 1 is the header,
+//! data row 1 the first line of data), the column (1-based) and what is allowed.
 
 use super::load::ScenarioError;
 use super::schema::{SampleSpec, Scenario, SphereSpec};

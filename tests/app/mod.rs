@@ -4,3 +4,4 @@
 mod checkpoint;
 mod interrupt;
 mod sweep;
+mod tutorial;
