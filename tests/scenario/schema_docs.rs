@@ -456,6 +456,38 @@ fn every_documented_key_exists_and_is_accepted_where_it_is_documented() {
     }
 }
 
+/// Each kind's page lists, after `- Refused:`, exactly the top-level tables its kind refuses.
+#[test]
+fn each_kind_page_lists_the_tables_its_kind_refuses() {
+    let schema = trace();
+    let tables: BTreeSet<&str> = schema
+        .keys()
+        .filter_map(|k| k.split_once('.'))
+        .map(|(t, _)| t)
+        .collect();
+    for kind in kinds(&schema) {
+        let doc = read_doc(&format!("{kind}.md"));
+        let start = doc
+            .text
+            .find("- Refused:")
+            .unwrap_or_else(|| panic!("{kind}.md: no `- Refused:` list"));
+        let rest = &doc.text[start..];
+        let end = rest.find("\n\n").unwrap_or(rest.len());
+        let listed: BTreeSet<&str> = rest[..end]
+            .split('`')
+            .skip(1)
+            .step_by(2)
+            .map(|w| w.trim_start_matches('[').trim_end_matches(']'))
+            .collect();
+        let refused: BTreeSet<&str> = tables
+            .iter()
+            .copied()
+            .filter(|t| !accepts(kind, t))
+            .collect();
+        assert_eq!(listed, refused, "{kind}.md: the `- Refused:` list");
+    }
+}
+
 /// The tracer sees what serde sees: nested tables, lists of tables, enum values, and a field
 /// of a table read through `#[serde(default)]` on the whole struct (`[instruments]`).
 #[test]
