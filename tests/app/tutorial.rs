@@ -208,6 +208,30 @@ fn the_tutorial_runs_and_writes_the_files_it_names() {
         "Re′ = {re}"
     );
     assert_eq!(first_row(&summary, "regime"), "1<=re<=150");
+    let vs_balance: f64 = first_row(&summary, "rel_error_vs_force_balance")
+        .parse()
+        .unwrap();
+    assert!(
+        readme_says("(the same within 3e-7)") && vs_balance.abs() < 3e-7,
+        "{vs_balance}"
+    );
+    // Step 4: "1e-2 s for the default `exponential` integrator, 1e-4 s (the finest tried, so
+    // marked unverified) for `explicit`".
+    assert!(readme_says("1e-2 s for the default `exponential` integrator, 1e-4 s (the finest tried, so marked unverified) for `explicit`"));
+    let (header, rows) = read_csv(&dir.path().join("out/steel_ball_sweep/recommended_dt.csv"));
+    let col = |name: &str| header.iter().position(|h| h == name).expect(name);
+    let rec = |integ: &str| {
+        let r = rows
+            .iter()
+            .find(|r| r[col("integrator")] == integ)
+            .expect(integ);
+        (
+            r[col("recommended_dt_s")].parse::<f64>().unwrap(),
+            r[col("verified")].clone(),
+        )
+    };
+    assert_eq!(rec("exponential"), (1e-2, "true".to_string()));
+    assert_eq!(rec("explicit"), (1e-4, "false".to_string()));
     // Step 3: at 30 Pa the ball never moves.
     let held = dir.path().join("out30/steel_ball/summary.csv");
     assert_eq!(first_row(&held, "regime"), "static");
