@@ -5,3 +5,4 @@ mod checkpoint;
 pub(crate) mod console;
 mod interrupt;
 mod sweep;
+mod tutorial;
