@@ -4,15 +4,17 @@
 //!
 //! | law | validated range | source |
 //! |---|---|---|
-//! | Stokes drag, F = 3π η v d | Re = ρ_f v d / η < 1 | seed 000 §4.2 ("the Re < 1" condition of its Stokes drag and one-way coupling); the drag is ~10 % too small at Re ≈ 0.5 and ~15 % at Re = 1 (Schiller–Naumann correction 0.15 Re^0.687) |
+//! | Stokes drag, F = 3π η v d | Re = ρ_f v d / η < 0.5 | issue 13 (Re ≈ 0.5); seed 000 §4.2 allows Re < 1 for its Stokes drag and one-way coupling, but the drag is then already ~9 % too small at Re = 0.5 and ~15 % at Re = 1 (Schiller–Naumann correction 0.15 Re^0.687), so settle warns from 0.5 |
 //! | f-EDEM's Bingham drag (eq. 9, 14, 19) | sphere density 1314–8135 kg/m³, diameter 8–57.1 mm | f-EDEM §5 (conclusions, l. 504–505): "the applicable particle density obtained by this study ranges from 1314 to 8135 kg/m³ and the particle diameter ranges from 8 to 57.1 mm" |
 //! | one-way coupling (the grains do not move the fluid) | volume concentration < 1.6 %, mass concentration < 4 % | seed 000 §4.2: "the volume and mass concentrations must be lower than 1.6% and 4% respectively" |
 //!
 //! Percent finer above 100 % is not a law outside its range but the counting noise of the
 //! representative grains: [`percent_finer_sd`].
 
-/// Largest particle Reynolds number of Stokes' law (seed 000 §4.2: Re < 1).
-pub const STOKES_RE_MAX: f64 = 1.0;
+/// Largest particle Reynolds number of Stokes' law: 0.5, where Stokes' drag is 9 % below the
+/// standard drag curve (Schiller–Naumann factor 1 + 0.15 Re^0.687); seed 000 §4.2 allows Re < 1
+/// (15 % below).
+pub const STOKES_RE_MAX: f64 = 0.5;
 
 /// Sphere densities of f-EDEM's validated Bingham drag, kg/m³ (f-EDEM §5, l. 504–505).
 pub const BINGHAM_FEDEM_DENSITY_KG_M3: (f64, f64) = (1314.0, 8135.0);
@@ -43,7 +45,7 @@ pub fn stokes_warning(spheres: &[(String, f64)]) -> Option<String> {
         .collect();
     let (id, re) = above.iter().max_by(|a, b| a.1.total_cmp(&b.1))?;
     Some(format!(
-        "Stokes drag used above its range Re < {} (seed 000 §4.2): {} of {} sphere(s) above, largest Re = {} (sphere {id}, at its \
+        "Stokes drag used above its range Re < {} (9 % too little drag at 0.5; seed 000 §4.2 allows Re < 1): {} of {} sphere(s) above, largest Re = {} (sphere {id}, at its \
          simulated or force-balance terminal velocity); Stokes' law then underestimates the drag and overestimates the velocity; use drag.law = \"dallavalle\"",
         short(STOKES_RE_MAX),
         above.len(),

@@ -68,14 +68,26 @@ fn columns(text: &str) -> Vec<String> {
         .collect()
 }
 
-/// stokes_single is in Stokes' range (Re = 0.93 < 1): no warning, printed or written; its table
-/// and summary.csv give the Reynolds number ρ_f v d / η of the simulated velocity.
+/// stokes_single (f-EDEM's sphere in water) runs at Re = 0.93, above Stokes' range Re < 0.5:
+/// it warns, printed and written; at half the diameter (Re ≈ 0.12) it does not. Its table and
+/// summary.csv give the Reynolds number ρ_f v d / η of the simulated velocity.
 #[test]
 fn stokes_single_prints_its_reynolds_number_and_no_warning() {
     let dir = tmp();
-    let text = run("scenarios/stokes_single.toml", dir.path(), &[]);
-    assert!(!text.contains("warning"), "{text}");
+    let small = run(
+        "scenarios/stokes_single.toml",
+        dir.path(),
+        &["spheres[0].diameter_m=5e-5"],
+    );
+    assert!(!small.contains("warning"), "{small}");
     assert!(toml_warnings(&dir.path().join("stokes_single")).is_empty());
+    let text = run("scenarios/stokes_single.toml", dir.path(), &[]);
+    let w = toml_warnings(&dir.path().join("stokes_single"));
+    assert!(w.len() == 1 && w[0].contains("largest Re = 0.9265"), "{w:?}");
+    assert!(
+        text.contains("warning: Stokes drag used above its range"),
+        "{text}"
+    );
     let cols = columns(&text);
     assert!(cols.contains(&"Re".to_string()), "{cols:?}");
     let rows = read_csv_records(&dir.path().join("stokes_single/summary.csv"));

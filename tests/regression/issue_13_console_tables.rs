@@ -62,7 +62,7 @@ fn stokes_drag_far_outside_its_range_warns() {
     let w = toml_warnings(&dir.path().join("stokes_single"));
     assert_eq!(w.len(), 1, "{w:?}");
     assert!(
-        w[0].contains("Stokes drag used above its range Re < 1"),
+        w[0].contains("Stokes drag used above its range Re < 0.5"),
         "{}",
         w[0]
     );
