@@ -3,4 +3,6 @@
 #[cfg(unix)]
 mod checkpoint;
 mod interrupt;
+mod rerun;
 mod sweep;
+mod vary;

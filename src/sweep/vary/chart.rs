@@ -8,6 +8,9 @@ use crate::io::chart::{scatter_svg, Scale, Series};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
+/// The points of one series, (x, y).
+type Points = Vec<(f64, f64)>;
+
 /// The unit of a key or quantity named with its SI unit as suffix (`fluid.viscosity_pa_s` →
 /// `Pa·s`, `terminal_velocity_m_s` → `m/s`); `-` for a pure number (`balls_lost`, a count).
 pub fn unit_of(name: &str) -> &'static str {
@@ -109,7 +112,7 @@ pub fn charts(dir: &Path, title: &str, t: &VaryTable) -> Result<Vec<PathBuf>, Er
             .position(|c| *c == format!("reference_{q}"));
         // Series keyed by (body, values of the other keys), in first-seen order.
         let mut order: Vec<String> = Vec::new();
-        let mut pts: BTreeMap<String, (Vec<(f64, f64)>, Vec<(f64, f64)>)> = BTreeMap::new();
+        let mut pts: BTreeMap<String, (Points, Points)> = BTreeMap::new();
         for r in &t.rows {
             let mut label = r.body.clone();
             for (k, v) in t.keys.iter().zip(&r.point).skip(1) {
