@@ -73,7 +73,8 @@ fn check_name(s: &Scenario, path: &Path) -> Result<(), ScenarioError> {
 
 /// Loads and validates a scenario with the request's overrides (`--dt` is `time.dt_s`), reads
 /// its input files (`spheres_csv`, a sedimentation's `sample.csv`), and refuses reserved and
-/// over-long names: every bad input is found here, before anything runs.
+/// over-long names: every bad input is found here, before anything runs. `path` may be a run
+/// record (`OUT/NAME/run.toml`): its effective scenario runs again, the overrides on top.
 pub fn prepare(
     path: &Path,
     dt_s: Option<f64>,

@@ -190,10 +190,21 @@ fn part_files(dirs: &[PathBuf]) -> Result<Vec<PathBuf>, Error> {
 /// Rayleigh time.
 fn merge(args: &Args) -> Result<(), Error> {
     let vary_parts = vary::part_files(&args.merge);
-    if !vary_parts.is_empty() {
-        return vary::merge(args, &vary_parts);
+    let files = part_files(&args.merge);
+    match (vary_parts.is_empty(), files) {
+        (false, Ok(_)) => Err(Error::bad_argument(
+            "--merge",
+            &args.merge[0],
+            "these folders hold parts of a dt sweep (sweep_part_*.csv) and of a parameter sweep \
+             (vary_part_*.csv): merge each sweep's folder on its own",
+        )),
+        (false, Err(_)) => vary::merge(args, &vary_parts),
+        (true, files) => merge_dt(args, files?),
     }
-    let files = part_files(&args.merge)?;
+}
+
+/// `--merge` of a dt sweep's part `files`: see [`merge`].
+fn merge_dt(args: &Args, files: Vec<PathBuf>) -> Result<(), Error> {
     let prepared = args
         .scenarios
         .first()

@@ -242,7 +242,7 @@ pub fn part_files(dirs: &[PathBuf]) -> Vec<PathBuf> {
 
 /// `--merge DIR…` of a sharded parameter sweep: joins the part `files` (same keys) into
 /// `vary.csv` and its charts in `--out` (default: the first folder). The title is the name of
-/// the scenario file if one is given.
+/// the scenario file if one is given, else the first folder's name without `_vary`.
 pub fn merge(args: &Args, files: &[PathBuf]) -> Result<(), Error> {
     let mut table = VaryTable::default();
     for f in files {
@@ -253,9 +253,15 @@ pub fn merge(args: &Args, files: &[PathBuf]) -> Result<(), Error> {
             .map_err(|e| Error::bad_input(f, None, format!("cannot merge this part: it {e}")))?;
     }
     table.sort();
+    // The scenario's name: from its file if given, else from the folder `<name>_vary`.
     let title = match args.scenarios.first() {
         Some(f) => prepare(f, None, &args.set)?.scenario.name,
-        None => "vary".to_string(),
+        None => args.merge[0]
+            .file_name()
+            .and_then(|n| n.to_str())
+            .and_then(|n| n.strip_suffix("_vary"))
+            .unwrap_or("vary")
+            .to_string(),
     };
     let dest = args.out.clone().unwrap_or_else(|| args.merge[0].clone());
     std::fs::create_dir_all(&dest).map_err(|e| Error::Io(dest.clone(), e))?;
