@@ -27,6 +27,8 @@ enum Command {
     /// (velocities at [measure].velocity_at_s), metrics.csv and terminal_velocity.svg (when
     /// measured velocities exist), and run.toml (effective parameters, version, dt, steps, wall
     /// time). With several files, OUT/combined/ holds the joint summary and metrics.
+    /// `settle run OUT/NAME/run.toml` runs the same case again (the --set list and --dt it was
+    /// run with are recorded in it, already applied; input files as absolute paths).
     /// Exit codes: 0 success, 2 bad input (nothing written), 3 unstable run (nothing written),
     /// 4 I/O or environment, 130 interrupted.
     ///
@@ -83,6 +85,11 @@ enum Command {
     /// recommended_dt.csv, and prints the recommended dt beside the Rayleigh-time rule.
     /// Defaults come from the scenario's [sweep] table. Kinds free_settling, drop and funnel_pour
     /// can be swept; other kinds, like bad options, exit 2 before anything is written.
+    ///
+    /// With --vary KEY=GRID (repeatable), a parameter sweep of any scenario key instead, at the
+    /// scenario's own dt: OUT/<name>_vary/vary.csv (the varied keys, body, each result with its
+    /// unit, status) and a chart <quantity>_vs_<key>.svg of each result against the first key.
+    /// Every case is validated first: a bad key or value exits 2 with nothing written.
     Sweep(crate::sweep::Args),
 }
 

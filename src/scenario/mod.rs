@@ -19,7 +19,9 @@ mod schema;
 mod spec;
 mod validate;
 
-pub use load::{apply_override, load, load_str, parse, parse_str, ScenarioError};
+pub use load::{
+    apply_override, load, load_str, parse, parse_str, record_table, Overrides, ScenarioError,
+};
 pub use schema::*;
 pub use spec::{
     FreeSettlingSpec, FunnelPourSpec, Parsed, RestitutionSpec, SceneSpec, SedimentationSpec,

@@ -4,5 +4,7 @@
 mod checkpoint;
 pub(crate) mod console;
 mod interrupt;
+mod rerun;
 mod sweep;
 mod tutorial;
+mod vary;
