@@ -19,7 +19,9 @@
 //! example, used by the tests). The standard itself could not be read here; its clause numbers
 //! are therefore not cited, only its tables' numbers (1: a, 2: L, 3: K).
 
-use super::{stokes_diameter_m, water_viscosity_pa_s, HydrometerType, LabReading, Reduced, TestSetup};
+use super::{
+    stokes_diameter_m, water_viscosity_pa_s, HydrometerType, LabReading, Reduced, TestSetup,
+};
 use crate::instruments::hydrometer::HydrometerSpec;
 
 /// D422's reading times, min (2, 5, 15, 30, 60, 250, 1440).

@@ -1,68 +1,15 @@
-//! `settle reduce READINGS.csv`: the standard data reduction of laboratory hydrometer readings
-//! (ASTM D422 or D7928, [`crate::instruments::reduction`]) into `OUT/<stem>_reduced/`:
-//! `percent_finer.csv`, `percent_finer.svg` and `reduce.toml`.
-//!
-//! # The readings file
-//!
-//! A plain CSV (no quoted fields) whose first lines are the test's figures as `# key = value`
-//! comments, then a header and one row per reading (see `docs/commands/reduce.md`):
-//!
-//! ```text
-//! # standard = d7928
-//! # hydrometer = 152H
-//! # dry_mass_g = 50.0
-//! # specific_gravity = 2.70
-//! # meniscus_correction = 1.0
-//! # h_r1_cm = 20.3
-//! # h_r2_cm = 8.6
-//! # bulb_volume_ml = 55
-//! # cylinder_area_cm2 = 27.8
-//! time_min,reading,temperature_c,blank_reading
-//! 1,45.5,21.5,6.0
-//! ```
-//!
-//! Every bad input (a missing or unknown key or column, a value out of range, a reading off the
-//! hydrometer's scale, times not strictly increasing, a temperature outside the standard's range)
-//! is one error naming the file, the key or the row and column (1-based), and what is allowed;
-//! exit 2, nothing written.
+//! Reading and checking a readings file (the format of `docs/commands/reduce.md`): the test's
+//! figures from its `# key = value` lines, its readings from the table. Every refusal is one
+//! [`Error::BadInput`] naming the file, the key or the row and column (1-based), and what is
+//! allowed.
 
+use super::Request;
 use crate::error::Error;
 use crate::instruments::reduction::d7928::MeasuredHydrometer;
-use crate::instruments::reduction::{
-    reduce, HydrometerType, LabReading, Reduced, Standard, TestSetup,
-};
-use crate::io::chart::{scatter_svg, Scale, Series};
-use crate::io::{self, num, StagedDir};
+use crate::instruments::reduction::{HydrometerType, LabReading, Standard, TestSetup};
+use crate::io::num;
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
-
-/// What `settle reduce` is asked to do.
-#[derive(Clone, Debug, Default)]
-pub struct Request {
-    /// The readings file.
-    pub file: PathBuf,
-    /// `--standard`, overriding the file's `standard`.
-    pub standard: Option<String>,
-    /// `--hydrometer`, overriding the file's `hydrometer`.
-    pub hydrometer: Option<String>,
-    /// Output folder; results go to `out_dir/<stem>_reduced/`.
-    pub out_dir: PathBuf,
-}
-
-/// What a reduction produced.
-#[derive(Clone, Debug)]
-pub struct Report {
-    /// The results folder.
-    pub out: PathBuf,
-    /// The test's figures as read.
-    pub setup: TestSetup,
-    /// Every reading reduced.
-    pub reduced: Vec<Reduced>,
-    /// Console summary, one line each.
-    pub lines: Vec<String>,
-    /// Validity warnings (percent finer outside 0–100 %).
-    pub warnings: Vec<String>,
-}
+use std::path::Path;
 
 /// Keys of the `# key = value` lines: the test's figures.
 const FIGURE_KEYS: [&str; 14] = [
@@ -210,15 +157,13 @@ fn required(file: &Path, key: &str, x: Option<f64>, what: &str) -> Result<f64, E
 }
 
 /// The standard and the hydrometer: the command line's, else the file's.
-fn kinds(
-    file: &Path,
-    p: &Parsed,
-    req: &Request,
-) -> Result<(Standard, HydrometerType), Error> {
+fn kinds(file: &Path, p: &Parsed, req: &Request) -> Result<(Standard, HydrometerType), Error> {
     let pick = |opt: &Option<String>, key: &str| {
-        opt.clone()
-            .map(|v| (v, format!("--{key}")))
-            .or_else(|| p.figures.get(key).map(|(v, l)| (v.clone(), format!("line {l}"))))
+        opt.clone().map(|v| (v, format!("--{key}"))).or_else(|| {
+            p.figures
+                .get(key)
+                .map(|(v, l)| (v.clone(), format!("line {l}")))
+        })
     };
     let standard = match pick(&req.standard, "standard") {
         None => {
@@ -262,8 +207,18 @@ fn measured(file: &Path, p: &Parsed, h: HydrometerType) -> Result<MeasuredHydrom
     let r1 = figure(file, p, "r1", (s0, s1), "a reading on the scale")?.unwrap_or(s0);
     let r2 = figure(file, p, "r2", (s0, s1), "a reading on the scale")?.unwrap_or(s1);
     let cm = "a length of 0.1–100 cm";
-    let h1 = required(file, "h_r1_cm", figure(file, p, "h_r1_cm", len, cm)?, "D7928: distance from the bulb's centre of volume to the mark r1, cm")?;
-    let h2 = required(file, "h_r2_cm", figure(file, p, "h_r2_cm", len, cm)?, "D7928: distance from the bulb's centre of volume to the mark r2, cm")?;
+    let h1 = required(
+        file,
+        "h_r1_cm",
+        figure(file, p, "h_r1_cm", len, cm)?,
+        "D7928: distance from the bulb's centre of volume to the mark r1, cm",
+    )?;
+    let h2 = required(
+        file,
+        "h_r2_cm",
+        figure(file, p, "h_r2_cm", len, cm)?,
+        "D7928: distance from the bulb's centre of volume to the mark r2, cm",
+    )?;
     let vb = required(
         file,
         "bulb_volume_ml",
@@ -336,12 +291,22 @@ fn setup(file: &Path, p: &Parsed, req: &Request) -> Result<(TestSetup, Option<f6
             p,
             "meniscus_correction",
             (0.0, cm_max),
-            &format!("0–{} {} (0 if read at the liquid level)", num(cm_max), h.unit()),
+            &format!(
+                "0–{} {} (0 if read at the liquid level)",
+                num(cm_max),
+                h.unit()
+            ),
         )?,
         "reading at the liquid level minus reading at the top of the meniscus",
     )?;
-    let volume = figure(file, p, "suspension_volume_ml", (100.0, 1e4), "100–10000 mL")?
-        .unwrap_or(1000.0);
+    let volume = figure(
+        file,
+        p,
+        "suspension_volume_ml",
+        (100.0, 1e4),
+        "100–10000 mL",
+    )?
+    .unwrap_or(1000.0);
     let blank = figure(file, p, "blank_reading", (s0, s1), &scale_text(h))?;
     let measured = match standard {
         Standard::D7928 => Some(measured(file, p, h)?),
@@ -371,7 +336,13 @@ fn setup(file: &Path, p: &Parsed, req: &Request) -> Result<(TestSetup, Option<f6
 
 fn scale_text(h: HydrometerType) -> String {
     let (a, b) = h.scale();
-    format!("{} to {} {} (the {}'s scale)", num(a), num(b), h.unit(), h.name())
+    format!(
+        "{} to {} {} (the {}'s scale)",
+        num(a),
+        num(b),
+        h.unit(),
+        h.name()
+    )
 }
 
 /// Reads and checks a readings file: the test's figures and its readings.
@@ -398,7 +369,10 @@ fn columns(file: &Path, header: &[String]) -> Result<BTreeMap<&'static str, usiz
             ));
         };
         if at.insert(*c, j).is_some() {
-            return Err(bad(file, format!("header, column {}: `{h}` given twice", j + 1)));
+            return Err(bad(
+                file,
+                format!("header, column {}: `{h}` given twice", j + 1),
+            ));
         }
     }
     if at.contains_key("time_s") == at.contains_key("time_min") {
@@ -443,7 +417,10 @@ fn rows(
         _ => {}
     }
     if p.rows.is_empty() {
-        return Err(bad(file, "no readings: the table has a header but no rows".into()));
+        return Err(bad(
+            file,
+            "no readings: the table has a header but no rows".into(),
+        ));
     }
     let (t0, t1) = s.standard.temperature_range_c();
     let (s0, s1) = s.hydrometer.scale();
@@ -465,10 +442,16 @@ fn rows(
             let v = &fields[j];
             let where_ = format!("row {row} (line {line}), column {} `{c}`", j + 1);
             let x: f64 = v.parse().map_err(|_| {
-                bad(file, format!("{where_}: `{v}` is not a number; allowed: {allowed}"))
+                bad(
+                    file,
+                    format!("{where_}: `{v}` is not a number; allowed: {allowed}"),
+                )
             })?;
             if !(x.is_finite() && x >= lo && x <= hi) {
-                return Err(bad(file, format!("{where_}: {v} is out of range; allowed: {allowed}")));
+                return Err(bad(
+                    file,
+                    format!("{where_}: {v} is out of range; allowed: {allowed}"),
+                ));
             }
             Ok(x)
         };
@@ -490,7 +473,11 @@ fn rows(
             None => value("blank_reading", s0, s1, &scale)?,
         };
         if let Some(prev) = out.last().filter(|prev| time_s <= prev.time_s) {
-            let c = if at.contains_key("time_s") { "time_s" } else { "time_min" };
+            let c = if at.contains_key("time_s") {
+                "time_s"
+            } else {
+                "time_min"
+            };
             return Err(bad(
                 file,
                 format!(
@@ -498,7 +485,11 @@ fn rows(
                      reading's {}; times must increase strictly",
                     at[c] + 1,
                     fields[at[c]],
-                    if c == "time_s" { num(prev.time_s) } else { num(prev.time_s / 60.0) }
+                    if c == "time_s" {
+                        num(prev.time_s)
+                    } else {
+                        num(prev.time_s / 60.0)
+                    }
                 ),
             ));
         }
@@ -510,188 +501,4 @@ fn rows(
         });
     }
     Ok(out)
-}
-
-/// Runs `settle reduce`: reads, checks, reduces and writes `OUT/<stem>_reduced/`.
-pub fn run(req: &Request) -> Result<Report, Error> {
-    let file = &req.file;
-    let (setup, readings) = read(file, req)?;
-    let stem = file
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "readings".into());
-    let name = format!("{stem}_reduced");
-    let dest = req.out_dir.join(&name);
-    if io::check_destination(&dest).is_err() {
-        return Err(Error::bad_argument(
-            "--out",
-            &dest,
-            "exists and was not created by settle (no .settle-run marker), so settle will not \
-             replace it: choose another --out",
-        ));
-    }
-    let reduced = reduce(&setup, &readings);
-    let ioe = |e: std::io::Error| Error::Io(dest.clone(), e);
-    let stage = StagedDir::new(&req.out_dir, &name).map_err(ioe)?;
-    write_csv(&stage.path("percent_finer.csv"), &reduced).map_err(ioe)?;
-    write_chart(&stage.path("percent_finer.svg"), &stem, &setup, &reduced).map_err(ioe)?;
-    let record = record(file, &setup, &readings);
-    io::write_atomic(&stage.path("reduce.toml"), record.as_bytes()).map_err(ioe)?;
-    let out = stage.commit().map_err(ioe)?;
-    let warnings = reduced
-        .iter()
-        .filter(|r| !(0.0..=100.0).contains(&r.percent_finer))
-        .map(|r| {
-            format!(
-                "percent finer {} % at t = {} min is outside 0–100 %: check dry_mass_g, \
-                 specific_gravity and the blank reading",
-                sig(r.percent_finer, 3),
-                sig(r.reading.time_s / 60.0, 4)
-            )
-        })
-        .collect();
-    let lines = summary(file, &out, &setup, &reduced);
-    Ok(Report {
-        out,
-        setup,
-        reduced,
-        lines,
-        warnings,
-    })
-}
-
-/// `x` with `n` significant digits, never `-0`.
-pub fn sig(x: f64, n: usize) -> String {
-    if x == 0.0 || !x.is_finite() {
-        return if x.is_finite() { "0".into() } else { format!("{x}") };
-    }
-    let mag = x.abs().log10().floor() as i32;
-    let decimals = (n as i32 - 1 - mag).max(0) as usize;
-    let s = format!("{x:.decimals$}");
-    if s.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') {
-        "0".into()
-    } else {
-        s
-    }
-}
-
-fn summary(file: &Path, out: &Path, s: &TestSetup, red: &[Reduced]) -> Vec<String> {
-    let mut lines = vec![format!(
-        "{} (ASTM {}, {}, {} readings) -> {}",
-        file.display(),
-        s.standard.name().to_uppercase(),
-        s.hydrometer.name(),
-        red.len(),
-        out.display()
-    )];
-    lines.push(format!(
-        "  {:>9} {:>8} {:>6} {:>7} {:>8} {:>8} {:>8}",
-        "t_min", "reading", "blank", "T_C", "depth_cm", "d_um", "finer_%"
-    ));
-    for r in red {
-        let x = &r.reading;
-        lines.push(format!(
-            "  {:>9} {:>8} {:>6} {:>7} {:>8} {:>8} {:>8}",
-            sig(x.time_s / 60.0, 4),
-            sig(x.reading, 4),
-            sig(x.blank_reading, 4),
-            sig(x.temperature_c, 3),
-            sig(r.effective_depth_m * 100.0, 3),
-            sig(r.diameter_m * 1e6, 3),
-            sig(r.percent_finer, 3)
-        ));
-    }
-    lines
-}
-
-fn write_csv(path: &Path, red: &[Reduced]) -> std::io::Result<()> {
-    let rows: Vec<Vec<String>> = red
-        .iter()
-        .map(|r| {
-            let x = &r.reading;
-            vec![
-                num(x.time_s),
-                num(x.time_s / 60.0),
-                num(x.reading),
-                num(x.blank_reading),
-                num(r.net_reading),
-                num(x.temperature_c),
-                num(r.viscosity_pa_s),
-                num(r.effective_depth_m),
-                num(r.diameter_m),
-                num(r.percent_finer),
-            ]
-        })
-        .collect();
-    io::write_csv(
-        path,
-        &[
-            "time_s",
-            "time_min",
-            "reading",
-            "blank_reading",
-            "net_reading",
-            "temperature_c",
-            "viscosity_pa_s",
-            "effective_depth_m",
-            "diameter_m",
-            "percent_finer",
-        ],
-        &rows,
-    )
-}
-
-fn write_chart(path: &Path, stem: &str, s: &TestSetup, red: &[Reduced]) -> std::io::Result<()> {
-    let points = red
-        .iter()
-        .map(|r| (r.diameter_m * 1e6, r.percent_finer))
-        .collect();
-    scatter_svg(
-        path,
-        &format!(
-            "{stem}: percent finer (ASTM {}, {})",
-            s.standard.name().to_uppercase(),
-            s.hydrometer.name()
-        ),
-        "particle diameter [µm]",
-        "percent finer [%]",
-        Scale::Log,
-        Scale::Linear,
-        &[Series::sorted_line(
-            format!("{} reduction", s.standard.name().to_uppercase()),
-            points,
-            0,
-        )],
-    )
-}
-
-/// reduce.toml: what was reduced, how, by which settle.
-fn record(file: &Path, s: &TestSetup, readings: &[LabReading]) -> String {
-    let mut t = format!(
-        "# written by settle reduce\n[reduce]\nsettle_version = \"{}\"\ninput = {:?}\n\
-         standard = \"{}\"\nhydrometer = \"{}\"\nreadings = {}\ndry_mass_g = {}\n\
-         specific_gravity = {}\nmeniscus_correction = {}\nsuspension_volume_ml = {}\n",
-        env!("CARGO_PKG_VERSION"),
-        file.display().to_string(),
-        s.standard.name(),
-        s.hydrometer.name(),
-        readings.len(),
-        num(s.dry_mass_kg * 1e3),
-        num(s.specific_gravity),
-        num(s.meniscus_correction),
-        num(s.suspension_volume_m3 * 1e6),
-    );
-    if let Some(m) = &s.measured {
-        t.push_str(&format!(
-            "\n[d7928]\nh_r1_cm = {}\nh_r2_cm = {}\nr1 = {}\nr2 = {}\nbulb_volume_ml = {}\n\
-             cylinder_area_cm2 = {}\n",
-            num(m.h_r1_m * 1e2),
-            num(m.h_r2_m * 1e2),
-            num(m.r1),
-            num(m.r2),
-            num(m.bulb_volume_m3 * 1e6),
-            num(m.cylinder_area_m2 * 1e4)
-        ));
-    }
-    t
 }
