@@ -15,8 +15,8 @@
 use settle::instruments::hydrometer::Hydrometer;
 use settle::instruments::reduction::d7928::{self, MeasuredHydrometer};
 use settle::instruments::reduction::{
-    d422, reduce, water_density_kg_m3, water_viscosity_pa_s, HydrometerType, LabReading,
-    Standard, TestSetup,
+    d422, reduce, water_density_kg_m3, water_viscosity_pa_s, HydrometerType, LabReading, Standard,
+    TestSetup,
 };
 use settle::instruments::{Analysis, LayeredField};
 
@@ -181,7 +181,11 @@ fn d7928_with_the_table_2_hydrometer_gives_d422_depths() {
         for k in 0..=20 {
             let r = a + (b - a) * k as f64 / 20.0;
             let (got, want) = (m.effective_depth_m(r), d422::effective_depth_m(h, r));
-            assert!((got - want).abs() < 1e-12, "{} r {r}: {got} vs {want}", h.name());
+            assert!(
+                (got - want).abs() < 1e-12,
+                "{} r {r}: {got} vs {want}",
+                h.name()
+            );
         }
     }
     // D422's K = √(30 n / (980 (G − 1))) is D7928's diameter with ρ_w = 1, g = 980.
@@ -241,7 +245,9 @@ fn readings_computed_forward_reduce_back_to_the_input_curve() {
         real.push(lab(hyd.read(&field).unwrap().reading));
         let mut r = 0.0;
         for _ in 0..60 {
-            r = scale(rho_at(d422::effective_depth_m(HydrometerType::H152, r) + lift));
+            r = scale(rho_at(
+                d422::effective_depth_m(HydrometerType::H152, r) + lift,
+            ));
         }
         point.push(lab(r));
     }
