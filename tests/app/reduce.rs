@@ -254,7 +254,7 @@ fn bad_figures_and_columns_are_refused() {
         &[],
         &["one time column"],
     );
-    refused(&D422_HEAD.to_string(), &[], &["no header"]);
+    refused(D422_HEAD, &[], &["no header"]);
     refused(
         &format!("{D422_HEAD}{}", "time_min,reading,temperature_c\n"),
         &[],
