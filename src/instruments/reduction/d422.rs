@@ -13,8 +13,9 @@
 //!   with G₁ = 1; R is the reading minus the composite correction, W the oven-dry mass in g in
 //!   1000 mL ([`percent_finer`]).
 //!
-//! Sources: the formulas as quoted in D422-63's own text by textbooks (Das, *Soil Mechanics
-//! Laboratory Manual*, and Bowles, *Engineering Properties of Soils*), and by the R package
+//! Sources: the formulas as quoted from D422-63 by textbooks (Das, *Advanced Soil Mechanics*,
+//! eqs. 3.28–3.29: L = L₁ + ½(L₂ − V_h/A) and, for the 152H, L = 16.3 − 0.1641 R "for any reading
+//! R (corrected for meniscus)"; Das, *Soil Mechanics Laboratory Manual*), and by the R package
 //! envalysis (Steinmetz, `texture()`, which implements D422 and publishes a reduced worked
 //! example, used by the tests). The standard itself could not be read here; its clause numbers
 //! are therefore not cited, only its tables' numbers (1: a, 2: L, 3: K).

@@ -58,7 +58,9 @@ impl HydrometerType {
     }
 
     /// The graduated scale (lowest, highest reading): 152H −5 to 60 g/L, 151H 0.995 to 1.038
-    /// (ASTM E100's figures as quoted by D422 and D7928 users; a reading outside cannot be read).
+    /// (the figures commonly quoted for ASTM E100's soil hydrometers, used by soiltestr for the
+    /// 152H's H_r1/H_r2 marks; not checked against E100 itself). A reading outside cannot be
+    /// read.
     pub fn scale(self) -> (f64, f64) {
         match self {
             Self::H152 => (-5.0, 60.0),
