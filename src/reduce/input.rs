@@ -348,7 +348,8 @@ fn scale_text(h: HydrometerType) -> String {
 /// Reads and checks a readings file: the test's figures and its readings.
 pub fn read(file: &Path, req: &Request) -> Result<(TestSetup, Vec<LabReading>), Error> {
     let text = std::fs::read_to_string(file).map_err(|e| Error::Io(file.to_path_buf(), e))?;
-    let p = split(file, &text)?;
+    // A spreadsheet's UTF-8 byte-order mark is not part of the first key or column name.
+    let p = split(file, text.trim_start_matches('\u{feff}'))?;
     let (s, blank) = setup(file, &p, req)?;
     let readings = rows(file, &p, &s, blank)?;
     Ok((s, readings))

@@ -90,6 +90,15 @@ fn the_d7928_example_reduces_to_the_hand_calculation() {
     );
     let toml = std::fs::read_to_string(dir.join("reduce.toml")).unwrap();
     assert!(toml.contains("h_r1_cm = 20.3"), "{toml}");
+    // The same file saved by a spreadsheet (byte-order mark, CRLF) reads the same.
+    let text = std::fs::read_to_string("data/lab/soiltestr_protocol8_d7928.csv").unwrap();
+    let bom = out.path().join("bom.csv");
+    std::fs::write(&bom, format!("\u{feff}{}", text.replace('\n', "\r\n"))).unwrap();
+    assert_exit(&reduce(&bom, out.path(), &[]), 0);
+    assert_eq!(
+        std::fs::read_to_string(out.path().join("bom_reduced/percent_finer.csv")).unwrap(),
+        std::fs::read_to_string(dir.join("percent_finer.csv")).unwrap()
+    );
     // A rerun replaces settle's folder; --standard overrides the file's (d422 refuses the
     // D7928 dimensions).
     assert_exit(
