@@ -91,6 +91,29 @@ enum Command {
     /// unit, status) and a chart <quantity>_vs_<key>.svg of each result against the first key.
     /// Every case is validated first: a bad key or value exits 2 with nothing written.
     Sweep(crate::sweep::Args),
+    /// Reduce laboratory hydrometer readings by ASTM D422 or D7928 (percent finer vs diameter).
+    ///
+    /// READINGS.csv holds the test's figures as `# key = value` lines (standard, hydrometer,
+    /// dry_mass_g, specific_gravity, meniscus_correction, blank_reading, and for D7928 the
+    /// hydrometer's measured h_r1_cm, h_r2_cm, bulb_volume_ml, cylinder_area_cm2), then the
+    /// columns time_min (or time_s), reading, temperature_c [, blank_reading]. Writes
+    /// OUT/<stem>_reduced/percent_finer.csv, percent_finer.svg and reduce.toml. Bad input (a
+    /// missing figure, a reading off the scale, times out of order, a temperature outside the
+    /// standard's range) exits 2 naming the file, row and column; nothing is written.
+    /// See docs/commands/reduce.md.
+    Reduce {
+        /// The readings file (CSV).
+        readings: PathBuf,
+        /// d422 or d7928 (overrides the file's `# standard`).
+        #[arg(long)]
+        standard: Option<String>,
+        /// 152H or 151H (overrides the file's `# hydrometer`).
+        #[arg(long)]
+        hydrometer: Option<String>,
+        /// Output folder.
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+    },
 }
 
 /// Parses the arguments, runs, and returns the process exit code.
@@ -178,6 +201,34 @@ pub fn main() -> i32 {
                 e.exit_code()
             }
         },
+        Command::Reduce {
+            readings,
+            standard,
+            hydrometer,
+            out,
+        } => {
+            let req = crate::reduce::Request {
+                file: readings,
+                standard,
+                hydrometer,
+                out_dir: out,
+            };
+            match crate::reduce::run(&req) {
+                Ok(r) => {
+                    for l in &r.lines {
+                        println!("{l}");
+                    }
+                    for w in &r.warnings {
+                        println!("  warning: {w}");
+                    }
+                    0
+                }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    e.exit_code()
+                }
+            }
+        }
     }
 }
 
