@@ -83,7 +83,10 @@ fn stokes_single_prints_its_reynolds_number_and_no_warning() {
     assert!(toml_warnings(&dir.path().join("stokes_single")).is_empty());
     let text = run("scenarios/stokes_single.toml", dir.path(), &[]);
     let w = toml_warnings(&dir.path().join("stokes_single"));
-    assert!(w.len() == 1 && w[0].contains("largest Re = 0.9265"), "{w:?}");
+    assert!(
+        w.len() == 1 && w[0].contains("largest Re = 0.9265"),
+        "{w:?}"
+    );
     assert!(
         text.contains("warning: Stokes drag used above its range"),
         "{text}"

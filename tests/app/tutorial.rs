@@ -15,16 +15,7 @@ const CI: &str = include_str!("../../.ci/run");
 
 /// Tutorial commands that need a feature of issue 13 not on this branch yet: skipped, with the
 /// feature. Remove an entry once its feature is merged; the test then runs the command.
-const PENDING_COMMANDS: &[(&str, &str)] = &[
-    (
-        "--vary",
-        "parameter sweeps on any key (issue 13 item 6, helper `rerun`)",
-    ),
-    (
-        "run.toml",
-        "rerunning a run from its run.toml (issue 13 item 5, helper `rerun`)",
-    ),
-];
+const PENDING_COMMANDS: &[(&str, &str)] = &[];
 
 /// Output files the tutorial names that a feature not on this branch yet writes.
 const PENDING_FILES: &[(&str, &str)] = &[(
@@ -238,8 +229,8 @@ fn the_tutorial_runs_and_writes_the_files_it_names() {
     assert_eq!(first_row(&held, "v_simulated_m_s"), "0");
 }
 
-/// Step 5 says the ball moves up to 27.5 Pa and is held from 30 Pa (the grid 10:40:13), and
-/// step 3 that the threshold is 27.9 Pa: checked with `--set` until `--vary` is merged.
+/// Step 5 says the ball moves up to 27.5 Pa (at 0.00906 m/s) and is held from 30 Pa (the grid
+/// 10:40:13), and step 3 that the threshold is 27.9 Pa: checked with `--vary` and `--set`.
 #[test]
 fn the_yield_stress_that_holds_the_tutorial_ball() {
     let t = tutorial();
@@ -248,8 +239,25 @@ fn the_yield_stress_that_holds_the_tutorial_ball() {
         std::fs::write(dir.path().join(name), text).unwrap();
     }
     assert!(readme_says(
-        "the ball moves up to 27.5 Pa and is held from 30 Pa"
+        "the ball moves up to 27.5 Pa (0.00906 m/s) and is held from 30 Pa"
     ));
+    let out = settle()
+        .args(["sweep", "ball.toml", "--quiet", "--vary"])
+        .arg("fluid.yield_stress_pa=27.5,30")
+        .current_dir(dir.path())
+        .output()
+        .expect("spawn settle");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let (h, rows) = read_csv(&dir.path().join("out/steel_ball_vary/vary.csv"));
+    let c = |n: &str| h.iter().position(|x| x == n).expect(n);
+    let v = |i: usize| rows[i][c("terminal_velocity_m_s")].parse::<f64>().unwrap();
+    assert_eq!(rows[0][c("fluid.yield_stress_pa")], "27.5");
+    assert!((v(0) / 0.00906 - 1.0).abs() < 5e-4, "{}", v(0));
+    assert_eq!(v(1), 0.0);
     assert!(readme_says("exceeds its net weight from τ_y = 27.9 Pa"));
     for (tau, regime_static) in [("27.5", false), ("27.8", false), ("27.9", true)] {
         let out_dir = format!("o{tau}");
