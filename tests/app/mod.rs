@@ -1,6 +1,12 @@
-//! The application layer: `src/run.rs`, `src/checkpoint.rs`, `src/interrupt.rs`, `src/sweep/`.
+//! The application layer: `src/run.rs`, `src/checkpoint.rs`, `src/interrupt.rs`, `src/sweep/`,
+//! `src/reduce/`.
 
 #[cfg(unix)]
 mod checkpoint;
+pub(crate) mod console;
 mod interrupt;
+mod reduce;
+mod rerun;
 mod sweep;
+mod tutorial;
+mod vary;
