@@ -5,7 +5,7 @@
 //! `pipette_mass.svg`, `instruments.svg`.
 
 use super::plot::time_text;
-use crate::io::chart::{scatter_svg, Scale, Series};
+use crate::io::chart::{scatter_svg, Chart, Curve, Scale, Series};
 use crate::scenes::sedimentation::instruments::{BulbRow, InstrumentKind, InstrumentReading};
 use std::io;
 use std::path::Path;
@@ -21,9 +21,9 @@ const KINDS: [(InstrumentKind, usize); 3] = [
 /// the limiting diameter of seed eq. 16 (m).
 pub type MaxDiameterRow = (f64, f64, f64, f64);
 
-/// Seed Fig. 12: the largest diameter above each depth (markers) against eq. 16,
-/// d = √(18 μ z / ((ρ_p − ρ_f) g t)) (lines), one colour per time; every fourth row of
-/// `max_diameter.csv` so the markers stay apart. Eq. 16 is drawn up to 1.5 × the largest grain
+/// Seed Fig. 12: the largest diameter above each depth (markers, every fourth row of
+/// `max_diameter.csv` so they stay apart) against eq. 16, d = √(18 μ z / ((ρ_p − ρ_f) g t))
+/// (dashed lines), one colour per time. Eq. 16 is drawn up to 1.5 × the largest grain
 /// (beyond it no grain exists and the bound says nothing).
 pub fn write_max_diameter_chart(
     path: &Path,
@@ -33,42 +33,36 @@ pub fn write_max_diameter_chart(
     let mut times: Vec<f64> = rows.iter().map(|r| r.0).collect();
     times.dedup();
     let d_top = rows.iter().map(|r| r.2).fold(0.0, f64::max) * 1.5;
-    let mut series = Vec::new();
+    let mut chart = Chart::new(title)
+        .x("depth below the surface (cm)", Scale::Linear)
+        .y("largest diameter above the depth (µm)", Scale::Linear);
     for (i, &t) in times.iter().enumerate() {
         let of_t: Vec<&MaxDiameterRow> = rows.iter().filter(|r| r.0 == t).collect();
-        series.push(Series {
-            label: format!("simulation, {}", time_text(t)),
-            points: of_t
-                .iter()
-                .step_by(4)
-                .map(|r| (r.1 * 100.0, r.2 * 1e6))
-                .collect(),
-            colour: i,
-            filled: true,
-            line: false,
-        });
-        series.push(Series {
-            label: format!("eq. 16, {}", time_text(t)),
-            points: of_t
-                .iter()
-                .step_by(4)
-                .filter(|r| r.3 <= d_top)
-                .map(|r| (r.1 * 100.0, r.3 * 1e6))
-                .collect(),
-            colour: i,
-            filled: false,
-            line: true,
-        });
+        chart = chart
+            .series(Series {
+                label: format!("simulation, {}", time_text(t)),
+                points: of_t
+                    .iter()
+                    .step_by(4)
+                    .map(|r| (r.1 * 100.0, r.2 * 1e6))
+                    .collect(),
+                colour: i,
+                filled: true,
+                line: false,
+            })
+            .curve(
+                Curve::new(
+                    format!("eq. 16, {}", time_text(t)),
+                    of_t.iter()
+                        .filter(|r| r.3 <= d_top)
+                        .map(|r| (r.1 * 100.0, r.3 * 1e6))
+                        .collect(),
+                )
+                .colour(i)
+                .dashed(),
+            );
     }
-    scatter_svg(
-        path,
-        title,
-        "depth below the surface (cm)",
-        "largest diameter above the depth (µm)",
-        Scale::Linear,
-        Scale::Linear,
-        &series,
-    )
+    chart.svg(path)
 }
 
 /// Seed Fig. 13: the suspension density along the hydrometer bulb at each reading, averaged over
@@ -130,31 +124,21 @@ pub fn write_bulb_mean_chart(
             })
         })
         .collect();
-    let series = [
-        Series {
+    Chart::new(title)
+        .x("time, log scale (min)", Scale::Log)
+        .y("suspension density around the bulb (kg/m³)", Scale::Linear)
+        .series(Series {
             label: "mean over the bulb (simulation)".into(),
             points: hyd.iter().map(|h| (h.0, h.1)).collect(),
             colour: 0,
             filled: true,
             line: false,
-        },
-        Series {
-            label: "eq. 19 from the hydrometer's depth".into(),
-            points: hyd.iter().map(|h| (h.0, h.2)).collect(),
-            colour: 1,
-            filled: false,
-            line: true,
-        },
-    ];
-    scatter_svg(
-        path,
-        title,
-        "time, log scale (min)",
-        "suspension density around the bulb (kg/m³)",
-        Scale::Log,
-        Scale::Linear,
-        &series,
-    )
+        })
+        .curve(Curve::new(
+            "eq. 19 from the hydrometer's depth",
+            hyd.iter().map(|h| (h.0, h.2)).collect(),
+        ))
+        .svg(path)
 }
 
 /// One series per instrument of `value` against the reading time in minutes.

@@ -10,7 +10,7 @@ use super::plot::sig;
 use crate::dynamics::{advance, Integrator};
 use crate::fluid::newtonian::{reynolds, stokes_response_time_s};
 use crate::fluid::{sphere_mass_kg, DragLaw, SphereDrag};
-use crate::io::chart::{scatter_svg, Scale, Series};
+use crate::io::chart::{scatter_svg, Chart, Curve, Scale, Series};
 use crate::io::{num, StagedDir};
 use nalgebra::SVector;
 use std::io;
@@ -224,39 +224,32 @@ pub fn write_all(stage: &StagedDir, name: &str, k: Grains, diameters_m: &[f64]) 
     )?;
     // About 25 of the classes on the chart, so the markers stay apart (all in the CSV).
     let step = (all.len() / 25).max(1);
-    let t95 = [
-        Series {
-            label: "time to 95 % of v_t (the run's drag and integrator)".into(),
-            points: all
-                .iter()
-                .step_by(step)
-                .map(|t| (t.diameter_m * 1e6, t.t95_s * 1e3))
-                .collect(),
-            colour: 0,
-            filled: true,
-            line: false,
-        },
-        Series {
-            label: "Stokes: t_95 = τ ln 20, τ = ρ_p d²/(18 μ)".into(),
-            points: all
-                .iter()
-                .step_by(step)
-                .map(|t| (t.diameter_m * 1e6, t.response_time_s * 20f64.ln() * 1e3))
-                .collect(),
-            colour: 1,
-            filled: false,
-            line: true,
-        },
-    ];
-    scatter_svg(
-        &dir("terminal_time.svg"),
-        &format!("{name}: time to reach the terminal velocity (seed 000 Fig. 4)"),
-        "diameter, log scale (µm)",
+    Chart::new(format!(
+        "{name}: time to reach the terminal velocity (seed 000 Fig. 4)"
+    ))
+    .x("diameter, log scale (µm)", Scale::Log)
+    .y(
         "time to 95 % of the terminal velocity, log scale (ms)",
         Scale::Log,
-        Scale::Log,
-        &t95,
     )
+    .series(Series {
+        label: "time to 95 % of v_t (the run's drag and integrator)".into(),
+        points: all
+            .iter()
+            .step_by(step)
+            .map(|t| (t.diameter_m * 1e6, t.t95_s * 1e3))
+            .collect(),
+        colour: 0,
+        filled: true,
+        line: false,
+    })
+    .curve(Curve::new(
+        "Stokes: t_95 = τ ln 20, τ = ρ_p d²/(18 μ)",
+        all.iter()
+            .map(|t| (t.diameter_m * 1e6, t.response_time_s * 20f64.ln() * 1e3))
+            .collect(),
+    ))
+    .svg(&dir("terminal_time.svg"))
 }
 
 #[cfg(test)]
