@@ -118,7 +118,7 @@ fn the_bulb_density_has_one_labelled_line_per_time() {
         "suspension density along the hydrometer bulb",
         &[
             "distance below the top of the bulb h_hd (cm)",
-            "suspension density",
+            "suspension density, mean over 1 cm (kg/m³)",
         ],
     );
     for l in [
