@@ -93,15 +93,46 @@ pub fn write_bulb_chart(path: &Path, title: &str, rows: &[BulbRow]) -> io::Resul
             Series::sorted_line(time_text(t), points, i)
         })
         .collect();
-    scatter_svg(
-        path,
+    close_up(
         title,
-        "distance below the top of the bulb h_hd (cm)",
+        (
+            "distance below the top of the bulb h_hd (cm)",
+            Scale::Linear,
+        ),
         "suspension density, mean over 1 cm (kg/m³)",
-        Scale::Linear,
-        Scale::Linear,
-        &series,
+        &ys(&series),
     )
+    .all_series(series)
+    .svg(path)
+}
+
+/// A chart whose linear y axis spans the y `values` (padded by 10 % of their spread, at least
+/// 0.1 % of their size) rather than starting at zero: densities near the fluid's, a sphere's
+/// apparent mass, change by a few % of their values.
+fn close_up(title: &str, x: (&str, Scale), y: &str, values: &[f64]) -> Chart {
+    let chart = Chart::new(title)
+        .x(x.0, x.1)
+        .y(y, Scale::Linear)
+        .y_from_zero(false);
+    let (lo, hi) = values
+        .iter()
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |a, &v| {
+            (a.0.min(v), a.1.max(v))
+        });
+    if lo > hi {
+        return chart;
+    }
+    let pad = (0.1 * (hi - lo)).max(1e-3 * hi.abs().max(lo.abs()));
+    chart.y_range(lo - pad, hi + pad)
+}
+
+/// The y values of `series`.
+fn ys(series: &[Series]) -> Vec<f64> {
+    series
+        .iter()
+        .flat_map(|s| s.points.iter().map(|p| p.1))
+        .collect()
 }
 
 /// Seed Fig. 14: the mean suspension density over the bulb (simulation) and the density the
@@ -124,21 +155,25 @@ pub fn write_bulb_mean_chart(
             })
         })
         .collect();
-    Chart::new(title)
-        .x("time, log scale (min)", Scale::Log)
-        .y("suspension density around the bulb (kg/m³)", Scale::Linear)
-        .series(Series {
-            label: "mean over the bulb (simulation)".into(),
-            points: hyd.iter().map(|h| (h.0, h.1)).collect(),
-            colour: 0,
-            filled: true,
-            line: false,
-        })
-        .curve(Curve::new(
-            "eq. 19 from the hydrometer's depth",
-            hyd.iter().map(|h| (h.0, h.2)).collect(),
-        ))
-        .svg(path)
+    let values: Vec<f64> = hyd.iter().flat_map(|h| [h.1, h.2]).collect();
+    close_up(
+        title,
+        ("time, log scale (min)", Scale::Log),
+        "suspension density around the bulb (kg/m³)",
+        &values,
+    )
+    .series(Series {
+        label: "mean over the bulb (simulation)".into(),
+        points: hyd.iter().map(|h| (h.0, h.1)).collect(),
+        colour: 0,
+        filled: true,
+        line: false,
+    })
+    .curve(Curve::new(
+        "eq. 19 from the hydrometer's depth",
+        hyd.iter().map(|h| (h.0, h.2)).collect(),
+    ))
+    .svg(path)
 }
 
 /// One series per instrument of `value` against the reading time in minutes.
@@ -189,15 +224,14 @@ pub fn write_depth_chart(
             line: true,
         });
     }
-    scatter_svg(
-        path,
+    close_up(
         title,
-        "time, log scale (min)",
+        ("time, log scale (min)", Scale::Log),
         "depth below the surface (cm)",
-        Scale::Log,
-        Scale::Linear,
-        &series,
+        &ys(&series),
     )
+    .all_series(series)
+    .svg(path)
 }
 
 /// Seed Figs. 15–17, middle: the limiting diameter φ_o of eq. 16 of each reading, µm (log),
@@ -246,15 +280,15 @@ pub fn write_mass_charts(
 ) -> io::Result<()> {
     let one =
         |path: &Path, title: String, y: &str, mass: &dyn Fn(&InstrumentReading) -> Option<f64>| {
-            scatter_svg(
-                path,
+            let series = per_instrument(readings, mass);
+            close_up(
                 &title,
-                "time, log scale (min)",
+                ("time, log scale (min)", Scale::Log),
                 y,
-                Scale::Log,
-                Scale::Linear,
-                &per_instrument(readings, mass),
+                &ys(&series),
             )
+            .all_series(series)
+            .svg(path)
         };
     one(
         sphere_path,
