@@ -5,7 +5,7 @@
 //! against the input curve) and the combined `instrument_errors.csv` of several runs.
 
 use super::charts;
-use crate::io::chart::{scatter_svg, Scale, Series};
+use crate::io::chart::{Chart, Curve, Scale, Series};
 use crate::io::{num, opt, StagedDir};
 use crate::sample::Distribution;
 use crate::scenario::{SampleSpec, Scenario};
@@ -238,53 +238,45 @@ pub fn write_bulb_density(path: &Path, rows: &[BulbRow]) -> io::Result<()> {
     w.flush()
 }
 
-/// Chart of percent finer against log diameter: the input curve and the three instruments
-/// (seed Fig. 18).
+/// Chart of percent finer against log diameter: the input curve (a line) and the three
+/// instruments (markers; seed Fig. 18).
 pub fn write_chart(
     path: &Path,
     title: &str,
     input: &Distribution,
     readings: &[InstrumentReading],
 ) -> io::Result<()> {
-    let mut series = vec![Series {
-        label: "input".into(),
-        points: input_diameters(input)
+    let input_curve = Curve::new(
+        "input",
+        input_diameters(input)
             .into_iter()
             .map(|d| (d * 1e6, input.percent_finer(d)))
             .collect(),
-        colour: 0,
-        filled: false,
-        line: true,
-    }];
-    for (i, k) in [
+    );
+    let series = [
         InstrumentKind::Hydrometer,
         InstrumentKind::Buoyancy,
         InstrumentKind::Pipette,
     ]
     .into_iter()
     .enumerate()
-    {
-        series.push(Series {
-            label: k.name().into(),
-            points: readings
-                .iter()
-                .filter(|r| r.kind == k)
-                .map(|r| (r.point.diameter_m * 1e6, r.point.percent_finer))
-                .collect(),
-            colour: [1, 4, 3][i],
-            filled: true,
-            line: true,
-        });
-    }
-    scatter_svg(
-        path,
-        title,
-        "diameter, log scale (µm)",
-        "percent finer (%)",
-        Scale::Log,
-        Scale::Linear,
-        &series,
-    )
+    .map(|(i, k)| Series {
+        label: k.name().into(),
+        points: readings
+            .iter()
+            .filter(|r| r.kind == k)
+            .map(|r| (r.point.diameter_m * 1e6, r.point.percent_finer))
+            .collect(),
+        colour: i,
+        filled: true,
+        line: true,
+    });
+    Chart::new(title)
+        .x("diameter, log scale (µm)", Scale::Log)
+        .y("percent finer (%)", Scale::Linear)
+        .curve(input_curve)
+        .all_series(series)
+        .svg(path)
 }
 
 /// Errors of one instrument against the input curve over its readings.
