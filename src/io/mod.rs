@@ -12,6 +12,7 @@
 
 pub mod chart;
 pub mod metrics;
+pub mod report;
 
 use std::fs;
 use std::io;

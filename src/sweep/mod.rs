@@ -143,6 +143,8 @@ fn sweep_file(p: &Prepared, plan: &Plan, out: &Path, quiet: bool) -> Result<(), 
         quiet,
     };
     write_results(&stage.path(""), &rows, &cx)?;
+    crate::io::report::write_report(&stage.path(""), &crate::io::report::Page::sweep(&name))
+        .map_err(io)?;
     let dest = stage.commit().map_err(io)?;
     if !quiet {
         println!("  -> {}", dest.display());

@@ -3,4 +3,5 @@
 #[cfg(unix)]
 mod checkpoint;
 mod interrupt;
+mod report;
 mod sweep;
