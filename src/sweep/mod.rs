@@ -215,6 +215,8 @@ fn merge(args: &Args) -> Result<(), Error> {
         quiet: args.quiet,
     };
     write_results(&dest, &rows, &cx)?;
+    crate::io::report::write_report(&dest, &crate::io::report::Page::sweep(cx.title))
+        .map_err(|e| Error::Io(dest.clone(), e))?;
     if !args.quiet {
         println!(
             "merged {} parts ({} rows) -> {}",

@@ -25,6 +25,10 @@ pub const FILE_NAME: &str = "report.html";
 /// The result tables a run's page shows, in this order, when the run wrote them.
 pub const RUN_TABLES: &[&str] = &["summary.csv", "metrics.csv", "instrument_errors.csv"];
 
+/// The result tables the combined page shows, in this order, when present: the error statistics
+/// and the instruments' errors before the long per-sphere table.
+pub const COMBINED_TABLES: &[&str] = &["metrics.csv", "instrument_errors.csv", "summary.csv"];
+
 /// The result tables a sweep's page shows, in this order, when the sweep wrote them.
 pub const SWEEP_TABLES: &[&str] = &["recommended_dt.csv", "sweep.csv"];
 
@@ -60,7 +64,7 @@ impl<'a> Page<'a> {
     pub fn combined(runs: &'a [String]) -> Self {
         Self {
             title: "combined",
-            tables: RUN_TABLES,
+            tables: COMBINED_TABLES,
             runs,
         }
     }
