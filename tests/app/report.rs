@@ -306,3 +306,29 @@ fn the_combined_report_links_each_run_with_its_status_and_warnings() {
         "no combined table"
     );
 }
+
+#[test]
+fn a_sweep_gets_a_report_with_its_charts_and_recommendation() {
+    let out = tmp();
+    let o = settle()
+        .args([
+            "sweep",
+            "scenarios/stokes_single.toml",
+            "--dt",
+            "1e-2,1e-3",
+            "--out",
+        ])
+        .arg(out.path())
+        .arg("--quiet")
+        .output()
+        .expect("run settle");
+    assert_exit(&o, 0);
+    let dir = out.path().join("stokes_single_sweep");
+    assert_self_contained(&dir.join("report.html"));
+    assert!(
+        assert_every_chart_inlined(&dir) >= 1,
+        "the sweep wrote no chart"
+    );
+    let html = read(&dir.join("report.html"));
+    assert!(html.contains("<a href=\"recommended_dt.csv\">recommended_dt.csv</a>"));
+}
