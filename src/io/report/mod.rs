@@ -117,6 +117,14 @@ pub fn render(dir: &Path, page: &Page) -> io::Result<String> {
             esc(status)
         );
     }
+    let n_warnings = string_list(run.and_then(|r| r.get("warnings"))).len();
+    if n_warnings > 0 {
+        let _ = write!(
+            h,
+            "<a class=\"badge warned\" href=\"#warnings\">{n_warnings} validity warning{}</a>",
+            if n_warnings == 1 { "" } else { "s" }
+        );
+    }
     if !page.runs.is_empty() {
         let _ = write!(
             h,
@@ -564,4 +572,76 @@ fn scenario_section(s: &toml::Table) -> String {
          (TOML, every default filled in)</summary><pre>{}</pre></details></section>\n",
         esc(&text)
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A results folder with a run.toml recording two warnings (one with markup), a table and
+    /// a chart, removed when dropped.
+    struct Folder(PathBuf);
+
+    impl Drop for Folder {
+        fn drop(&mut self) {
+            let _ = fs::remove_dir_all(&self.0);
+        }
+    }
+
+    fn folder(test: &str) -> Folder {
+        let dir = std::env::temp_dir().join(format!("settle-report-{test}-{}", std::process::id()));
+        fs::create_dir_all(dir.join("snapshots")).unwrap();
+        fs::write(
+            dir.join("run.toml"),
+            "[run]\nstatus = \"complete\"\nwall_time_s = 2.064213979\n\
+             warnings = [\"Re = 12 > 0.5: Stokes drag <invalid>\", \"second\"]\n\
+             [scenario]\nname = \"demo\"\nkind = \"free_settling\"\ndescription = \"a < b\"\n",
+        )
+        .unwrap();
+        fs::write(
+            dir.join("summary.csv"),
+            "id,v_m_s,regime\nS1,0.123456,jump\n",
+        )
+        .unwrap();
+        fs::write(
+            dir.join("snapshots/v.svg"),
+            "<svg width=\"10\" height=\"5\"><text>Title &amp; more</text></svg>",
+        )
+        .unwrap();
+        Folder(dir)
+    }
+
+    #[test]
+    fn warnings_stand_out_escaped_and_every_part_is_there() {
+        let f = folder("warnings");
+        let h = render(&f.0, &Page::run("demo")).unwrap();
+        assert!(
+            h.contains("<div class=\"box warn\"><strong>2 warnings</strong>"),
+            "{h}"
+        );
+        assert!(h.contains("<li>Re = 12 &gt; 0.5: Stokes drag &lt;invalid&gt;</li>"));
+        assert!(h.contains("<p class=\"desc\">a &lt; b</p>"));
+        assert!(h.contains("2.064 s (the run&#39;s cost)"));
+        assert!(h.contains("<td class=\"n\" title=\"0.123456\">0.1235</td>"));
+        assert!(h.contains("<figure data-file=\"snapshots/v.svg\"><svg viewBox=\"0 0 10 5\""));
+        assert!(h.contains("Title &amp; more — <a href=\"snapshots/v.svg\">"));
+        assert!(h.contains("[scenario]") || h.contains("name = &quot;demo&quot;"));
+        assert!(!h.contains("report.html\">"), "the page lists itself");
+    }
+
+    #[test]
+    fn no_warnings_reads_none() {
+        let f = folder("none");
+        let t = fs::read_to_string(f.0.join("run.toml")).unwrap();
+        let t = t.replace(
+            "warnings = [\"Re = 12 > 0.5: Stokes drag <invalid>\", \"second\"]",
+            "warnings = []",
+        );
+        fs::write(f.0.join("run.toml"), t).unwrap();
+        let h = render(&f.0, &Page::run("demo")).unwrap();
+        assert!(
+            h.contains("<div class=\"box ok\"><strong>none</strong>"),
+            "{h}"
+        );
+    }
 }
