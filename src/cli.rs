@@ -27,6 +27,8 @@ enum Command {
     /// (velocities at [measure].velocity_at_s), metrics.csv and terminal_velocity.svg (when
     /// measured velocities exist), and run.toml (effective parameters, version, dt, steps, wall
     /// time). With several files, OUT/combined/ holds the joint summary and metrics.
+    /// `settle run OUT/NAME/run.toml` runs the same case again (the --set list and --dt it was
+    /// run with are recorded in it, already applied; input files as absolute paths).
     /// Exit codes: 0 success, 2 bad input (nothing written), 3 unstable run (nothing written),
     /// 4 I/O or environment, 130 interrupted.
     ///
@@ -83,7 +85,35 @@ enum Command {
     /// recommended_dt.csv, and prints the recommended dt beside the Rayleigh-time rule.
     /// Defaults come from the scenario's [sweep] table. Kinds free_settling, drop and funnel_pour
     /// can be swept; other kinds, like bad options, exit 2 before anything is written.
+    ///
+    /// With --vary KEY=GRID (repeatable), a parameter sweep of any scenario key instead, at the
+    /// scenario's own dt: OUT/<name>_vary/vary.csv (the varied keys, body, each result with its
+    /// unit, status) and a chart <quantity>_vs_<key>.svg of each result against the first key.
+    /// Every case is validated first: a bad key or value exits 2 with nothing written.
     Sweep(crate::sweep::Args),
+    /// Reduce laboratory hydrometer readings by ASTM D422 or D7928 (percent finer vs diameter).
+    ///
+    /// READINGS.csv holds the test's figures as `# key = value` lines (standard, hydrometer,
+    /// dry_mass_g, specific_gravity, meniscus_correction, blank_reading, and for D7928 the
+    /// hydrometer's measured h_r1_cm, h_r2_cm, bulb_volume_ml, cylinder_area_cm2), then the
+    /// columns time_min (or time_s), reading, temperature_c [, blank_reading]. Writes
+    /// OUT/<stem>_reduced/percent_finer.csv, percent_finer.svg and reduce.toml. Bad input (a
+    /// missing figure, a reading off the scale, times out of order, a temperature outside the
+    /// standard's range) exits 2 naming the file, row and column; nothing is written.
+    /// See docs/commands/reduce.md.
+    Reduce {
+        /// The readings file (CSV).
+        readings: PathBuf,
+        /// d422 or d7928 (overrides the file's `# standard`).
+        #[arg(long)]
+        standard: Option<String>,
+        /// 152H or 151H (overrides the file's `# hydrometer`).
+        #[arg(long)]
+        hydrometer: Option<String>,
+        /// Output folder.
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+    },
 }
 
 /// Parses the arguments, runs, and returns the process exit code.
@@ -146,8 +176,11 @@ pub fn main() -> i32 {
             };
             for f in &figs {
                 println!(
-                    "{:<16} {:<34} {:>14.6e} {}",
-                    f.benchmark, f.quantity, f.value, f.unit
+                    "{:<16} {:<34} {:>14} {}",
+                    f.benchmark,
+                    f.quantity,
+                    crate::io::fmt::g(f.value),
+                    f.unit
                 );
             }
             let path = out.join("bench.csv");
@@ -168,6 +201,34 @@ pub fn main() -> i32 {
                 e.exit_code()
             }
         },
+        Command::Reduce {
+            readings,
+            standard,
+            hydrometer,
+            out,
+        } => {
+            let req = crate::reduce::Request {
+                file: readings,
+                standard,
+                hydrometer,
+                out_dir: out,
+            };
+            match crate::reduce::run(&req) {
+                Ok(r) => {
+                    for l in &r.lines {
+                        println!("{l}");
+                    }
+                    for w in &r.warnings {
+                        println!("  warning: {w}");
+                    }
+                    0
+                }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    e.exit_code()
+                }
+            }
+        }
     }
 }
 
@@ -178,83 +239,166 @@ fn print_overall(reports: &[FileReport]) {
         .flat_map(|r| r.results.iter().cloned())
         .collect();
     if let Some(s) = crate::scenes::free_settling::output::metrics(&all).last() {
-        println!(
-            "all files vs measured: N = {}, mean |err| = {:.1}%, median = {:.1}%, max = {:.1}%, bias = {:+.1}%, within 10%: {:.0}%, within 25%: {:.0}%",
-            s.n,
-            100.0 * s.mean_abs,
-            100.0 * s.median_abs,
-            100.0 * s.max_abs,
-            100.0 * s.bias,
-            100.0 * s.within_10pct,
-            100.0 * s.within_25pct
-        );
+        println!("all files {}", stats_line(s));
     }
 }
 
+/// The error statistics of a set of spheres against their measurements, one line.
+fn stats_line(s: &crate::io::metrics::ErrorStats) -> String {
+    use crate::io::fmt::{pct, sig};
+    format!(
+        "vs measured: N = {}, mean |err| = {}, median = {}, max = {}, bias = {}, within 10%: {}%, within 25%: {}%",
+        s.n,
+        pct(s.mean_abs, 3).trim_start_matches('+'),
+        pct(s.median_abs, 3).trim_start_matches('+'),
+        pct(s.max_abs, 3).trim_start_matches('+'),
+        pct(s.bias, 3),
+        sig(100.0 * s.within_10pct, 3),
+        sig(100.0 * s.within_25pct, 3)
+    )
+}
+
 fn print_report(r: &FileReport) {
-    print_table(r);
+    for line in table(r) {
+        println!("{line}");
+    }
     for w in &r.warnings {
         println!("  warning: {w}");
     }
 }
 
-fn print_table(r: &FileReport) {
+/// The console table of one file's run: a title line, then the kind's result (free settling:
+/// one row per sphere with the Reynolds number; drop: entry speed, settling distance and stop
+/// time per sphere and fall height; other kinds: their summary lines). Every number in the
+/// format of [`crate::io::fmt`].
+pub fn table(r: &FileReport) -> Vec<String> {
+    use crate::io::fmt::g;
     let s = &r.prepared.scenario;
     if r.results.is_empty() {
-        println!(
-            "{} ({:.3} s wall) -> {}",
+        let mut out = vec![format!(
+            "{} ({} s wall) -> {}",
             s.name,
-            r.wall_time_s,
+            g(r.wall_time_s),
             r.out.display()
-        );
-        for l in &r.lines {
-            println!("  {l}");
-        }
-        return;
+        )];
+        out.extend(r.lines.iter().map(|l| format!("  {l}")));
+        return out;
     }
-    println!(
-        "{} ({} bodies, dt = {:e} s, {}, {:.3} s wall) -> {}",
+    let mut out = vec![format!(
+        "{} ({} bodies, dt = {} s, {}, {} s wall) -> {}",
         s.name,
         r.results.len(),
-        s.time.dt_s,
+        crate::io::fmt::short(s.time.dt_s),
         s.time.integrator.name(),
-        r.wall_time_s,
+        g(r.wall_time_s),
         r.out.display()
-    );
-    println!(
-        "  {:<8} {:>9} {:>8} {:>10} {:>11} {:>11} {:>9} {:>10} {:>10}",
-        "sphere", "d_mm", "rho", "v_meas", "v_sim", "v_balance", "err", "sim/bal-1", "regime"
-    );
-    for x in &r.results {
+    )];
+    if s.kind == crate::scenario::Kind::Drop {
+        out.extend(drop_rows(&r.results));
+    } else {
+        out.extend(settling_rows(&r.results));
+    }
+    out
+}
+
+/// Right-aligned columns: `rows[0]` is the header; the first column is left-aligned.
+fn columns(rows: &[Vec<String>]) -> Vec<String> {
+    let n = rows.iter().map(|r| r.len()).max().unwrap_or(0);
+    let width: Vec<usize> = (0..n)
+        .map(|i| {
+            rows.iter()
+                .filter_map(|r| r.get(i))
+                .map(|c| c.chars().count())
+                .max()
+                .unwrap_or(0)
+        })
+        .collect();
+    rows.iter()
+        .map(|r| {
+            let cells: Vec<String> = r
+                .iter()
+                .enumerate()
+                .map(|(i, c)| {
+                    if i == 0 {
+                        format!("{c:<w$}", w = width[i])
+                    } else {
+                        format!("{c:>w$}", w = width[i])
+                    }
+                })
+                .collect();
+            format!("  {}", cells.join("  ").trim_end())
+        })
+        .collect()
+}
+
+/// Free settling: per sphere, diameter, density, measured, simulated and force-balance
+/// velocity, errors, Reynolds number (Re, or Re′ of eq. 14 in a Bingham fluid) and regime; then
+/// the statistics against the measurements.
+fn settling_rows(results: &[crate::scenes::free_settling::SphereResult]) -> Vec<String> {
+    use crate::io::fmt::{g, g_opt, pct};
+    let bingham = results.iter().any(|x| x.re_bingham.is_some());
+    let mut rows = vec![[
+        "sphere",
+        "d_mm",
+        "rho_kg_m3",
+        "v_meas_m_s",
+        "v_sim_m_s",
+        "v_balance_m_s",
+        "err_vs_meas",
+        "sim/balance-1",
+        if bingham { "Re'" } else { "Re" },
+        "regime",
+    ]
+    .map(String::from)
+    .to_vec()];
+    for x in results {
         let sp = &x.case.spec;
-        println!(
-            "  {:<8} {:>9.4} {:>8.0} {:>10} {:>11.5e} {:>11.5e} {:>9} {:>10.2e} {:>10}",
-            x.case.id,
-            sp.diameter_m * 1e3,
-            sp.density_kg_m3,
-            sp.v_measured_m_s
-                .map(|v| format!("{v:.4}"))
-                .unwrap_or("-".into()),
-            x.v_simulated_m_s,
-            x.v_force_balance_m_s,
+        rows.push(vec![
+            x.case.id.clone(),
+            g(sp.diameter_m * 1e3),
+            g(sp.density_kg_m3),
+            g_opt(sp.v_measured_m_s),
+            g(x.v_simulated_m_s),
+            g(x.v_force_balance_m_s),
             rel_error(x)
-                .map(|e| format!("{:+.1}%", 100.0 * e))
-                .unwrap_or("-".into()),
-            rel_error_vs_force_balance(x),
-            x.regime.label()
-        );
+                .map(|e| pct(e, 3))
+                .unwrap_or_else(|| "-".into()),
+            pct(rel_error_vs_force_balance(x), 3),
+            g_opt(x.reynolds.or(x.re_bingham)),
+            x.regime.label().to_string(),
+        ]);
     }
-    let stats = crate::scenes::free_settling::output::metrics(&r.results);
-    if let Some(all) = stats.last() {
-        println!(
-            "  vs measured: N = {}, mean |err| = {:.1}%, median = {:.1}%, max = {:.1}%, bias = {:+.1}%, within 10%: {:.0}%, within 25%: {:.0}%",
-            all.n,
-            100.0 * all.mean_abs,
-            100.0 * all.median_abs,
-            100.0 * all.max_abs,
-            100.0 * all.bias,
-            100.0 * all.within_10pct,
-            100.0 * all.within_25pct
-        );
+    let mut out = columns(&rows);
+    let stats = crate::scenes::free_settling::output::metrics(results);
+    out.extend(stats.last().map(|all| format!("  {}", stats_line(all))));
+    out
+}
+
+/// Drops: per sphere and fall height, the entry speed at the surface, the settling distance
+/// (lowest point below the surface once stopped) and the stop time (`-` if it did not stop).
+fn drop_rows(results: &[crate::scenes::free_settling::SphereResult]) -> Vec<String> {
+    use crate::io::fmt::{g, g_opt};
+    let mut rows = vec![[
+        "sphere",
+        "d_mm",
+        "fall_height_mm",
+        "entry_speed_m_s",
+        "settling_distance_mm",
+        "stop_time_s",
+        "stop",
+    ]
+    .map(String::from)
+    .to_vec()];
+    for x in results {
+        rows.push(vec![
+            x.case.id.clone(),
+            g(x.case.spec.diameter_m * 1e3),
+            g_opt(x.case.fall_height_m.map(|h| h * 1e3)),
+            g_opt(x.entry_velocity_m_s.map(f64::abs)),
+            g(x.final_bottom_depth_m * 1e3),
+            g_opt(x.stop_time_s),
+            x.stop.label().to_string(),
+        ]);
     }
+    columns(&rows)
 }

@@ -73,7 +73,8 @@ fn check_name(s: &Scenario, path: &Path) -> Result<(), ScenarioError> {
 
 /// Loads and validates a scenario with the request's overrides (`--dt` is `time.dt_s`), reads
 /// its input files (`spheres_csv`, a sedimentation's `sample.csv`), and refuses reserved and
-/// over-long names: every bad input is found here, before anything runs.
+/// over-long names: every bad input is found here, before anything runs. `path` may be a run
+/// record (`OUT/NAME/run.toml`): its effective scenario runs again, the overrides on top.
 pub fn prepare(
     path: &Path,
     dt_s: Option<f64>,
@@ -108,6 +109,10 @@ pub fn prepare(
         sample,
         scene,
         rheology,
+        overrides: scenario::Overrides {
+            set: overrides.to_vec(),
+            dt_s,
+        },
     })
 }
 
@@ -143,7 +148,17 @@ struct RunMeta<'a> {
     resumed: bool,
     /// Validity warnings of the run ([`SceneReport::warnings`]); empty when none.
     warnings: &'a [String],
+    /// The overrides as given (`set`: the `--set` list; `dt_s`: `--dt`), already applied to
+    /// `[scenario]`.
+    overrides: &'a scenario::Overrides,
 }
+
+/// The first lines of `run.toml`: how to run the case again.
+const RUN_TOML_HEAD: &str = "\
+# The record of a settle run. `settle run THIS_FILE` runs the same case again: it reads only
+# [scenario], the effective scenario (the overrides of [run.overrides] already applied, input
+# files as absolute paths); more --set options apply on top of it.
+";
 
 #[derive(Serialize)]
 struct RunToml<'a> {
@@ -152,7 +167,8 @@ struct RunToml<'a> {
     /// with these settings and length_unit_m = its diameter; shown for the smallest sphere.
     #[serde(skip_serializing_if = "Option::is_none")]
     engine_settings: Option<crate::engine::EngineSettings>,
-    scenario: &'a Scenario,
+    /// The effective scenario ([`scenario::record_table`]).
+    scenario: toml::Table,
 }
 
 /// Runs one prepared scenario and writes its outputs under `out_dir` (no checkpoints, no
@@ -202,11 +218,13 @@ pub fn run_one_with(p: &Prepared, out_dir: &Path, ctx: &RunContext) -> Result<Fi
             wall_time_s: wall,
             resumed: ctx.resume,
             warnings: &report.warnings,
+            overrides: &p.overrides,
         },
         engine_settings: report.engine_settings,
-        scenario: s,
+        scenario: scenario::record_table(s, &p.path).map_err(|e| io(std::io::Error::other(e)))?,
     };
     let text = toml::to_string(&meta).map_err(|e| io(std::io::Error::other(e)))?;
+    let text = format!("{RUN_TOML_HEAD}{text}");
     output::write_atomic(&stage.path("run.toml"), text.as_bytes()).map_err(io)?;
     output::report::write_report(&stage.path(""), &output::report::Page::run(&s.name))
         .map_err(io)?;
@@ -430,6 +448,13 @@ fn write_combined(out_dir: &Path, reports: &[FileReport]) -> Result<(), Error> {
         all.extend(r.results.iter().cloned());
     }
     out_fs::write_summary(&stage.path("summary.csv"), &rows).map_err(io)?;
+    out_fs::write_combined_charts(
+        &stage,
+        reports
+            .iter()
+            .map(|r| (&r.prepared.scenario, &r.results[..])),
+    )
+    .map_err(io)?;
     let stats = out_fs::metrics(&all);
     if !stats.is_empty() {
         out_fs::write_metrics(&stage.path("metrics.csv"), &stats).map_err(io)?;

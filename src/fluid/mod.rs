@@ -13,6 +13,7 @@ pub mod drag;
 pub mod immersion;
 pub mod lubrication;
 pub mod newtonian;
+pub mod validity;
 
 pub use bingham::BinghamRegime;
 pub use buoyancy::{buoyancy_n, sphere_area_m2, sphere_mass_kg, sphere_volume_m3, weight_n};

@@ -25,6 +25,7 @@
 pub mod buoyancy;
 pub mod hydrometer;
 pub mod pipette;
+pub mod reduction;
 
 /// Suspension density in horizontal layers of equal thickness, the first at the free surface.
 /// Below the last layer the density of the last layer holds.

@@ -11,6 +11,7 @@
 //! replaced: [`check_destination`] refuses it before anything runs.
 
 pub mod chart;
+pub mod fmt;
 pub mod metrics;
 pub mod report;
 

@@ -2,7 +2,8 @@
 //! bad file is refused (exit 2) before anything runs: the spheres of `[spheres_csv]` (with the
 //! inline `[[spheres]]`, [`spheres`]) and the sample distribution of a sedimentation run
 //! ([`read_sample`]). Every error names the scenario file, the key that names the input file,
-//! the input file, its row and column (1-based) and what is allowed.
+//! the input file, the line of the file and the data row (both 1-based: line 1 is the header,
+//! data row 1 the first line of data), the column (1-based) and what is allowed.
 
 use super::load::ScenarioError;
 use super::schema::{SampleSpec, Scenario, SphereSpec};
@@ -130,7 +131,7 @@ impl CsvInput<'_> {
         }
         raw.parse::<f64>().map(Some).map_err(|_| {
             self.err(format!(
-                "row {}, column {} (`{}`): `{raw}` is not a number",
+                "{}, column {} (`{}`): `{raw}` is not a number",
                 row_of(rec),
                 col + 1,
                 header[col]
@@ -147,7 +148,7 @@ impl CsvInput<'_> {
     ) -> Result<f64, ScenarioError> {
         self.number(rec, header, col)?.ok_or_else(|| {
             self.err(format!(
-                "row {}, column {} (`{}`): empty: a number is required",
+                "{}, column {} (`{}`): empty: a number is required",
                 row_of(rec),
                 col + 1,
                 header[col]
@@ -156,9 +157,37 @@ impl CsvInput<'_> {
     }
 }
 
-/// The 1-based line of a record in its file (header and comment lines count).
-fn row_of(rec: &csv::StringRecord) -> u64 {
-    rec.position().map(|p| p.line()).unwrap_or(0)
+/// Where a record is, both 1-based: `line L (data row R)`, L the line of the file as an editor
+/// numbers it (line 1 is the header; comment lines count), R the record among the data rows
+/// (row 1 is the first line of data). Every error about a row of an input CSV names it so.
+fn row_of(rec: &csv::StringRecord) -> String {
+    match rec.position() {
+        // The csv reader counts the header as record 0, so the data rows count from 1.
+        Some(p) => format!("line {} (data row {})", p.line(), p.record()),
+        None => "an unknown line".to_string(),
+    }
+}
+
+/// An error of the csv reader on a row (a row with more or fewer fields than the header, a
+/// field that is not UTF-8), worded as the other row errors: line and data row 1-based.
+fn read_error(input: &CsvInput, e: csv::Error) -> ScenarioError {
+    let at = |p: &csv::Position| format!("line {} (data row {})", p.line(), p.record());
+    match e.kind() {
+        csv::ErrorKind::UnequalLengths {
+            pos: Some(p),
+            expected_len,
+            len,
+        } => input.err(format!(
+            "{}: {len} fields where the header has {expected_len}: allowed one field per column (an empty field for an absent value)",
+            at(p)
+        )),
+        csv::ErrorKind::Utf8 { pos: Some(p), err } => input.err(format!(
+            "{}, column {}: not UTF-8 text",
+            at(p),
+            err.field() + 1
+        )),
+        _ => input.err(e),
+    }
 }
 
 /// The column of each field of the spheres CSV, from its header; refuses an unknown or
@@ -216,7 +245,7 @@ fn sphere_row(
     header: &[String],
     cols: &HashMap<Field, usize>,
     rec: &csv::StringRecord,
-) -> Result<(String, SphereSpec, u64), ScenarioError> {
+) -> Result<(String, SphereSpec, String), ScenarioError> {
     let opt = |f: Field| match cols.get(&f) {
         Some(&c) => input.number(rec, header, c),
         None => Ok(None),
@@ -224,7 +253,7 @@ fn sphere_row(
     let id = rec.get(cols[&Field::Id]).unwrap_or("").to_string();
     if id.is_empty() {
         return Err(input.err(format!(
-            "row {}, column {} (`{}`): empty: every sphere needs an id",
+            "{}, column {} (`{}`): empty: every sphere needs an id",
             row_of(rec),
             cols[&Field::Id] + 1,
             header[cols[&Field::Id]]
@@ -235,7 +264,7 @@ fn sphere_row(
         Some(x) if x >= 0.0 && x.fract() == 0.0 && x <= u32::MAX as f64 => Some(x as u32),
         Some(x) => {
             return Err(input.err(format!(
-                "row {}, column {} (`suspension`): {x} is out of range: allowed a whole number ≥ 0",
+                "{}, column {} (`suspension`): {x} is out of range: allowed a whole number ≥ 0",
                 row_of(rec),
                 cols[&Field::Suspension] + 1
             )))
@@ -251,6 +280,36 @@ fn sphere_row(
         suspension,
     };
     Ok((id, spec, row_of(rec)))
+}
+
+/// Checks a sphere read from the CSV like an inline one; an error on one of its values names
+/// the row and the column (both 1-based) of that value.
+fn check_row(
+    input: &CsvInput,
+    header: &[String],
+    cols: &HashMap<Field, usize>,
+    row: &str,
+    spec: &SphereSpec,
+    scenario: &Scenario,
+) -> Result<(), ScenarioError> {
+    let label = format!("spheres_csv `{}` {row}", input.csv_path.display());
+    super::check_sphere(input.scenario_path, &label, spec, scenario).map_err(|e| {
+        let field = e
+            .key
+            .as_deref()
+            .and_then(|k| k.strip_prefix(&format!("{label}.")))
+            .and_then(|name| SPHERE_COLUMNS.iter().find(|c| c.names[0] == name))
+            .and_then(|c| cols.get(&c.field));
+        match field {
+            Some(&col) => input.err(format!(
+                "{row}, column {} (`{}`): {}",
+                col + 1,
+                header[col],
+                e.message
+            )),
+            None => e,
+        }
+    })
 }
 
 /// Resolves the spheres of `scenario`: the inline `[[spheres]]`, then the rows of
@@ -296,14 +355,14 @@ pub fn spheres(
         };
         let (mut rdr, header) = input.open()?;
         let cols = sphere_columns(&input, &header)?;
-        let mut seen: HashMap<String, u64> = HashMap::new();
+        let mut seen: HashMap<String, String> = HashMap::new();
         let mut kept = 0;
         for rec in rdr.records() {
-            let rec = rec.map_err(|e| input.err(e))?;
+            let rec = rec.map_err(|e| read_error(&input, e))?;
             let (id, spec, row) = sphere_row(&input, &header, &cols, &rec)?;
-            if let Some(first) = seen.insert(id.clone(), row) {
+            if let Some(first) = seen.insert(id.clone(), row.clone()) {
                 return Err(input.err(format!(
-                    "row {row}: sphere id `{id}` is already the id of row {first}: allowed one row per id"
+                    "{row}: sphere id `{id}` is already the id of {first}: allowed one row per id"
                 )));
             }
             if src.suspension.is_some() && spec.suspension != src.suspension {
@@ -311,15 +370,10 @@ pub fn spheres(
             }
             if first.contains_key(&id) {
                 return Err(input.err(format!(
-                    "row {row}: sphere id `{id}` is already the id of an inline [[spheres]] table: allowed one sphere per id"
+                    "{row}: sphere id `{id}` is already the id of an inline [[spheres]] table: allowed one sphere per id"
                 )));
             }
-            super::check_sphere(
-                scenario_path,
-                &format!("spheres_csv `{}` row {row}", input.csv_path.display()),
-                &spec,
-                scenario,
-            )?;
+            check_row(&input, &header, &cols, &row, &spec, scenario)?;
             kept += 1;
             out.push(SphereCase {
                 id,
@@ -396,13 +450,13 @@ pub fn read_sample(
             SAMPLE_COLUMNS.join(", ")
         )));
     }
-    let mut points: Vec<(f64, f64, u64)> = Vec::new();
+    let mut points: Vec<(f64, f64, String)> = Vec::new();
     for rec in rdr.records() {
-        let rec = rec.map_err(|e| input.err(e))?;
+        let rec = rec.map_err(|e| read_error(&input, e))?;
         let row = row_of(&rec);
         let bad = |k: usize, x: f64, allowed: &str| {
             input.err(format!(
-                "row {row}, column {} (`{}`): {x} is out of range: allowed {allowed}",
+                "{row}, column {} (`{}`): {x} is out of range: allowed {allowed}",
                 cols[k] + 1,
                 SAMPLE_COLUMNS[k]
             ))
@@ -422,19 +476,20 @@ pub fn read_sample(
         if n as u32 != sample.sample {
             continue;
         }
-        if let Some(&(d0, f0, r0)) = points.last() {
+        if let Some((d0, f0, r0)) = points.last() {
+            let (d0, f0) = (*d0, *f0);
             if d <= d0 {
                 return Err(bad(
                     1,
                     d,
-                    &format!("diameters increasing within a sample: > {d0} m of row {r0}"),
+                    &format!("diameters increasing within a sample: > {d0} m of {r0}"),
                 ));
             }
             if f < f0 {
                 return Err(bad(
                     2,
                     f,
-                    &format!("percent finer not decreasing within a sample: ≥ {f0} % of row {r0}"),
+                    &format!("percent finer not decreasing within a sample: ≥ {f0} % of {r0}"),
                 ));
             }
         }

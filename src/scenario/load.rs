@@ -1,10 +1,24 @@
 //! Loading a scenario: TOML parsing, `--set KEY=VALUE` overrides, schema errors that name the
-//! file and the key, then validation of ranges.
+//! file and the key, then validation of ranges. A run record (`OUT/NAME/run.toml`, a file with
+//! a `[run]` table) loads as its `[scenario]` table, the effective scenario of that run
+//! ([`record_table`] writes it), so that `settle run OUT/NAME/run.toml` reruns the same case.
 
 use super::schema::Scenario;
 use super::spec::Parsed;
-use super::validate::check_tables;
+use super::validate::{check_tables, table_used_by};
+use serde::Serialize;
 use std::path::Path;
+
+/// The overrides of a run as given on the command line (`--set KEY=VALUE`…, `--dt`), recorded
+/// in `run.toml` beside their effect (the effective scenario).
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Overrides {
+    /// The `--set KEY=VALUE` list, in the order given.
+    pub set: Vec<String>,
+    /// The `--dt` time step, s (None: not given).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dt_s: Option<f64>,
+}
 
 /// A scenario that cannot be run: one line naming the file, the key and what is allowed. The
 /// crate's one bad-input type (exit 2), [`crate::error::BadInput`].
@@ -30,7 +44,7 @@ pub fn parse(path: &Path, overrides: &[String]) -> Result<Parsed, ScenarioError>
 
 /// As [`parse`], from the text of a file; `path` names it in errors.
 pub fn parse_str(text: &str, path: &Path, overrides: &[String]) -> Result<Parsed, ScenarioError> {
-    let mut table: toml::Table = text.parse().map_err(|e: toml::de::Error| {
+    let table: toml::Table = text.parse().map_err(|e: toml::de::Error| {
         let line = e
             .span()
             .map(|s| format!("line {}: ", text[..s.start].lines().count().max(1)))
@@ -41,6 +55,7 @@ pub fn parse_str(text: &str, path: &Path, overrides: &[String]) -> Result<Parsed
             format!("TOML syntax error: {line}{}", e.message()),
         )
     })?;
+    let mut table = scenario_of_record(table, path)?;
     for o in overrides {
         apply_override(&mut table, o, path)?;
     }
@@ -53,8 +68,13 @@ pub fn parse_str(text: &str, path: &Path, overrides: &[String]) -> Result<Parsed
         let present: Vec<&str> = table.keys().map(String::as_str).collect();
         check_tables(kind, &present, path)?;
     }
+    // The time lists written in the file, to tell them from defaults (trim_default_times).
+    let given: toml::Table = ["sample", "instruments"]
+        .into_iter()
+        .filter_map(|k| Some((k.to_string(), table.get(k)?.clone())))
+        .collect();
     let value = toml::Value::Table(table);
-    let scenario: Scenario = serde_path_to_error::deserialize(value).map_err(|e| {
+    let mut scenario: Scenario = serde_path_to_error::deserialize(value).map_err(|e| {
         let key = e.path().to_string();
         // `message()`, not `to_string()`: the latter appends ` in `table`` and a newline.
         let msg = e.inner().message().to_string();
@@ -73,7 +93,59 @@ pub fn parse_str(text: &str, path: &Path, overrides: &[String]) -> Result<Parsed
         let key = if key == "." { None } else { Some(key) };
         ScenarioError::new(path, key.as_deref(), msg)
     })?;
+    super::schema::trim_default_times(&mut scenario, &given);
     Parsed::new(scenario, path)
+}
+
+/// The scenario table of a file: the file itself, or for a run record (a file with a `[run]`
+/// table, `OUT/NAME/run.toml`) its `[scenario]` table, the effective scenario of that run with
+/// its overrides already applied; the rest of the record (`[run]`, `[engine_settings]`) is
+/// ignored.
+fn scenario_of_record(mut table: toml::Table, path: &Path) -> Result<toml::Table, ScenarioError> {
+    if !table.contains_key("run") {
+        return Ok(table);
+    }
+    match table.remove("scenario") {
+        Some(toml::Value::Table(t)) => Ok(t),
+        _ => Err(ScenarioError::new(
+            path,
+            Some("scenario"),
+            "missing: a file with a [run] table is a run record (OUT/NAME/run.toml) and runs its \
+             [scenario] table, which it lacks (a scenario file has no [run] table)",
+        )),
+    }
+}
+
+/// The effective scenario `s` (read from `file`) as written to `run.toml`, so that the record
+/// runs again anywhere: the tables its kind does not use are left out (they hold only defaults:
+/// validation refuses them when given), and the input files (`spheres_csv.path`, `sample.csv`),
+/// relative to `file`'s folder, become absolute paths.
+pub fn record_table(s: &Scenario, file: &Path) -> Result<toml::Table, toml::ser::Error> {
+    let mut t = match toml::Value::try_from(s)? {
+        toml::Value::Table(t) => t,
+        _ => unreachable!("a scenario serializes as a table"),
+    };
+    t.retain(|key, _| table_used_by(key, s.kind));
+    let base = file.parent().unwrap_or(Path::new("."));
+    let absolute = |rel: &str| -> String {
+        let p = base.join(rel);
+        std::fs::canonicalize(&p)
+            .or_else(|_| std::path::absolute(&p))
+            .unwrap_or(p)
+            .display()
+            .to_string()
+    };
+    let mut resolve = |table: &str, key: &str| {
+        if let Some(toml::Value::String(v)) = t
+            .get_mut(table)
+            .and_then(|x| x.as_table_mut()?.get_mut(key))
+        {
+            *v = absolute(v);
+        }
+    };
+    resolve("spheres_csv", "path");
+    resolve("sample", "csv");
+    Ok(t)
 }
 
 /// Applies one `KEY=VALUE` override to a TOML table. The value is parsed as TOML (number,

@@ -3,8 +3,9 @@
 //!
 //! A scenario names its kind, dimension, fluid, drag law, time settings, bodies and what to
 //! record. Every quantity is in SI units with the unit in the key name. Unknown keys are errors,
-//! and so is a table the kind does not use. See `README.md` ("Scenario format") for a commented
-//! example of every table.
+//! and so is a table the kind does not use. `docs/scenarios/<kind>.md` documents every key of
+//! every kind (unit, default, allowed range), checked against this schema by
+//! `tests/scenario/schema_docs.rs`.
 //!
 //! Parse, don't validate: [`parse`] returns a [`Parsed`] scenario with the typed parts the
 //! scenes take, the [`SceneSpec`] of its kind (every table the kind needs present and checked)
@@ -18,7 +19,9 @@ mod schema;
 mod spec;
 mod validate;
 
-pub use load::{apply_override, load, load_str, parse, parse_str, ScenarioError};
+pub use load::{
+    apply_override, load, load_str, parse, parse_str, record_table, Overrides, ScenarioError,
+};
 pub use schema::*;
 pub use spec::{
     FreeSettlingSpec, FunnelPourSpec, Parsed, RestitutionSpec, SceneSpec, SedimentationSpec,

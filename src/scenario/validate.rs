@@ -45,6 +45,15 @@ const TABLE_KINDS: &[(&str, &[Kind])] = {
     ]
 };
 
+/// Whether the top-level key `key` may appear in a scenario of `kind`: the plain keys and the
+/// tables every kind uses always, the tables of [`TABLE_KINDS`] for the kinds listed there.
+pub fn table_used_by(key: &str, kind: Kind) -> bool {
+    TABLE_KINDS
+        .iter()
+        .find(|(t, _)| *t == key)
+        .is_none_or(|(_, kinds)| kinds.contains(&kind))
+}
+
 /// Refuses a top-level table (of `present`, the keys of the file after `--set`) that `kind`
 /// does not use, naming the table and the kind and listing the tables it uses.
 pub fn check_tables(kind: Kind, present: &[&str], file: &Path) -> Result<(), ScenarioError> {

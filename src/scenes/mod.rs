@@ -5,6 +5,7 @@ pub mod funnel;
 pub mod restitution_drop;
 pub mod sedimentation;
 pub mod tilt_friction;
+pub mod validity;
 
 use crate::fluid::{DragLaw, SphereDrag};
 use crate::scenario::{DragLawName, Physics, RheologyModel, Scenario, SceneSpec};
@@ -26,6 +27,9 @@ pub struct Prepared {
     pub scene: SceneSpec,
     /// The fluid's rheology with its parameters ([`crate::scenario::Parsed::rheology`]).
     pub rheology: RheologyModel,
+    /// The overrides as given on the command line (`--set`, `--dt`), recorded in `run.toml`;
+    /// already applied to `scenario`.
+    pub overrides: crate::scenario::Overrides,
 }
 
 /// How a run is carried out beyond its scenario: checkpoints, resumption, progress display.

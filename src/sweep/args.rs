@@ -2,6 +2,7 @@
 //! message naming the option and what is allowed (clap exits 2).
 
 use super::plan::{DtRange, Shard};
+use super::vary::{parse_vary, Axis};
 use crate::dynamics::Integrator;
 use clap::builder::PossibleValue;
 use std::fmt;
@@ -36,9 +37,17 @@ pub struct Args {
     /// Run only slice I of N of the grid (1-based), writing a partial CSV to merge later.
     #[arg(long, value_name = "I/N", value_parser = parse_shard)]
     pub shard: Option<Shard>,
-    /// Merge the partial CSVs (sweep_part_*.csv) found in these folders, then chart.
+    /// Vary a scenario key instead of dt (a parameter sweep into OUT/<name>_vary/): KEY=LO:HI:N
+    /// (N values from LO to HI), KEY=log:LO:HI:N (log-spaced) or KEY=V1,V2,…; each value is
+    /// applied as --set KEY=VALUE at the scenario's own dt and integrator. Repeat for a full grid
+    /// of several keys (the first key is the charts' x axis).
+    #[arg(long, value_name = "KEY=GRID", allow_hyphen_values = true, value_parser = parse_vary,
+          conflicts_with_all = ["dt", "dt_range", "integrator", "tol"])]
+    pub vary: Vec<Axis>,
+    /// Merge the partial CSVs (sweep_part_*.csv, or vary_part_*.csv of a --vary sweep) found in
+    /// these folders, then chart.
     #[arg(long, num_args = 1.., value_name = "DIR",
-          conflicts_with_all = ["shard", "dt", "dt_range", "integrator"])]
+          conflicts_with_all = ["shard", "dt", "dt_range", "integrator", "vary"])]
     pub merge: Vec<PathBuf>,
     /// Override any scenario key (as for `run`).
     #[arg(long = "set", value_name = "KEY=VALUE")]

@@ -12,6 +12,7 @@
 //! | `table.rs` | typed [`Row`]s, CSV read/write, [`finish`] (error against the finest dt) |
 //! | `analysis.rs` | per-case summaries, recommended dt, Rayleigh time |
 //! | `report.rs` | charts, `recommended_dt.csv`, console table |
+//! | `vary/` | parameter sweeps on any key (`--vary KEY=GRID`): grid, table, charts |
 //!
 //! Every input is checked before any case runs: a scenario that does not load, a kind that
 //! cannot be swept, or a scenario without time steps exits 2 with nothing written.
@@ -22,13 +23,14 @@ mod plan;
 mod report;
 mod table;
 mod targets;
+pub mod vary;
 
 pub use analysis::{rayleigh_time_of, recommended_dt, summarise, CaseSummary, RAYLEIGH_FRACTION};
 pub use args::{parse_dt, parse_dt_range, parse_shard, parse_tol, Args, BadValue, TOL_ALLOWED};
 pub use plan::{dt_range, grid, shard, Case, DtRange, Plan, Shard, DEFAULT_TOL};
 pub use report::{charts, write_results, Context};
 pub use table::{finish, from_csv, read_rows, rel, to_csv, write_rows, Row, Status, HEADER};
-pub use targets::{Target, SWEEPABLE, SWEEPABLE_NAMES};
+pub use targets::{has_reference, Target, SWEEPABLE, SWEEPABLE_NAMES};
 
 use crate::error::Error;
 use crate::io::StagedDir;
@@ -80,10 +82,14 @@ pub fn run(p: &Prepared, plan: &Plan, done: &(dyn Fn() + Sync)) -> Result<Vec<Ro
 }
 
 /// `settle sweep`: checks every scenario and plan, then sweeps each file into
-/// `OUT/<name>_sweep/` (or writes its shard's part file there), or merges part files.
+/// `OUT/<name>_sweep/` (or writes its shard's part file there), or merges part files; with
+/// `--vary`, a parameter sweep ([`vary::main`]).
 pub fn main(args: &Args) -> Result<(), Error> {
     if !args.merge.is_empty() {
         return merge(args);
+    }
+    if !args.vary.is_empty() {
+        return vary::main(args);
     }
     let mut jobs = Vec::new();
     for f in &args.scenarios {
@@ -185,7 +191,22 @@ fn part_files(dirs: &[PathBuf]) -> Result<Vec<PathBuf>, Error> {
 /// the first folder). A scenario file, if given, supplies the title, `[sweep] tol` and the
 /// Rayleigh time.
 fn merge(args: &Args) -> Result<(), Error> {
-    let files = part_files(&args.merge)?;
+    let vary_parts = vary::part_files(&args.merge);
+    let files = part_files(&args.merge);
+    match (vary_parts.is_empty(), files) {
+        (false, Ok(_)) => Err(Error::bad_argument(
+            "--merge",
+            &args.merge[0],
+            "these folders hold parts of a dt sweep (sweep_part_*.csv) and of a parameter sweep \
+             (vary_part_*.csv): merge each sweep's folder on its own",
+        )),
+        (false, Err(_)) => vary::merge(args, &vary_parts),
+        (true, files) => merge_dt(args, files?),
+    }
+}
+
+/// `--merge` of a dt sweep's part `files`: see [`merge`].
+fn merge_dt(args: &Args, files: Vec<PathBuf>) -> Result<(), Error> {
     let prepared = args
         .scenarios
         .first()

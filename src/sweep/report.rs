@@ -1,11 +1,13 @@
-//! The outputs of a finished sweep: `sweep.csv`, the charts `quantity_vs_dt.svg` and
-//! `speed_accuracy.svg`, `recommended_dt.csv`, and the console table.
+//! The outputs of a finished sweep: `sweep.csv`, the charts `quantity_vs_dt.svg`,
+//! `speed_accuracy.svg` and (funnel pours) `counts_vs_dt.svg`, `recommended_dt.csv`, and the
+//! console table.
 
 use super::analysis::{recommended_dt, summarise, verified, CaseSummary, RAYLEIGH_FRACTION};
-use super::table::{write_rows, Row};
+use super::table::{integrator_rank, write_rows, Row, Status};
 use crate::dynamics::Integrator;
 use crate::error::Error;
-use crate::io::chart::{scatter_svg, Scale, Series};
+use crate::io::chart::{Chart, Marker, Scale, Series};
+use crate::io::fmt::{g, short, sig};
 use crate::io::{num, write_atomic};
 use std::collections::BTreeMap;
 use std::io;
@@ -33,6 +35,7 @@ pub fn write_results(dir: &Path, rows: &[Row], cx: &Context) -> Result<(), Error
     write_rows(&dir.join("sweep.csv"), rows).map_err(io_err("sweep.csv"))?;
     let sums = summarise(rows);
     charts(dir, cx.title, &sums)?;
+    counts_chart(dir, cx.title, rows)?;
     if !cx.quiet {
         println!("{}", table_lines(cx.title, &sums).join("\n"));
     }
@@ -97,7 +100,8 @@ fn recommended_csv(rec: &[Recommended], cx: &Context) -> io::Result<Vec<u8>> {
     w.into_inner().map_err(|e| io::Error::other(e.to_string()))
 }
 
-/// The console table of a sweep, one line per case. An unstable case shows `unstable` and its
+/// The console table of a sweep, one line per case, numbers as [`crate::io::fmt`] writes them
+/// (dt as given, errors with 2 significant digits). An unstable case shows `unstable` and its
 /// reason instead of errors (its values are NaN in `sweep.csv`).
 pub fn table_lines(title: &str, sums: &[CaseSummary]) -> Vec<String> {
     let mut lines = vec![
@@ -111,7 +115,7 @@ pub fn table_lines(title: &str, sums: &[CaseSummary]) -> Vec<String> {
         let errs = if s.stable {
             s.errors
                 .iter()
-                .map(|(q, (f, _))| format!("{q}={f:.1e}"))
+                .map(|(q, (f, _))| format!("{q}={}", sig(*f, 2)))
                 .collect::<Vec<_>>()
                 .join(" ")
         } else {
@@ -119,11 +123,11 @@ pub fn table_lines(title: &str, sums: &[CaseSummary]) -> Vec<String> {
             s.reason.clone()
         };
         lines.push(format!(
-            "  {:<12} {:>10.1e} {:>9} {:>10.4} {:>9}  {}",
+            "  {:<12} {:>10} {:>9} {:>10} {:>9}  {}",
             s.integrator.name(),
-            s.dt_s,
+            short(s.dt_s),
             if s.stable { "stable" } else { "UNSTABLE" },
-            s.wall_time_s,
+            g(s.wall_time_s),
             s.steps,
             errs
         ));
@@ -139,77 +143,128 @@ pub fn recommended_line(r: &Recommended, cx: &Context) -> String {
         cx.tol,
         match r.dt_s {
             None => "none in the grid".to_string(),
-            Some(d) if r.verified => format!("{d:.1e} s"),
+            Some(d) if r.verified => format!("{} s", short(d)),
             Some(d) => format!(
-                "{d:.1e} s, unverified: it is the finest stable dt tried (the reference of every \
-                 error); add a finer dt to confirm it"
+                "{} s, unverified: it is the finest stable dt tried (the reference of every \
+                 error); add a finer dt to confirm it",
+                short(d)
             ),
         }
     );
     if let Some(tr) = cx.rayleigh_time_s {
         line.push_str(&format!(
-            "   [Rayleigh time {tr:.3e} s; 20 % rule {:.3e} s]",
-            RAYLEIGH_FRACTION * tr
+            "   [Rayleigh time {} s; 20 % rule {} s]",
+            g(tr),
+            g(RAYLEIGH_FRACTION * tr)
         ));
     }
     line
 }
 
 /// Draws `quantity_vs_dt.svg` (max error against the finest dt, per quantity and integrator,
-/// against dt) and `speed_accuracy.svg` (worst error against wall time, one line per integrator).
+/// against dt: one colour per integrator, one marker shape per quantity) and `speed_accuracy.svg`
+/// (worst error against wall time, one line per integrator). Errors of exactly zero are drawn at
+/// 1e-16 (the log axis has no zero).
 pub fn charts(dir: &Path, title: &str, summaries: &[CaseSummary]) -> Result<(), Error> {
-    // Keyed by name, as the charts always were: series in alphabetical order.
-    let mut by_q: BTreeMap<(&str, String), Vec<(f64, f64)>> = BTreeMap::new();
-    let mut speed: BTreeMap<&str, Vec<(f64, f64)>> = BTreeMap::new();
+    // Keyed by integrator order, then quantity name.
+    let mut by_q: BTreeMap<(usize, String), Vec<(f64, f64)>> = BTreeMap::new();
+    let mut speed: BTreeMap<usize, Vec<(f64, f64)>> = BTreeMap::new();
     let floor = 1e-16;
     for s in summaries.iter().filter(|s| s.stable) {
+        let rank = integrator_rank(s.integrator);
         let mut worst: f64 = 0.0;
         for (q, (fin, re)) in &s.errors {
-            by_q.entry((s.integrator.name(), q.clone()))
+            by_q.entry((rank, q.clone()))
                 .or_default()
                 .push((s.dt_s, fin.max(floor)));
             let e = if re.is_finite() { *re } else { *fin };
             worst = worst.max(e);
         }
         speed
-            .entry(s.integrator.name())
+            .entry(rank)
             .or_default()
             .push((s.wall_time_s.max(1e-6), worst.max(floor)));
     }
-    let series: Vec<Series> = by_q
+    let quantities: Vec<String> = by_q
+        .keys()
+        .map(|k| k.1.clone())
+        .collect::<std::collections::BTreeSet<_>>()
         .into_iter()
-        .enumerate()
-        .map(|(i, ((integ, q), pts))| Series::sorted_line(format!("{integ}: {q}"), pts, i))
         .collect();
+    let name = |rank: usize| Integrator::ALL.get(rank).map_or("?", |i| i.name());
     let chart_err = |file: &str| {
         let path = dir.join(file);
         move |e: io::Error| Error::Io(path, e)
     };
-    scatter_svg(
-        &dir.join("quantity_vs_dt.svg"),
-        &format!("{title}: max relative error vs finest stable dt"),
-        "dt (s)",
-        "max |relative error| over bodies",
-        Scale::Log,
-        Scale::Log,
-        &series,
-    )
-    .map_err(chart_err("quantity_vs_dt.svg"))?;
-    let series: Vec<Series> = speed
+    let mut chart = Chart::new(format!(
+        "{title}: max relative error against the finest stable dt"
+    ))
+    .x("time step dt (s)", Scale::Log)
+    .y("max |relative error| over bodies (-)", Scale::Log);
+    for ((rank, q), pts) in by_q {
+        let shape = quantities.iter().position(|x| *x == q).unwrap_or(0);
+        chart = chart.series_marked(
+            Series::sorted_line(format!("{}: {q}", name(rank)), pts, rank),
+            Marker::nth(shape),
+        );
+    }
+    chart
+        .svg(&dir.join("quantity_vs_dt.svg"))
+        .map_err(chart_err("quantity_vs_dt.svg"))?;
+    speed
         .into_iter()
-        .enumerate()
-        .map(|(i, (integ, pts))| Series::sorted_line(integ.to_string(), pts, i))
+        .fold(
+            Chart::new(format!("{title}: accuracy against cost"))
+                .x("wall time (s)", Scale::Log)
+                .y(
+                    "worst |relative error| vs analytic, force balance or finest dt (-)",
+                    Scale::Log,
+                ),
+            |c, (rank, pts)| c.series(Series::sorted_line(name(rank).to_string(), pts, rank)),
+        )
+        .svg(&dir.join("speed_accuracy.svg"))
+        .map_err(chart_err("speed_accuracy.svg"))
+}
+
+/// Draws `counts_vs_dt.svg` when the rows hold ball counts (a funnel-pour sweep, like f-EDEM
+/// Fig. 20): each count (`balls_*` quantities) against dt, one colour per integrator, one shape
+/// per count. Returns false (nothing written) for other sweeps.
+pub fn counts_chart(dir: &Path, title: &str, rows: &[Row]) -> Result<bool, Error> {
+    let mut by_q: BTreeMap<(usize, String), Vec<(f64, f64)>> = BTreeMap::new();
+    for r in rows.iter().filter(|r| r.status == Status::Stable) {
+        if r.quantity.starts_with("balls_") && r.value.is_finite() {
+            by_q.entry((integrator_rank(r.integrator), r.quantity.clone()))
+                .or_default()
+                .push((r.dt_s, r.value));
+        }
+    }
+    if by_q.is_empty() {
+        return Ok(false);
+    }
+    let quantities: Vec<String> = by_q
+        .keys()
+        .map(|k| k.1.clone())
+        .collect::<std::collections::BTreeSet<_>>()
+        .into_iter()
         .collect();
-    scatter_svg(
-        &dir.join("speed_accuracy.svg"),
-        &format!("{title}: accuracy against cost"),
-        "wall time (s)",
-        "worst |relative error| (vs analytic/force balance, else vs finest)",
-        Scale::Log,
-        Scale::Log,
-        &series,
-    )
-    .map_err(chart_err("speed_accuracy.svg"))
+    let mut chart = Chart::new(format!("{title}: ball counts against time step"))
+        .x("time step dt (s)", Scale::Log)
+        .y("balls (count)", Scale::Linear);
+    for ((rank, q), pts) in by_q {
+        let shape = quantities.iter().position(|x| *x == q).unwrap_or(0);
+        let integ = Integrator::ALL.get(rank).map_or("?", |i| i.name());
+        chart = chart.series_marked(
+            Series::sorted_line(
+                format!("{integ}: {q}"),
+                pts,
+                rank * quantities.len() + shape,
+            ),
+            Marker::nth(shape),
+        );
+    }
+    let path = dir.join("counts_vs_dt.svg");
+    chart.svg(&path).map_err(|e| Error::Io(path, e))?;
+    Ok(true)
 }
 
 #[cfg(test)]
@@ -251,12 +306,17 @@ mod tests {
         let lines = table_lines("t", &sums);
         assert!(lines[2].contains("UNSTABLE"), "{}", lines[2]);
         assert!(lines[2].contains("velocity oscillates"), "{}", lines[2]);
-        assert!(!lines[2].contains("0.0e0"), "{}", lines[2]);
         assert!(
-            lines[3].contains("terminal_velocity_m_s=0.0e0"),
+            !lines[2].contains("0.0e0") && !lines[2].contains("=0"),
+            "{}",
+            lines[2]
+        );
+        assert!(
+            lines[3].ends_with("terminal_velocity_m_s=0"),
             "{}",
             lines[3]
         );
+        assert!(lines[3].contains(" 0.001 "), "dt as given: {}", lines[3]);
     }
 
     /// Issue 13: the recommended dt was simply the finest dt tried, with nothing saying that no

@@ -101,6 +101,12 @@ fn quantities(r: &SphereResult) -> Vec<(String, f64, f64)> {
     q
 }
 
+/// Whether a quantity of [`Target::run_case`] comes with a reference value (analytic or force
+/// balance, where the scene has one): the terminal velocity and the probed velocities.
+pub fn has_reference(quantity: &str) -> bool {
+    quantity == "terminal_velocity_m_s" || quantity.starts_with("velocity_at_")
+}
+
 /// One case of a free-settling or drop sweep: every sphere alone at the case's dt.
 fn spheres_case(p: &Prepared, c: &Case) -> Vec<Row> {
     let opts = RunOptions {

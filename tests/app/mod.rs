@@ -1,7 +1,13 @@
-//! The application layer: `src/run.rs`, `src/checkpoint.rs`, `src/interrupt.rs`, `src/sweep/`.
+//! The application layer: `src/run.rs`, `src/checkpoint.rs`, `src/interrupt.rs`, `src/sweep/`,
+//! `src/reduce/`.
 
 #[cfg(unix)]
 mod checkpoint;
+pub(crate) mod console;
 mod interrupt;
+mod reduce;
 mod report;
+mod rerun;
 mod sweep;
+mod tutorial;
+mod vary;

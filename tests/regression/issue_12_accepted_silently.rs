@@ -72,7 +72,7 @@ fn duplicate_sphere_ids_are_refused() {
         "spheres_csv.path",
         &[
             "spheres_duplicate_id.csv",
-            "row 4",
+            "line 4 (data row 2)",
             "allowed one row per id",
         ],
     );

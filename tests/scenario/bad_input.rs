@@ -296,9 +296,9 @@ case!(
     Some("spheres_csv.path"),
     [
         "spheres_duplicate_id.csv",
-        "row 4",
+        "line 4 (data row 2)",
         "S1-01",
-        "row 3",
+        "line 3 (data row 1)",
         "allowed one row per id"
     ]
 );
@@ -349,7 +349,7 @@ fn sample_csv_percent_out_of_range() {
     for w in [
         "sedimentation_sample1.toml",
         "bad_sample_percent.csv",
-        "row 5, column 3 (`percent_finer`)",
+        "line 5 (data row 3), column 3 (`percent_finer`)",
         "120",
         "allowed 0 ≤ percent_finer ≤ 100",
     ] {

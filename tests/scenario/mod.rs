@@ -1,3 +1,5 @@
 //! `src/scenario/`: loading and validating scenarios and their input files.
 
 mod bad_input;
+mod schema_docs;
+mod spheres_csv;

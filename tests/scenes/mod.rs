@@ -1,5 +1,8 @@
 //! `src/scenes/<kind>/`: one module per scene kind.
 
+mod charts_contacts;
+mod charts_free_settling;
+mod charts_sweep;
 mod funnel;
 mod restitution_drop_and_tilt;
 mod sedimentation;

@@ -14,6 +14,7 @@ pub use contacts::Contacts;
 pub use fluid::{Drag, DragLawName, Fluid, Rheology, RheologyModel, Submergence};
 pub use kinds::funnel::{FunnelSpec, Repeats};
 pub use kinds::restitution_drop::RestitutionDropSpec;
+pub(crate) use kinds::sedimentation::trim_default_times;
 pub use kinds::sedimentation::{InstrumentsSpec, SampleSpec};
 pub use kinds::tilt::TiltSpec;
 pub use measure::Measure;

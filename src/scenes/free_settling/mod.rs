@@ -45,8 +45,10 @@
 //!
 //! [`setup`]: run options, dimension, per-sphere quantities fixed at release;
 //! [`simulate`]: the step loop as named stages, free engine and Rapier path;
-//! [`output`]: every file the kind writes; [`run_scene`] is the entry point of `settle run`.
+//! [`output`]: every file the kind writes; [`charts`]: its charts and the combined ones;
+//! [`run_scene`] is the entry point of `settle run`.
 
+pub mod charts;
 pub mod output;
 pub mod setup;
 pub mod simulate;

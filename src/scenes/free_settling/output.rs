@@ -1,21 +1,27 @@
 //! Every file a free-settling or drop run writes.
 //!
 //! - `kind = "free_settling"`: `summary.csv` (one row per sphere), `metrics.csv` and
-//!   `terminal_velocity.svg` (like f-EDEM Fig. 11) when measurements exist;
+//!   `terminal_velocity.svg` (like f-EDEM Fig. 11) when measurements exist; in a Bingham fluid
+//!   `cd_re.csv` and `cd_re.svg` (C_d against Re′ with eq. 19, like f-EDEM Fig. 1);
 //! - `kind = "drop"`: `summary.csv` with one row per sphere and fall height, and
 //!   `settling_distance.svg` (settling distance against fall height, one series per diameter,
 //!   like f-EDEM Fig. 16);
-//! - both: `timeseries.csv` when `record.timeseries`, `probes.csv` when probe times are set.
+//! - both: `timeseries.csv` and `velocity.svg` (v(t), with the analytic Stokes curve under
+//!   Stokes drag, like f-EDEM Figs. 5–6) when `record.timeseries`, `probes.csv` when probe times
+//!   are set.
+//!
+//! A several-file run also gets the charts of [`write_combined_charts`] in `OUT/combined/`.
 //!
 //! `run.toml` is written by [`crate::run`] from the returned [`SceneReport`].
 
+use super::charts;
 use super::setup::uses_rapier;
 use super::SphereResult;
 use crate::error::Error;
 use crate::io::chart::{scatter_svg, Scale, Series};
 use crate::io::metrics::ErrorStats;
 use crate::io::{num, opt, StagedDir};
-use crate::scenario::{Kind, Submergence};
+use crate::scenario::{Kind, Scenario, Submergence};
 use crate::scenes::{Prepared, SceneReport};
 use std::collections::BTreeMap;
 use std::io;
@@ -60,16 +66,29 @@ pub fn write_all(
             write_chart(
                 &stage.path("terminal_velocity.svg"),
                 &format!(
-                    "{}: terminal velocity, measured (o) and simulated (•)",
+                    "{}: terminal velocity, measured (hollow) and simulated (filled)",
                     s.name
                 ),
                 results,
             )
             .map_err(io)?;
         }
+        let cd_re = charts::cd_re_points(s, results);
+        if !cd_re.is_empty() {
+            charts::write_cd_re_csv(&stage.path("cd_re.csv"), &cd_re).map_err(io)?;
+            let title = format!(
+                "{}: drag coefficient against Bingham Reynolds number",
+                s.name
+            );
+            charts::write_cd_re_chart(&stage.path("cd_re.svg"), &title, &cd_re).map_err(io)?;
+        }
     }
     if s.record.timeseries {
         write_timeseries(&stage.path("timeseries.csv"), results).map_err(io)?;
+        let title = format!("{}: settling velocity against time", s.name);
+        let v0 = s.release.velocity_m_s;
+        charts::write_velocity_chart(&stage.path("velocity.svg"), &title, results, v0)
+            .map_err(io)?;
     }
     if results.iter().any(|r| !r.probes.is_empty()) {
         write_probes(&stage.path("probes.csv"), results).map_err(io)?;
@@ -87,7 +106,7 @@ pub fn write_all(
         crate::engine::EngineSettings::for_scene(d_min, 2.0 * v_max)
     });
     Ok(SceneReport {
-        warnings: Vec::new(),
+        warnings: warnings(p, results),
         steps: results.iter().map(|r| r.steps).sum(),
         bodies: results.len(),
         engine_settings,
@@ -96,8 +115,28 @@ pub fn write_all(
     })
 }
 
-/// Header of `summary.csv`.
-pub const SUMMARY_HEADER: [&str; 23] = [
+/// The validity warnings of the run: its drag law checked at every sphere's largest speed in the
+/// fluid: the simulated or force-balance terminal velocity (a drop also its entry speed).
+pub fn warnings(p: &Prepared, results: &[SphereResult]) -> Vec<String> {
+    let spheres: Vec<crate::scenes::validity::SphereAt> = results
+        .iter()
+        .map(|r| crate::scenes::validity::SphereAt {
+            id: r.case.id.clone(),
+            diameter_m: r.case.spec.diameter_m,
+            density_kg_m3: r.case.spec.density_kg_m3,
+            speed_m_s: r
+                .v_simulated_m_s
+                .abs()
+                .max(r.v_force_balance_m_s.abs())
+                .max(r.entry_velocity_m_s.unwrap_or(0.0).abs()),
+        })
+        .collect();
+    crate::scenes::validity::drag_warnings(p, &spheres)
+}
+
+/// Header of `summary.csv` (`reynolds`: ρ_f |v| d / η at the simulated terminal velocity, for a
+/// Newtonian drag law; empty for Bingham drag, whose number is `re_bingham`).
+pub const SUMMARY_HEADER: [&str; 24] = [
     "sphere_id",
     "suspension",
     "diameter_m",
@@ -121,6 +160,7 @@ pub const SUMMARY_HEADER: [&str; 23] = [
     "rayleigh_time_s",
     "stop",
     "end_time_s",
+    "reynolds",
 ];
 
 /// Relative error of the simulated against the measured velocity, if measured.
@@ -169,6 +209,7 @@ pub fn summary_row(r: &SphereResult, dt_s: f64, integrator: &str) -> Vec<String>
         opt(r.rayleigh_time_s),
         r.stop.label().to_string(),
         num(r.end_time_s),
+        opt(r.reynolds),
     ]
 }
 
@@ -273,49 +314,43 @@ pub fn write_metrics(path: &Path, stats: &[ErrorStats]) -> io::Result<()> {
     w.flush()
 }
 
+/// Writes the charts of a several-file run into `stage` (`OUT/combined/`) from each file's
+/// scenario and results: `parity.svg` and `terminal_velocity.svg` when spheres are measured, and
+/// `cd_re.csv` with `cd_re.svg` over every Bingham run (see [`charts`]).
+pub fn write_combined_charts<'a>(
+    stage: &StagedDir,
+    runs: impl IntoIterator<Item = (&'a Scenario, &'a [SphereResult])>,
+) -> io::Result<()> {
+    let runs: Vec<(&Scenario, &[SphereResult])> = runs.into_iter().collect();
+    let all: Vec<&SphereResult> = runs.iter().flat_map(|r| r.1.iter()).collect();
+    let n = runs.len();
+    charts::write_parity_chart(
+        &stage.path("parity.svg"),
+        &format!("{n} scenarios: simulated against measured terminal velocity"),
+        &all,
+    )?;
+    charts::write_combined_terminal_chart(
+        &stage.path("terminal_velocity.svg"),
+        &format!("{n} scenarios: terminal velocity, measured (hollow) and simulated (filled)"),
+        &all,
+    )?;
+    let cd_re: Vec<charts::CdRe> = runs
+        .iter()
+        .flat_map(|(s, r)| charts::cd_re_points(s, r))
+        .collect();
+    if !cd_re.is_empty() {
+        charts::write_cd_re_csv(&stage.path("cd_re.csv"), &cd_re)?;
+        let title = format!("{n} scenarios: drag coefficient against Bingham Reynolds number");
+        charts::write_cd_re_chart(&stage.path("cd_re.svg"), &title, &cd_re)?;
+    }
+    Ok(())
+}
+
 /// Terminal velocity against sphere density, one colour per diameter: measured (hollow) and
 /// simulated (filled), like f-EDEM Fig. 11.
 pub fn write_chart(path: &Path, title: &str, results: &[SphereResult]) -> io::Result<()> {
-    type Points = Vec<(f64, f64)>;
-    let mut by_d: BTreeMap<u64, (Points, Points)> = BTreeMap::new();
-    for r in results {
-        let key = (r.case.spec.diameter_m * 1e6).round() as u64;
-        let e = by_d.entry(key).or_default();
-        if let Some(m) = r.case.spec.v_measured_m_s {
-            e.0.push((r.case.spec.density_kg_m3, m));
-        }
-        e.1.push((r.case.spec.density_kg_m3, r.v_simulated_m_s));
-    }
-    let mut series = Vec::new();
-    for (i, (d_um, (meas, mut sim))) in by_d.into_iter().enumerate() {
-        sim.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let d_mm = d_um as f64 / 1000.0;
-        if !meas.is_empty() {
-            series.push(Series {
-                label: format!("d = {d_mm} mm, measured"),
-                points: meas,
-                colour: i,
-                filled: false,
-                line: false,
-            });
-        }
-        series.push(Series {
-            label: format!("d = {d_mm} mm, simulated"),
-            points: sim,
-            colour: i,
-            filled: true,
-            line: true,
-        });
-    }
-    scatter_svg(
-        path,
-        title,
-        "sphere density (kg/m³)",
-        "terminal velocity (m/s)",
-        Scale::Linear,
-        Scale::Linear,
-        &series,
-    )
+    let all: Vec<&SphereResult> = results.iter().collect();
+    charts::terminal_velocity_chart(title, &all).svg(path)
 }
 
 /// Header of a drop `summary.csv`. `settling_distance_m` is the depth of the ball's lowest point

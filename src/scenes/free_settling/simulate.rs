@@ -84,6 +84,9 @@ pub struct SphereResult {
     pub regime: DragRegime,
     /// Bingham Reynolds number at the simulated terminal velocity (eq. 18), if Bingham.
     pub re_bingham: Option<f64>,
+    /// Particle Reynolds number ρ_f |v| d / η at the simulated terminal velocity (f-EDEM eq. 6),
+    /// if the drag law is Newtonian (Stokes or Dallavalle).
+    pub reynolds: Option<f64>,
     /// Max over the run of |v − v_analytic| / v_t (Stokes only).
     pub max_velocity_error_rel: Option<f64>,
     /// Particle response time m/(dF/dv) at the start, s (Stokes: ρ d²/18μ).
@@ -507,6 +510,12 @@ fn finish<const D: usize>(
         )),
         _ => None,
     };
+    let reynolds = match su.drag.law {
+        DragLaw::Stokes { viscosity_pa_s } | DragLaw::Dallavalle { viscosity_pa_s, .. } => Some(
+            crate::fluid::newtonian::reynolds(su.rho_fluid_kg_m3, v_sim.abs(), d, viscosity_pa_s),
+        ),
+        DragLaw::Bingham { .. } => None,
+    };
     SphereResult {
         case: case.clone(),
         v_simulated_m_s: v_sim,
@@ -518,6 +527,7 @@ fn finish<const D: usize>(
         v_analytic_m_s: su.analytic.map(|a| a.0),
         regime,
         re_bingham,
+        reynolds,
         max_velocity_error_rel: su.analytic.map(|_| st.max_err),
         response_time_s: su.response_time_s,
         rayleigh_time_s: match (sp.youngs_modulus_pa, sp.poisson_ratio) {

@@ -101,8 +101,19 @@ pub fn run(
     }
     let wall_s = t0.elapsed().as_secs_f64();
     output::write_all(p, f, &results, stage)?;
+    let balls: Vec<crate::scenes::validity::SphereAt> = p
+        .spheres
+        .iter()
+        .map(|c| crate::scenes::validity::SphereAt {
+            id: c.id.clone(),
+            diameter_m: c.spec.diameter_m,
+            density_kg_m3: c.spec.density_kg_m3,
+            speed_m_s: 0.0,
+        })
+        .collect();
     Ok(SceneReport {
-        warnings: Vec::new(),
+        // The balls' ranges against the drag law (their speeds are not judged here).
+        warnings: crate::scenes::validity::drag_warnings(p, &balls),
         steps: results.iter().map(|r| r.steps).sum(),
         bodies: f.funnel.count * results.len(),
         engine_settings: Some(report::engine_settings(p, f)),

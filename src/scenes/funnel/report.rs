@@ -2,6 +2,7 @@
 
 use super::{Census, Geometry, Place, RepeatResult};
 use crate::engine::EngineSettings;
+use crate::io::fmt::{g, short};
 use crate::scenario::FunnelPourSpec;
 use crate::scenario::Submergence;
 use crate::scenes::Prepared;
@@ -29,13 +30,15 @@ fn header(p: &Prepared, f: &FunnelPourSpec, results: &[RepeatResult], wall_s: f6
     let reps = results.len();
     let mean_wall = results.iter().map(|r| r.wall_time_s).sum::<f64>() / reps as f64;
     format!(
-        "funnel pour: {reps} repeat(s) × {} balls, dt = {:e} s, {} submergence; wall time {wall_s:.1} s ({mean_wall:.1} s per repeat, {} threads)",
+        "funnel pour: {reps} repeat(s) × {} balls, dt = {} s, {} submergence; wall time {} s ({} s per repeat, {} threads)",
         f.funnel.count,
-        s.time.dt_s,
+        short(s.time.dt_s),
         match s.fluid.submergence {
             Submergence::Full => "full",
             Submergence::Partial => "partial",
         },
+        g(wall_s),
+        g(mean_wall),
         rayon::current_num_threads()
     )
 }
@@ -56,7 +59,8 @@ fn at_count_time(n: usize, count_time_s: f64, results: &[RepeatResult]) -> Optio
         }
     };
     Some(format!(
-        "at t = {count_time_s} s: {} of {n} balls in the paste, {} in the domain (f-EDEM Fig. 20: N = 68 for dt ≤ 1.04e-5 s)",
+        "at t = {} s: {} of {n} balls in the paste, {} in the domain (f-EDEM Fig. 20: N = 68 for dt ≤ 1.04e-5 s)",
+        short(count_time_s),
         rng(&|c| c.paste),
         rng(&|c| c.in_domain())
     ))
@@ -93,12 +97,12 @@ fn z_spread(results: &[RepeatResult]) -> Option<String> {
     zs.sort_by(f64::total_cmp);
     let q = |f: f64| zs[((zs.len() - 1) as f64 * f).round() as usize] * 100.0;
     Some(format!(
-        "ball centres in the paste at Z = {:.2}–{:.2} cm above the bottom (5–95 %: {:.2}–{:.2} cm, median {:.2} cm; f-EDEM Fig. 21: 8.5–13.5 cm)",
-        q(0.0),
-        q(1.0),
-        q(0.05),
-        q(0.95),
-        q(0.5)
+        "ball centres in the paste at Z = {}–{} cm above the bottom (5–95 %: {}–{} cm, median {} cm; f-EDEM Fig. 21: 8.5–13.5 cm)",
+        g(q(0.0)),
+        g(q(1.0)),
+        g(q(0.05)),
+        g(q(0.95)),
+        g(q(0.5))
     ))
 }
 
@@ -109,9 +113,13 @@ fn settling(results: &[RepeatResult]) -> String {
         .map(|r| r.max_speed_at_opening_m_s)
         .fold(0.0, f64::max);
     format!(
-        "largest ball speed when the outlet opened: {slowest_fill:.2e} m/s; runs ended at t = {:.3}–{:.3} s",
-        results.iter().map(|r| r.end_time_s).fold(f64::INFINITY, f64::min),
-        results.iter().map(|r| r.end_time_s).fold(0.0, f64::max)
+        "largest ball speed when the outlet opened: {} m/s; runs ended at t = {}–{} s",
+        g(slowest_fill),
+        g(results
+            .iter()
+            .map(|r| r.end_time_s)
+            .fold(f64::INFINITY, f64::min)),
+        g(results.iter().map(|r| r.end_time_s).fold(0.0, f64::max))
     )
 }
 

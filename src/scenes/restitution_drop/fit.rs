@@ -2,6 +2,7 @@
 
 use super::DropOutcome;
 use crate::contact::RestitutionLaw;
+use crate::io::fmt::{g, pct, short};
 
 /// One simulated drop against the ideal rebound of its law and the measured rebound.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -36,20 +37,20 @@ impl Comparison {
     /// The console line of the drop `o` (heights in mm, errors in %).
     pub fn line(&self, o: &DropOutcome) -> String {
         format!(
-            "H = {:.1} mm: rebound {:.2} mm{} (e²H = {:.2} mm{}), contact e = {:.4} (law {:.4})",
-            o.drop_height_m * 1e3,
-            o.rebound_height_m * 1e3,
+            "H = {} mm: rebound {} mm{} (e²H = {} mm{}), contact e = {} (law {})",
+            short(o.drop_height_m * 1e3),
+            g(o.rebound_height_m * 1e3),
             match (self.measured_rebound_m, self.rel_error) {
                 (Some(m), Some(err)) =>
-                    format!(", measured {:.1} mm, {:+.2} %", m * 1e3, err * 1e2),
+                    format!(", measured {} mm, {}", short(m * 1e3), pct(err, 3)),
                 _ => String::new(),
             },
-            self.ideal_rebound_m * 1e3,
+            g(self.ideal_rebound_m * 1e3),
             self.rel_error_vs_ideal
-                .map(|x| format!(", {:+.2} %", x * 1e2))
+                .map(|x| format!(", {}", pct(x, 3)))
                 .unwrap_or_default(),
-            o.restitution_effective,
-            self.law_restitution,
+            g(o.restitution_effective),
+            g(self.law_restitution),
         )
     }
 }

@@ -122,21 +122,22 @@ fn simulate_all(
 
 /// Console lines on the calibrated models: the simulated tally, then one line per model.
 fn fit_lines(tally: &Tally, heights: usize, tolerance: f64, fits: &[LawFit]) -> Vec<String> {
+    use crate::io::fmt::{g, short};
     let mut lines = vec![format!(
-        "{}/{heights} heights within {:.1} % of the measurements (worst {:.2} %)",
+        "{}/{heights} heights within {} % of the measurements (worst {} %)",
         tally.within,
-        tolerance * 1e2,
-        tally.worst * 1e2,
+        short(tolerance * 1e2),
+        g(tally.worst * 1e2),
     )];
     lines.extend(fits.iter().map(|f| {
         format!(
-            "  {:<24} e_ref = {:.4}, k = {:.4}: worst {:.2} % (vacuum){}",
+            "  {:<24} e_ref = {}, k = {}: worst {} % (vacuum){}",
             f.model,
-            f.law.coefficient,
-            f.law.exponent,
-            f.max_rel_error * 1e2,
+            g(f.law.coefficient),
+            g(f.law.exponent),
+            g(f.max_rel_error * 1e2),
             f.leave_one_out_max_rel_error
-                .map(|x| format!(", leave-one-out {:.2} %", x * 1e2))
+                .map(|x| format!(", leave-one-out {} %", g(x * 1e2)))
                 .unwrap_or_default(),
         )
     }));

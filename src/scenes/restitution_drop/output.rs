@@ -12,7 +12,7 @@
 use super::fit::heights_within;
 use super::{Comparison, DropOutcome, Setup, Tally};
 use crate::contact::{LawFit, RestitutionLaw};
-use crate::io::chart::{scatter_svg, Scale, Series};
+use crate::io::chart::{Chart, Curve, Scale, Series};
 use crate::io::{num, write_csv};
 use std::io;
 use std::path::Path;
@@ -136,8 +136,8 @@ pub fn write_fit(
     )
 }
 
-/// Writes `rebound_height.svg`: the ideal rebound e(v)² H of the law (no air, gravity `g_m_s2`),
-/// the simulated rebounds and the measured ones, in mm.
+/// Writes `rebound_height.svg`: the ideal rebound e(v)² H of the law (no air, gravity `g_m_s2`;
+/// a dashed reference curve), the simulated rebounds (filled) and the measured ones (hollow), mm.
 pub fn write_chart(
     path: &Path,
     name: &str,
@@ -149,37 +149,39 @@ pub fn write_chart(
     let heights = &spec.drop_heights_m;
     let e_at = |h: f64| law.at((2.0 * g_m_s2 * h).sqrt());
     let mm = |x: f64| x * 1e3;
-    let mut series = vec![
-        Series {
-            label: if law.is_speed_dependent() {
-                format!(
-                    "ideal e(v)²H, e = {} (v/{} m/s)^-{}",
-                    law.coefficient, law.reference_speed_m_s, law.exponent
-                )
-            } else {
-                format!("ideal e²H, e = {}", law.coefficient)
-            },
-            points: heights
-                .iter()
-                .map(|&h| (mm(h), mm(e_at(h).powi(2) * h)))
-                .collect(),
-            colour: 2,
-            filled: false,
-            line: true,
-        },
-        Series {
+    let ideal = if law.is_speed_dependent() {
+        format!(
+            "ideal e(v)²H, e = {} (v/{} m/s)^-{}",
+            law.coefficient, law.reference_speed_m_s, law.exponent
+        )
+    } else {
+        format!("ideal e²H, e = {}", law.coefficient)
+    };
+    // The ideal curve, dense over the drop heights (it bends when e depends on speed).
+    let (h0, h1) = heights
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(a, b), &h| (a.min(h), b.max(h)));
+    let curve: Vec<(f64, f64)> = (0..=100)
+        .map(|k| h0.min(h1) + (h1 - h0.min(h1)) * k as f64 / 100.0)
+        .map(|h| (mm(h), mm(e_at(h).powi(2) * h)))
+        .collect();
+    let mut chart = Chart::new(format!("{name}: rebound height against drop height"))
+        .x("drop height H_f (mm)", Scale::Linear)
+        .x_from_zero(true)
+        .y("rebound height H_r (mm)", Scale::Linear)
+        .curve(Curve::new(ideal, curve).dashed())
+        .series(Series {
             label: "simulated (Rapier 3D, air)".into(),
             points: outcomes
                 .iter()
                 .map(|o| (mm(o.drop_height_m), mm(o.rebound_height_m)))
                 .collect(),
-            colour: 1,
+            colour: 3,
             filled: true,
             line: false,
-        },
-    ];
+        });
     if !spec.measured_rebound_heights_m.is_empty() {
-        series.push(Series {
+        chart = chart.series(Series {
             label: "measured (f-EDEM Table A2)".into(),
             points: heights
                 .iter()
@@ -191,13 +193,5 @@ pub fn write_chart(
             line: false,
         });
     }
-    scatter_svg(
-        path,
-        &format!("{name}: rebound height against drop height"),
-        "drop height H_f (mm)",
-        "rebound height H_r (mm)",
-        Scale::Linear,
-        Scale::Linear,
-        &series,
-    )
+    chart.svg(path)
 }

@@ -43,8 +43,8 @@
 //!   absorbs it; the film against the bed, which would delay arrival by ~(a/v_t) ln(h_out/h_in)
 //!   ≤ 40 ms, is not modelled). Representative grains are sparse (area fraction ~1e-3), but they
 //!   fall through each other's columns: sample 1 (N = 100 000) has ~2 300 close pairs per step
-//!   while the 70 µm grains settle (1.7 million in the first 300 s) — see the README for the
-//!   cost and the effect on the readings.
+//!   while the 70 µm grains settle (1.7 million in the first 300 s) — see
+//!   `docs/validation/sedimentation.md` for the cost and the effect on the readings.
 //!
 //! # Layout
 //!

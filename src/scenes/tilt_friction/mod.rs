@@ -41,9 +41,20 @@ use crate::engine::dim3::World;
 #[cfg(doc)]
 use crate::engine::EngineSettings;
 use crate::error::Error;
+use crate::io::fmt::{g, short};
 use crate::io::StagedDir;
 use crate::scenario::TiltFrictionSpec;
 use crate::scenes::{Prepared, SceneReport};
+
+/// [`g`] with a `+` on positive values.
+fn signed(x: f64) -> String {
+    let s = g(x);
+    if x > 0.0 && s != "0" {
+        format!("+{s}")
+    } else {
+        s
+    }
+}
 
 /// Console lines: one per given angle, then the threshold against atan(μ) = `expected_deg`.
 fn lines(
@@ -57,23 +68,29 @@ fn lines(
         .filter(|r| !r.bisection)
         .map(|r| {
             format!(
-                "θ = {:.2}°: displacement {:.3e} m, {}",
-                r.angle_deg,
-                r.displacement_m,
+                "θ = {}°: displacement {} m, {}",
+                short(r.angle_deg),
+                g(r.displacement_m),
                 if r.slides { "slides" } else { "sticks" }
             )
         })
         .collect();
     lines.push(match bracket {
         Some((lo, hi)) => format!(
-            "threshold {:.2}° (sticks at {lo:.3}°, slides at {hi:.3}°); atan(μ = {friction}) = {expected_deg:.2}°, \
-             error {:+.2}° (Rapier: one friction coefficient, static = dynamic)",
-            0.5 * (lo + hi),
-            0.5 * (lo + hi) - expected_deg
+            "threshold {}° (sticks at {}°, slides at {}°); atan(μ = {}) = {}°, \
+             error {}° (Rapier: one friction coefficient, static = dynamic)",
+            g(0.5 * (lo + hi)),
+            g(lo),
+            g(hi),
+            short(friction),
+            g(expected_deg),
+            signed(0.5 * (lo + hi) - expected_deg)
         ),
         None => format!(
             "threshold not bracketed by the angles given (need a sticking angle below a sliding \
-             one); atan(μ = {friction}) = {expected_deg:.2}°"
+             one); atan(μ = {}) = {}°",
+            short(friction),
+            g(expected_deg)
         ),
     });
     lines

@@ -7,7 +7,8 @@
 //! - `tilt_displacement.svg`: displacement down the slope against the angle.
 
 use super::TiltOutcome;
-use crate::io::chart::{scatter_svg, Scale, Series};
+use crate::io::chart::ticks::significant;
+use crate::io::chart::{Chart, Curve, Scale, Series};
 use crate::io::{num, opt, write_csv};
 use std::io;
 use std::path::Path;
@@ -80,36 +81,32 @@ pub fn write_chart(
         .iter()
         .map(|r| r.displacement_m * 1e3)
         .fold(0.0, f64::max);
-    let series = [
-        Series {
+    Chart::new(title)
+        .x("tilt angle θ (°)", Scale::Linear)
+        .y("displacement down the slope (mm)", Scale::Linear)
+        .series(Series {
             label: "sticks".into(),
             points: pts(false),
             colour: 0,
             filled: true,
             line: false,
-        },
-        Series {
+        })
+        .series(Series {
             label: "slides".into(),
             points: pts(true),
-            colour: 1,
+            colour: 3,
             filled: true,
             line: false,
-        },
-        Series {
-            label: format!("atan(μ) = {expected_deg:.2}°"),
-            points: vec![(expected_deg, 0.0), (expected_deg, y_max)],
-            colour: 2,
-            filled: false,
-            line: true,
-        },
-    ];
-    scatter_svg(
-        path,
-        title,
-        "tilt angle (°)",
-        "displacement (mm)",
-        Scale::Linear,
-        Scale::Linear,
-        &series,
-    )
+        })
+        .curve(
+            Curve::new(
+                format!(
+                    "expected threshold θ = atan(μ) = {}°",
+                    significant(expected_deg, 4)
+                ),
+                vec![(expected_deg, 0.0), (expected_deg, y_max)],
+            )
+            .dashed(),
+        )
+        .svg(path)
 }

@@ -105,7 +105,8 @@ pub struct SampleSpec {
     /// Times of the profiles, s. Default: every 10 s to 60 s, then growing by ×1.25 to end_s.
     #[serde(default)]
     pub record_times_s: Vec<f64>,
-    /// Times of the snapshots (CSV, VTK and picture), s. Default 60, 300, 900.
+    /// Times of the snapshots (CSV, VTK and picture), s. Default 60, 300, 900 (those within
+    /// `time.end_s`; times written here after the end are refused).
     #[serde(default = "default_snapshots")]
     pub snapshot_times_s: Vec<f64>,
     /// Edge of the square cells of the solid-fraction grid that sets the voidage ε of the
@@ -254,17 +255,49 @@ impl SampleSpec {
                 ),
             ));
         }
-        let times: Vec<f64> = self
-            .record_times_s
-            .iter()
-            .chain(&self.snapshot_times_s)
-            .copied()
-            .collect();
         c.each(
-            "sample.record_times_s/snapshot_times_s",
-            &times,
+            "sample.record_times_s",
+            &self.record_times_s,
+            within_run(s.time.end_s),
+        )?;
+        c.each(
+            "sample.snapshot_times_s",
+            &self.snapshot_times_s,
             within_run(s.time.end_s),
         )
+    }
+}
+
+/// Keeps, of the record, snapshot and reading times a sedimentation scenario `s` did not give
+/// (their defaults: snapshots at 60, 300, 900 s, the ASTM reading times up to 1440 min), those
+/// within `time.end_s`, so that `--set time.end_s=600` shortens a run without touching them.
+/// `given` is the scenario's TOML table (after `--set`): a time list written there is kept as
+/// written, and validation refuses its times after the end, naming the key. (Default record
+/// times are computed from the end time by the scene.)
+pub(crate) fn trim_default_times(s: &mut Scenario, given: &toml::Table) {
+    let end_s = s.time.end_s;
+    let written = |table: &str, key: &str| {
+        given
+            .get(table)
+            .and_then(|t| t.as_table())
+            .is_some_and(|t| t.contains_key(key))
+    };
+    let trim = |times: &mut Vec<f64>| times.retain(|&t| t <= end_s);
+    if let Some(sm) = s.sample.as_mut() {
+        if !written("sample", "snapshot_times_s") {
+            trim(&mut sm.snapshot_times_s);
+        }
+    }
+    if let Some(ins) = s.instruments.as_mut() {
+        for (key, times) in [
+            ("hydrometer_times_s", &mut ins.hydrometer_times_s),
+            ("buoyancy_times_s", &mut ins.buoyancy_times_s),
+            ("pipette_times_s", &mut ins.pipette_times_s),
+        ] {
+            if !written("instruments", key) {
+                trim(times);
+            }
+        }
     }
 }
 

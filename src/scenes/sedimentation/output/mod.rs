@@ -82,7 +82,43 @@ pub fn write_all(
     .map_err(io)?;
     let summary = Summary::of(st);
     write_summary(&stage.path("summary.csv"), sm, setup, st, &summary).map_err(io)?;
-    Ok(report(sm, setup, st, &summary, wall_s, &instrument_errors))
+    let mut report = report(sm, setup, st, &summary, wall_s, &instrument_errors);
+    report
+        .lines
+        .extend(instrument_table(&instrument_errors, &readings));
+    report.warnings = warnings(s, sm, setup, &readings);
+    Ok(report)
+}
+
+/// The validity warnings of a cylinder run: one-way coupling beyond the seed's concentration
+/// limits ([`crate::fluid::validity::one_way_coupling_warning`], on the initial homogeneous
+/// suspension: the modelled mass in the modelled volume B H h_z), and percent finer above 100 %
+/// explained by the counting noise of the grains
+/// ([`crate::fluid::validity::percent_finer_above_100_warning`], with each reading's 1σ).
+fn warnings(
+    s: &Scenario,
+    sm: &SampleSpec,
+    setup: &Setup,
+    readings: &[InstrumentReading],
+) -> Vec<String> {
+    use crate::fluid::validity::{one_way_coupling_warning, percent_finer_above_100_warning};
+    let volume = setup.width_m * setup.height_m * setup.thickness_m;
+    let fraction = setup.model_mass_kg / sm.density_kg_m3 / volume;
+    let over: Vec<_> = readings
+        .iter()
+        .map(|r| {
+            (
+                r.kind.name().to_string(),
+                r.point.time_s,
+                r.point.percent_finer,
+                r.point.sd_percent,
+            )
+        })
+        .collect();
+    one_way_coupling_warning(fraction, sm.density_kg_m3, s.fluid.density_kg_m3)
+        .into_iter()
+        .chain(percent_finer_above_100_warning(&over, setup.grains.len()))
+        .collect()
 }
 
 /// Grain and fluid densities, kg/m³.
@@ -289,7 +325,8 @@ fn write_summary(
     w.flush()
 }
 
-/// The run's report: its console lines and counts.
+/// The run's report: its console lines (times also in minutes; the instruments' largest and
+/// mean errors against the input curve, as in `instrument_errors.csv`) and counts.
 fn report(
     sm: &SampleSpec,
     setup: &Setup,
@@ -298,49 +335,120 @@ fn report(
     wall: f64,
     instrument_errors: &[granulometry::ErrorRow],
 ) -> SceneReport {
+    use crate::io::fmt::{g, short};
+    let mut lines = vec![
+        format!(
+            "sample {}: {} representative grains for {} real ones (weights {}–{}), h_z = {} m",
+            sm.sample,
+            st.grains.len(),
+            g(su.real),
+            g(su.weight_min),
+            g(su.weight_max),
+            g(setup.thickness_m)
+        ),
+        format!(
+            "{} steps (dt {}–{} s) to t = {} min ({} s) in {} s wall; {} grains settled, bed {} mm",
+            st.steps,
+            g(st.dt_range_s.0),
+            g(st.dt_range_s.1),
+            g(st.time_s / 60.0),
+            short(st.time_s),
+            g(wall),
+            su.settled,
+            g(st.bed_height_m * 1e3)
+        ),
+        format!(
+            "contacts: {} close pairs over {} steps (at most {} in one step), {} grains handed to the contact solve, {} Rapier steps, {} fallbacks, {} s wall",
+            st.contacts.pairs,
+            st.contacts.steps_with_pairs,
+            st.contacts.max_pairs_per_step,
+            st.contacts.grains,
+            st.contacts.rapier_steps,
+            st.contacts.fallbacks,
+            g(st.contacts.wall_s)
+        ),
+    ];
+    if !instrument_errors.is_empty() {
+        lines.push(
+            "instruments against the input curve (|Δ percent finer|, percentage points; 1σ: counting noise):"
+                .into(),
+        );
+    }
     SceneReport {
         warnings: Vec::new(),
         steps: st.steps,
         bodies: st.grains.len(),
         engine_settings: None,
-        lines: vec![
-            format!(
-                "sample {}: {} representative grains for {:.3e} real ones (weights {:.3e}–{:.3e}), h_z = {:.4e} m",
-                sm.sample,
-                st.grains.len(),
-                su.real,
-                su.weight_min,
-                su.weight_max,
-                setup.thickness_m
-            ),
-            format!(
-                "{} steps (dt {:.3e}–{:.3e} s) to t = {} s in {:.2} s wall; {} grains settled, bed {:.3e} m",
-                st.steps, st.dt_range_s.0, st.dt_range_s.1, st.time_s, wall, su.settled, st.bed_height_m
-            ),
-            format!(
-                "contacts: {} close pairs over {} steps (at most {} in one step), {} grains handed to the contact solve, {} Rapier steps, {} fallbacks, {:.2} s wall",
-                st.contacts.pairs,
-                st.contacts.steps_with_pairs,
-                st.contacts.max_pairs_per_step,
-                st.contacts.grains,
-                st.contacts.rapier_steps,
-                st.contacts.fallbacks,
-                st.contacts.wall_s
-            ),
-            format!(
-                "instruments against the input curve (largest / mean |Δ percent finer|): {}",
-                instrument_errors
-                    .iter()
-                    .map(|e| format!(
-                        "{} {:.1} / {:.1} %",
-                        e.instrument, e.max_abs_error, e.mean_abs_error
-                    ))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ),
-        ],
+        lines,
         interrupted: st.interrupted,
     }
+}
+
+/// The instruments' errors as aligned rows: readings and their times (min), largest and mean
+/// error on the simulation, largest error of the instrument's own approximation (on the ideal
+/// suspension), mean 1σ.
+fn instrument_table(
+    rows: &[granulometry::ErrorRow],
+    readings: &[InstrumentReading],
+) -> Vec<String> {
+    use crate::io::fmt::{g, short};
+    let times_min = |name: &str| {
+        let t: Vec<f64> = readings
+            .iter()
+            .filter(|r| r.kind.name() == name)
+            .map(|r| r.point.time_s / 60.0)
+            .collect();
+        match (t.first(), t.last()) {
+            (Some(a), Some(b)) if a != b => format!("{}–{}", short(*a), short(*b)),
+            (Some(a), _) => short(*a),
+            _ => "-".into(),
+        }
+    };
+    let mut cells = vec![[
+        "instrument",
+        "readings",
+        "times_min",
+        "max_error_%",
+        "mean_error_%",
+        "max_error_ideal_%",
+        "mean_1sigma_%",
+    ]
+    .map(String::from)
+    .to_vec()];
+    cells.extend(rows.iter().map(|e| {
+        vec![
+            e.instrument.clone(),
+            e.readings.to_string(),
+            times_min(&e.instrument),
+            g(e.max_abs_error),
+            g(e.mean_abs_error),
+            g(e.max_abs_ideal_error),
+            g(e.mean_sd),
+        ]
+    }));
+    let width: Vec<usize> = (0..cells[0].len())
+        .map(|i| {
+            cells
+                .iter()
+                .map(|r| r[i].chars().count())
+                .max()
+                .unwrap_or(0)
+        })
+        .collect();
+    cells
+        .iter()
+        .map(|r| {
+            let c: Vec<String> = r
+                .iter()
+                .enumerate()
+                .map(|(i, x)| match i {
+                    0 => format!("{x:<w$}", w = width[i]),
+                    _ => format!("{x:>w$}", w = width[i]),
+                })
+                .collect();
+            format!("  {}", c.join("  "))
+        })
+        .collect()
 }
 
 /// Name of the physics in the instruments' files and chart titles.

@@ -1,0 +1,265 @@
+//! `settle reduce READINGS.csv`: the standard data reduction of laboratory hydrometer readings
+//! (ASTM D422 or D7928, [`crate::instruments::reduction`]) into `OUT/<stem>_reduced/`:
+//! `percent_finer.csv`, `percent_finer.svg` and `reduce.toml`.
+//!
+//! # The readings file
+//!
+//! A plain CSV (no quoted fields) whose first lines are the test's figures as `# key = value`
+//! comments, then a header and one row per reading (see `docs/commands/reduce.md`):
+//!
+//! ```text
+//! # standard = d7928
+//! # hydrometer = 152H
+//! # dry_mass_g = 50.0
+//! # specific_gravity = 2.70
+//! # meniscus_correction = 1.0
+//! # h_r1_cm = 20.3
+//! # h_r2_cm = 8.6
+//! # bulb_volume_ml = 55
+//! # cylinder_area_cm2 = 27.8
+//! time_min,reading,temperature_c,blank_reading
+//! 1,45.5,21.5,6.0
+//! ```
+//!
+//! Every bad input (a missing or unknown key or column, a value out of range, a reading off the
+//! hydrometer's scale, times not strictly increasing, a temperature outside the standard's range)
+//! is one error naming the file, the key or the row and column (1-based), and what is allowed;
+//! exit 2, nothing written.
+
+mod input;
+
+pub use input::read;
+
+use crate::error::Error;
+use crate::instruments::reduction::{reduce, LabReading, Reduced, TestSetup};
+use crate::io::chart::{scatter_svg, Scale, Series};
+use crate::io::{self, num, StagedDir};
+use std::path::{Path, PathBuf};
+
+/// What `settle reduce` is asked to do.
+#[derive(Clone, Debug, Default)]
+pub struct Request {
+    /// The readings file.
+    pub file: PathBuf,
+    /// `--standard`, overriding the file's `standard`.
+    pub standard: Option<String>,
+    /// `--hydrometer`, overriding the file's `hydrometer`.
+    pub hydrometer: Option<String>,
+    /// Output folder; results go to `out_dir/<stem>_reduced/`.
+    pub out_dir: PathBuf,
+}
+
+/// What a reduction produced.
+#[derive(Clone, Debug)]
+pub struct Report {
+    /// The results folder.
+    pub out: PathBuf,
+    /// The test's figures as read.
+    pub setup: TestSetup,
+    /// Every reading reduced.
+    pub reduced: Vec<Reduced>,
+    /// Console summary, one line each.
+    pub lines: Vec<String>,
+    /// Validity warnings (percent finer outside 0–100 %).
+    pub warnings: Vec<String>,
+}
+
+/// Runs `settle reduce`: reads, checks, reduces and writes `OUT/<stem>_reduced/`.
+pub fn run(req: &Request) -> Result<Report, Error> {
+    let file = &req.file;
+    let (setup, readings) = read(file, req)?;
+    let stem = file
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "readings".into());
+    let name = format!("{stem}_reduced");
+    let dest = req.out_dir.join(&name);
+    if io::check_destination(&dest).is_err() {
+        return Err(Error::bad_argument(
+            "--out",
+            &dest,
+            "exists and was not created by settle (no .settle-run marker), so settle will not \
+             replace it: choose another --out",
+        ));
+    }
+    let reduced = reduce(&setup, &readings);
+    let ioe = |e: std::io::Error| Error::Io(dest.clone(), e);
+    let stage = StagedDir::new(&req.out_dir, &name).map_err(ioe)?;
+    write_csv(&stage.path("percent_finer.csv"), &reduced).map_err(ioe)?;
+    write_chart(&stage.path("percent_finer.svg"), &stem, &setup, &reduced).map_err(ioe)?;
+    let record = record(file, &setup, &readings);
+    io::write_atomic(&stage.path("reduce.toml"), record.as_bytes()).map_err(ioe)?;
+    let out = stage.commit().map_err(ioe)?;
+    let warnings = reduced
+        .iter()
+        .filter(|r| !(0.0..=100.0).contains(&r.percent_finer))
+        .map(|r| {
+            format!(
+                "percent finer {} % at t = {} min is outside 0–100 %: check dry_mass_g, \
+                 specific_gravity and the blank reading",
+                sig(r.percent_finer, 3),
+                sig(r.reading.time_s / 60.0, 4)
+            )
+        })
+        .collect();
+    let lines = summary(file, &out, &setup, &reduced);
+    Ok(Report {
+        out,
+        setup,
+        reduced,
+        lines,
+        warnings,
+    })
+}
+
+/// `x` for a CSV or TOML file: [`num`] of x rounded to 12 significant digits, so that float
+/// noise of the arithmetic (0.09893999999999999 for 16.29 − 0.164 × 39 cm) does not show.
+pub fn clean(x: f64) -> String {
+    if !x.is_finite() {
+        return num(x);
+    }
+    num(format!("{x:.11e}").parse().unwrap_or(x))
+}
+
+/// `x` with `n` significant digits, never `-0`.
+pub fn sig(x: f64, n: usize) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return if x.is_finite() {
+            "0".into()
+        } else {
+            format!("{x}")
+        };
+    }
+    let mag = x.abs().log10().floor() as i32;
+    let decimals = (n as i32 - 1 - mag).max(0) as usize;
+    let s = format!("{x:.decimals$}");
+    if s.trim_start_matches('-')
+        .chars()
+        .all(|c| c == '0' || c == '.')
+    {
+        "0".into()
+    } else {
+        s
+    }
+}
+
+fn summary(file: &Path, out: &Path, s: &TestSetup, red: &[Reduced]) -> Vec<String> {
+    let mut lines = vec![format!(
+        "{} (ASTM {}, {}, {} readings) -> {}",
+        file.display(),
+        s.standard.name().to_uppercase(),
+        s.hydrometer.name(),
+        red.len(),
+        out.display()
+    )];
+    lines.push(format!(
+        "  {:>9} {:>8} {:>6} {:>7} {:>8} {:>8} {:>8}",
+        "t_min", "reading", "blank", "T_C", "depth_cm", "d_um", "finer_%"
+    ));
+    for r in red {
+        let x = &r.reading;
+        lines.push(format!(
+            "  {:>9} {:>8} {:>6} {:>7} {:>8} {:>8} {:>8}",
+            sig(x.time_s / 60.0, 4),
+            sig(x.reading, 4),
+            sig(x.blank_reading, 4),
+            sig(x.temperature_c, 3),
+            sig(r.effective_depth_m * 100.0, 3),
+            sig(r.diameter_m * 1e6, 3),
+            sig(r.percent_finer, 3)
+        ));
+    }
+    lines
+}
+
+fn write_csv(path: &Path, red: &[Reduced]) -> std::io::Result<()> {
+    let rows: Vec<Vec<String>> = red
+        .iter()
+        .map(|r| {
+            let x = &r.reading;
+            vec![
+                clean(x.time_s),
+                clean(x.time_s / 60.0),
+                clean(x.reading),
+                clean(x.blank_reading),
+                clean(r.net_reading),
+                clean(x.temperature_c),
+                clean(r.viscosity_pa_s),
+                clean(r.effective_depth_m),
+                clean(r.diameter_m),
+                clean(r.percent_finer),
+            ]
+        })
+        .collect();
+    io::write_csv(
+        path,
+        &[
+            "time_s",
+            "time_min",
+            "reading",
+            "blank_reading",
+            "net_reading",
+            "temperature_c",
+            "viscosity_pa_s",
+            "effective_depth_m",
+            "diameter_m",
+            "percent_finer",
+        ],
+        &rows,
+    )
+}
+
+fn write_chart(path: &Path, stem: &str, s: &TestSetup, red: &[Reduced]) -> std::io::Result<()> {
+    let points = red
+        .iter()
+        .map(|r| (r.diameter_m * 1e6, r.percent_finer))
+        .collect();
+    scatter_svg(
+        path,
+        &format!(
+            "{stem}: percent finer (ASTM {}, {})",
+            s.standard.name().to_uppercase(),
+            s.hydrometer.name()
+        ),
+        "particle diameter [µm]",
+        "percent finer [%]",
+        Scale::Log,
+        Scale::Linear,
+        &[Series::sorted_line(
+            format!("{} reduction", s.standard.name().to_uppercase()),
+            points,
+            0,
+        )],
+    )
+}
+
+/// reduce.toml: what was reduced, how, by which settle.
+fn record(file: &Path, s: &TestSetup, readings: &[LabReading]) -> String {
+    let mut t = format!(
+        "# written by settle reduce\n[reduce]\nsettle_version = \"{}\"\ninput = {:?}\n\
+         standard = \"{}\"\nhydrometer = \"{}\"\nreadings = {}\ndry_mass_g = {}\n\
+         specific_gravity = {}\nmeniscus_correction = {}\nsuspension_volume_ml = {}\n",
+        env!("CARGO_PKG_VERSION"),
+        file.display().to_string(),
+        s.standard.name(),
+        s.hydrometer.name(),
+        readings.len(),
+        clean(s.dry_mass_kg * 1e3),
+        clean(s.specific_gravity),
+        clean(s.meniscus_correction),
+        clean(s.suspension_volume_m3 * 1e6),
+    );
+    if let Some(m) = &s.measured {
+        t.push_str(&format!(
+            "\n[d7928]\nh_r1_cm = {}\nh_r2_cm = {}\nr1 = {}\nr2 = {}\nbulb_volume_ml = {}\n\
+             cylinder_area_cm2 = {}\n",
+            clean(m.h_r1_m * 1e2),
+            clean(m.h_r2_m * 1e2),
+            clean(m.r1),
+            clean(m.r2),
+            clean(m.bulb_volume_m3 * 1e6),
+            clean(m.cylinder_area_m2 * 1e4)
+        ));
+    }
+    t
+}

@@ -1,0 +1,53 @@
+//! The validity warnings of scenes with spheres: the drag law a scenario uses, checked against
+//! its validated range ([`crate::fluid::validity`]) at the spheres' results.
+
+use super::{drag_law, Prepared};
+use crate::fluid::validity::{bingham_fedem_warning, stokes_warning};
+use crate::fluid::DragLaw;
+
+/// One sphere as the checks see it: id, diameter (m), density (kg/m³), speed (m/s) at which its
+/// drag law is judged (the simulated terminal velocity).
+#[derive(Clone, Debug)]
+pub struct SphereAt {
+    /// Sphere id.
+    pub id: String,
+    /// Diameter, m.
+    pub diameter_m: f64,
+    /// Density, kg/m³.
+    pub density_kg_m3: f64,
+    /// Speed, m/s.
+    pub speed_m_s: f64,
+}
+
+/// The warnings of the scenario's drag law over `spheres`: Stokes drag above its Reynolds
+/// number range; f-EDEM's Bingham drag outside its validated density and diameter ranges.
+pub fn drag_warnings(p: &Prepared, spheres: &[SphereAt]) -> Vec<String> {
+    let law = drag_law(&p.scenario, p.rheology);
+    let mut out = Vec::new();
+    match law {
+        DragLaw::Stokes { viscosity_pa_s } => {
+            let re: Vec<(String, f64)> = spheres
+                .iter()
+                .map(|s| {
+                    let re = crate::fluid::newtonian::reynolds(
+                        p.scenario.fluid.density_kg_m3,
+                        s.speed_m_s.abs(),
+                        s.diameter_m,
+                        viscosity_pa_s,
+                    );
+                    (s.id.clone(), re)
+                })
+                .collect();
+            out.extend(stokes_warning(&re));
+        }
+        DragLaw::Bingham { .. } => {
+            let ranges: Vec<(String, f64, f64)> = spheres
+                .iter()
+                .map(|s| (s.id.clone(), s.density_kg_m3, s.diameter_m))
+                .collect();
+            out.extend(bingham_fedem_warning(&ranges));
+        }
+        DragLaw::Dallavalle { .. } => {}
+    }
+    out
+}

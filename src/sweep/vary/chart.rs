@@ -1,0 +1,249 @@
+//! What a person reads of a parameter sweep: one chart per result quantity against the first
+//! varied key (one series per body, and per value of the other keys), and one console line per
+//! case.
+
+use super::table::VaryTable;
+use crate::error::Error;
+use crate::io::chart::{scatter_svg, Scale, Series};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// The points of one series, (x, y).
+type Points = Vec<(f64, f64)>;
+
+/// The unit of a key or quantity named with its SI unit as suffix (`fluid.viscosity_pa_s` →
+/// `Pa·s`, `terminal_velocity_m_s` → `m/s`); `-` for a pure number (`balls_lost`, a count).
+pub fn unit_of(name: &str) -> &'static str {
+    const UNITS: [(&str, &str); 14] = [
+        ("_pa_s", "Pa·s"),
+        ("_kg_m3", "kg/m³"),
+        ("_m_s2", "m/s²"),
+        ("_m_s", "m/s"),
+        ("_m3", "m³"),
+        ("_m2", "m²"),
+        ("_mm", "mm"),
+        ("_pa", "Pa"),
+        ("_kg", "kg"),
+        ("_deg", "°"),
+        ("_min", "min"),
+        ("_m", "m"),
+        ("_s", "s"),
+        ("_n", "N"),
+    ];
+    let name = name.to_ascii_lowercase();
+    UNITS
+        .iter()
+        .find(|(suffix, _)| name.ends_with(suffix))
+        .map_or("-", |(_, unit)| unit)
+}
+
+/// A number with 4 significant digits, as the console prints it (`0.004630`, `1.250e-6`; no
+/// `-0`).
+fn sig(x: f64) -> String {
+    if x.is_nan() {
+        return "NaN".into();
+    }
+    if x == 0.0 {
+        return "0".into();
+    }
+    let a = x.abs();
+    if x.fract() == 0.0 && a < 1e5 {
+        return format!("{}", x as i64);
+    }
+    if (1e-3..1e5).contains(&a) {
+        let d = (3 - a.log10().floor() as i32).max(0) as usize;
+        format!("{x:.d$}")
+    } else {
+        format!("{x:.3e}")
+    }
+}
+
+/// The x scale of an axis's values: log when they are positive and geometric (at least three,
+/// a constant ratio that is not also a constant step), else linear.
+fn scale_of(values: &[f64]) -> Scale {
+    let mut v: Vec<f64> = values.to_vec();
+    v.sort_by(f64::total_cmp);
+    v.dedup();
+    if v.len() < 3 || v[0] <= 0.0 {
+        return Scale::Linear;
+    }
+    let same = |a: f64, b: f64| (a - b).abs() <= 1e-6 * a.abs().max(b.abs());
+    let ratio = v[1] / v[0];
+    let geometric = v.windows(2).all(|w| same(w[1] / w[0], ratio));
+    let step = v[1] - v[0];
+    let arithmetic = v.windows(2).all(|w| same(w[1] - w[0], step));
+    if geometric && !arithmetic {
+        Scale::Log
+    } else {
+        Scale::Linear
+    }
+}
+
+/// A file-name-safe form of a key (`spheres[0].diameter_m` → `spheres_0_.diameter_m`).
+fn file_safe(key: &str) -> String {
+    key.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || "_.-".contains(c) {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
+/// Draws `<quantity>_vs_<first key>.svg` for every result quantity of `t` into `dir` (the
+/// references `reference_…` are drawn as hollow markers beside a single series) and returns
+/// their paths.
+pub fn charts(dir: &Path, title: &str, t: &VaryTable) -> Result<Vec<PathBuf>, Error> {
+    let Some(key) = t.keys.first() else {
+        return Ok(Vec::new());
+    };
+    let xs: Vec<f64> = t.rows.iter().map(|r| r.point[0]).collect();
+    let x_scale = scale_of(&xs);
+    let mut written = Vec::new();
+    for (qi, q) in t.results.iter().enumerate() {
+        if q.starts_with("reference_") {
+            continue;
+        }
+        let refi = t
+            .results
+            .iter()
+            .position(|c| *c == format!("reference_{q}"));
+        // Series keyed by (body, values of the other keys), in first-seen order.
+        let mut order: Vec<String> = Vec::new();
+        let mut pts: BTreeMap<String, (Points, Points)> = BTreeMap::new();
+        for r in &t.rows {
+            let mut label = r.body.clone();
+            for (k, v) in t.keys.iter().zip(&r.point).skip(1) {
+                label.push_str(&format!(", {k} = {}", crate::io::num(*v)));
+            }
+            if !pts.contains_key(&label) {
+                order.push(label.clone());
+            }
+            let e = pts.entry(label).or_default();
+            e.0.push((r.point[0], r.results[qi]));
+            if let Some(i) = refi {
+                e.1.push((r.point[0], r.results[i]));
+            }
+        }
+        let single = order.len() == 1;
+        let mut series = Vec::new();
+        for (i, label) in order.iter().enumerate() {
+            let (sim, reference) = &pts[label];
+            series.push(Series::sorted_line(label.clone(), sim.clone(), i));
+            if single && reference.iter().any(|p| p.1.is_finite()) {
+                let mut r =
+                    Series::sorted_line(format!("{label} (reference)"), reference.clone(), 1);
+                r.filled = false;
+                r.line = false;
+                series.push(r);
+            }
+        }
+        let path = dir.join(format!("{}_vs_{}.svg", file_safe(q), file_safe(key)));
+        scatter_svg(
+            &path,
+            &format!("{title}: {q} against {key}"),
+            &format!("{key} [{}]", unit_of(key)),
+            &format!("{q} [{}]", unit_of(q)),
+            x_scale,
+            Scale::Linear,
+            &series,
+        )
+        .map_err(|e| Error::Io(path.clone(), e))?;
+        written.push(path);
+    }
+    Ok(written)
+}
+
+/// The console lines of a parameter sweep: a heading, then one line per case with its key
+/// values, its status and each quantity (its value for one body, its range over several).
+pub fn console_lines(title: &str, t: &VaryTable) -> Vec<String> {
+    let mut cases: Vec<(&[f64], Vec<usize>)> = Vec::new();
+    for (i, r) in t.rows.iter().enumerate() {
+        match cases.last_mut() {
+            Some((p, rows)) if *p == r.point.as_slice() => rows.push(i),
+            _ => cases.push((&r.point, vec![i])),
+        }
+    }
+    let mut lines = vec![format!(
+        "{title}: {} cases varying {}",
+        cases.len(),
+        t.keys.join(", ")
+    )];
+    for (point, rows) in &cases {
+        let keys: Vec<String> = t
+            .keys
+            .iter()
+            .zip(point.iter())
+            .map(|(k, v)| format!("{k} = {}", crate::io::num(*v)))
+            .collect();
+        let mut line = format!("  {}:", keys.join(", "));
+        if let Some(r) = rows
+            .iter()
+            .map(|&i| &t.rows[i])
+            .find(|r| !r.reason.is_empty())
+        {
+            line.push_str(&format!(" unstable ({})", r.reason));
+            lines.push(line);
+            continue;
+        }
+        for (qi, q) in t.results.iter().enumerate() {
+            if q.starts_with("reference_") {
+                continue;
+            }
+            let v: Vec<f64> = rows
+                .iter()
+                .map(|&i| t.rows[i].results[qi])
+                .filter(|x| x.is_finite())
+                .collect();
+            let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
+            let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            let text = match v.len() {
+                0 => "-".to_string(),
+                _ if lo == hi => sig(lo),
+                n => format!("{} to {} ({n} bodies)", sig(lo), sig(hi)),
+            };
+            line.push_str(&format!(" {q} {text};"));
+        }
+        lines.push(line.trim_end_matches(';').to_string());
+    }
+    lines
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn units_come_from_the_name_suffix() {
+        assert_eq!(unit_of("fluid.viscosity_pa_s"), "Pa·s");
+        assert_eq!(unit_of("fluid.yield_stress_pa"), "Pa");
+        assert_eq!(unit_of("terminal_velocity_m_s"), "m/s");
+        assert_eq!(unit_of("velocity_at_0.01s_m_s"), "m/s");
+        assert_eq!(unit_of("spheres[0].diameter_m"), "m");
+        assert_eq!(unit_of("fluid.density_kg_m3"), "kg/m³");
+        assert_eq!(unit_of("gravity_m_s2"), "m/s²");
+        assert_eq!(unit_of("time.dt_s"), "s");
+        assert_eq!(unit_of("balls_lost"), "-");
+        assert_eq!(unit_of("contacts.friction"), "-");
+    }
+
+    #[test]
+    fn console_numbers_have_four_significant_digits() {
+        assert_eq!(sig(0.00463), "0.004630");
+        assert_eq!(sig(12.5), "12.50");
+        assert_eq!(sig(4.0), "4");
+        assert_eq!(sig(-0.0), "0");
+        assert_eq!(sig(1.25e-6), "1.250e-6");
+        assert_eq!(sig(123456.0), "1.235e5");
+    }
+
+    #[test]
+    fn a_geometric_axis_is_drawn_on_a_log_scale() {
+        assert!(scale_of(&[1e-4, 1e-3, 1e-2]) == Scale::Log);
+        assert!(scale_of(&[1.0, 2.0, 3.0]) == Scale::Linear);
+        assert!(scale_of(&[1.0, 10.0]) == Scale::Linear);
+        assert!(scale_of(&[0.0, 1.0, 10.0]) == Scale::Linear);
+    }
+}

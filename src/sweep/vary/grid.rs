@@ -1,0 +1,235 @@
+//! The grid of a parameter sweep (`--vary KEY=GRID`): each axis is a scenario key and its
+//! values; several axes make the full grid (the first key outermost). Pure: no I/O.
+
+use super::super::args::BadValue;
+
+/// Most values on one axis, and most cases in a whole grid: a larger grid is a typo more often
+/// than a plan (each case is a whole run).
+pub const MAX_CASES: usize = 10_000;
+
+/// What `--vary` accepts.
+pub const VARY_ALLOWED: &str = "KEY=LO:HI:N (N ≥ 2 values from LO to HI, LO < HI, linear), \
+    KEY=log:LO:HI:N (log-spaced, 0 < LO < HI) or KEY=V1,V2,… (numbers), with N ≤ 10000; \
+    e.g. fluid.yield_stress_pa=10:40:13";
+
+/// How an axis's values are spaced (the chart's x scale follows it).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Spacing {
+    /// `LO:HI:N` or a list: a linear axis.
+    Linear,
+    /// `log:LO:HI:N`: a log axis.
+    Log,
+}
+
+/// One `--vary` axis: a scenario key (as `--set` takes it) and its values, ascending.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Axis {
+    /// The key, e.g. `fluid.yield_stress_pa` or `spheres[0].diameter_m`.
+    pub key: String,
+    /// Its values, ascending, without repeats, in the key's unit.
+    pub values: Vec<f64>,
+    /// Linear or log spacing.
+    pub spacing: Spacing,
+}
+
+/// `x` rounded to 12 significant digits, so that grid arithmetic prints as the user wrote it
+/// (`0.1 + 2 × 0.1` is 0.3, not 0.30000000000000004).
+pub fn round12(x: f64) -> f64 {
+    if x == 0.0 || !x.is_finite() {
+        return x.abs();
+    }
+    // Through decimal text: the nearest double to the 12-digit decimal, as a person reads it.
+    format!("{x:.11e}").parse().unwrap_or(x)
+}
+
+/// The value as `--set` writes it: an integer when whole (a count such as `sample.particles`
+/// reads it, and so does a real key), else exponent notation (TOML reads `1.25e1`).
+pub fn override_text(x: f64) -> String {
+    if x.fract() == 0.0 && x.abs() < 1e15 {
+        format!("{}", x as i64)
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// Parses one `--vary KEY=GRID` (see [`VARY_ALLOWED`]).
+pub fn parse_vary(s: &str) -> Result<Axis, BadValue> {
+    let bad = BadValue {
+        allowed: VARY_ALLOWED,
+    };
+    let (key, grid) = s.split_once('=').ok_or(bad)?;
+    let key = key.trim();
+    let valid_key = !key.is_empty()
+        && key
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || "_.[]".contains(c));
+    if !valid_key {
+        return Err(bad);
+    }
+    let number = |t: &str| t.trim().parse::<f64>().ok().filter(|x| x.is_finite());
+    let count = |t: &str| {
+        t.trim()
+            .parse::<usize>()
+            .ok()
+            .filter(|n| (2..=MAX_CASES).contains(n))
+    };
+    let grid = grid.trim();
+    let (spacing, values) = if let Some(rest) = grid.strip_prefix("log:") {
+        let p: Vec<&str> = rest.split(':').collect();
+        let [lo, hi, n] = p[..] else { return Err(bad) };
+        let (lo, hi, n) = (
+            number(lo).ok_or(bad)?,
+            number(hi).ok_or(bad)?,
+            count(n).ok_or(bad)?,
+        );
+        if !(lo > 0.0 && lo < hi) {
+            return Err(bad);
+        }
+        let r = (hi / lo).ln();
+        let v = (0..n)
+            .map(|i| round12(lo * (r * i as f64 / (n - 1) as f64).exp()))
+            .collect();
+        (Spacing::Log, v)
+    } else if grid.contains(':') {
+        let p: Vec<&str> = grid.split(':').collect();
+        let [lo, hi, n] = p[..] else { return Err(bad) };
+        let (lo, hi, n) = (
+            number(lo).ok_or(bad)?,
+            number(hi).ok_or(bad)?,
+            count(n).ok_or(bad)?,
+        );
+        if lo >= hi {
+            return Err(bad);
+        }
+        let v = (0..n)
+            .map(|i| round12(lo + (hi - lo) * i as f64 / (n - 1) as f64))
+            .collect();
+        (Spacing::Linear, v)
+    } else {
+        let v: Option<Vec<f64>> = grid.split(',').map(number).collect();
+        let v = v.ok_or(bad)?;
+        if v.is_empty() || v.len() > MAX_CASES {
+            return Err(bad);
+        }
+        (Spacing::Linear, v)
+    };
+    let mut values = values;
+    values.sort_by(f64::total_cmp);
+    values.dedup();
+    Ok(Axis {
+        key: key.to_string(),
+        values,
+        spacing,
+    })
+}
+
+/// Every point of the full grid of `axes` (one value per axis, in axis order), the first axis
+/// outermost; empty for no axes.
+pub fn points(axes: &[Axis]) -> Vec<Vec<f64>> {
+    if axes.is_empty() {
+        return Vec::new();
+    }
+    let mut out: Vec<Vec<f64>> = vec![Vec::new()];
+    for a in axes {
+        out = out
+            .into_iter()
+            .flat_map(|p| {
+                a.values.iter().map(move |&v| {
+                    let mut q = p.clone();
+                    q.push(v);
+                    q
+                })
+            })
+            .collect();
+    }
+    out
+}
+
+/// The number of points of the full grid, saturating (to refuse a huge grid before building it).
+pub fn count(axes: &[Axis]) -> usize {
+    axes.iter()
+        .fold(1usize, |n, a| n.saturating_mul(a.values.len()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_linear_grid_has_n_round_values_from_lo_to_hi() {
+        let a = parse_vary("fluid.yield_stress_pa=10:40:13").unwrap();
+        assert_eq!(a.key, "fluid.yield_stress_pa");
+        assert_eq!(a.spacing, Spacing::Linear);
+        assert_eq!(a.values.len(), 13);
+        assert_eq!(a.values[0], 10.0);
+        assert_eq!(a.values[1], 12.5);
+        assert_eq!(a.values[12], 40.0);
+        let a = parse_vary("x=0:0.3:4").unwrap();
+        assert_eq!(a.values, [0.0, 0.1, 0.2, 0.3]);
+    }
+
+    #[test]
+    fn a_log_grid_is_geometric_and_prints_round() {
+        let a = parse_vary("fluid.viscosity_pa_s=log:1e-4:1e-2:5").unwrap();
+        assert_eq!(a.spacing, Spacing::Log);
+        assert_eq!(a.values.len(), 5);
+        assert_eq!(a.values[0], 1e-4);
+        assert_eq!(a.values[2], 1e-3);
+        assert_eq!(a.values[4], 1e-2);
+        assert_eq!(override_text(a.values[2]), "1e-3");
+    }
+
+    #[test]
+    fn a_list_is_sorted_and_deduplicated() {
+        let a = parse_vary("sample.particles=3000,1000,2000,1000").unwrap();
+        assert_eq!(a.values, [1000.0, 2000.0, 3000.0]);
+        assert_eq!(override_text(2000.0), "2000");
+        assert_eq!(override_text(12.5), "1.25e1");
+        assert_eq!(override_text(-0.5), "-5e-1");
+    }
+
+    #[test]
+    fn bad_grids_are_refused_with_what_is_allowed() {
+        for s in [
+            "novalue",
+            "=1,2",
+            "k=1:2",
+            "k=2:1:3",
+            "k=1:2:1",
+            "k=1:2:100001",
+            "k=log:0:1:3",
+            "k=log:1:1:3",
+            "k=a,b",
+            "k=1,,2",
+            "k=1:2:x",
+            "k=nan,1",
+            "bad key=1,2",
+        ] {
+            let e = parse_vary(s).unwrap_err();
+            assert!(e.to_string().contains("KEY=LO:HI:N"), "{s}: {e}");
+        }
+    }
+
+    #[test]
+    fn the_full_grid_has_the_product_of_the_axes_first_key_outermost() {
+        let a = parse_vary("a=1,2").unwrap();
+        let b = parse_vary("b=10:30:3").unwrap();
+        let p = points(&[a.clone(), b.clone()]);
+        assert_eq!(p.len(), 6);
+        assert_eq!(count(&[a, b]), 6);
+        assert_eq!(p[0], [1.0, 10.0]);
+        assert_eq!(p[1], [1.0, 20.0]);
+        assert_eq!(p[5], [2.0, 30.0]);
+        assert!(points(&[]).is_empty());
+    }
+
+    #[test]
+    fn round12_removes_float_noise_only() {
+        assert_eq!(round12(0.30000000000000004), 0.3);
+        assert_eq!(round12(-0.30000000000000004), -0.3);
+        assert_eq!(round12(123456.0), 123456.0);
+        assert_eq!(round12(1.0000000000000002e-14), 1e-14);
+        assert_eq!(round12(0.0), 0.0);
+        assert_eq!(round12(-0.0).to_bits(), 0.0f64.to_bits());
+    }
+}

@@ -1,0 +1,248 @@
+//! Parameter sweeps on any key (issue 13 item 6): `settle sweep S.toml --vary KEY=GRID` runs
+//! one case per point of the grid and writes `OUT/<name>_vary/vary.csv` (the keys, then the
+//! results with units) and a chart of each result against the first key; every case is
+//! validated before any runs; shards merge to the unsharded table; a signal stops it with
+//! nothing written.
+
+use crate::common::chart::assert_readable_chart;
+use crate::common::{assert_exit, col, read_csv, settle, tmp};
+use std::path::Path;
+
+const STOKES: &str = "scenarios/stokes_single.toml";
+
+/// Runs `settle sweep ARGS --quiet --out OUT` and returns its output.
+fn sweep(args: &[&str], out: &Path) -> std::process::Output {
+    settle()
+        .arg("sweep")
+        .args(args)
+        .arg("--quiet")
+        .arg("--out")
+        .arg(out)
+        .output()
+        .unwrap()
+}
+
+/// Under Stokes drag v_t = (ρ_p − ρ_f) g d² / (18 μ) (f-EDEM eq. 21): v_t ∝ 1/μ. Three
+/// viscosities on a log grid give velocities in the inverse ratios, to 1e-6, and equal to the
+/// force-balance reference column.
+#[test]
+fn terminal_velocity_varies_as_one_over_viscosity() {
+    let dir = tmp();
+    let o = sweep(
+        &[STOKES, "--vary", "fluid.viscosity_pa_s=log:1e-3:4e-3:3"],
+        dir.path(),
+    );
+    assert_exit(&o, 0);
+    let out = dir.path().join("stokes_single_vary");
+    let (h, rows) = read_csv(&out.join("vary.csv"));
+    assert_eq!(h[0], "fluid.viscosity_pa_s");
+    assert_eq!(h[1], "body");
+    assert_eq!(h[2], "terminal_velocity_m_s");
+    assert_eq!(h[3], "reference_terminal_velocity_m_s");
+    assert_eq!(rows.len(), 3);
+    let mu: Vec<f64> = rows
+        .iter()
+        .map(|r| col(&h, r, "fluid.viscosity_pa_s"))
+        .collect();
+    assert_eq!(mu, [1e-3, 2e-3, 4e-3]);
+    let v: Vec<f64> = rows
+        .iter()
+        .map(|r| col(&h, r, "terminal_velocity_m_s"))
+        .collect();
+    for (i, r) in rows.iter().enumerate() {
+        let ratio = v[i] / v[0];
+        assert!(
+            (ratio - mu[0] / mu[i]).abs() < 1e-6,
+            "v ratio {ratio} at μ = {}",
+            mu[i]
+        );
+        let reference = col(&h, r, "reference_terminal_velocity_m_s");
+        assert!(
+            (v[i] / reference - 1.0).abs() < 1e-6,
+            "{} vs {reference}",
+            v[i]
+        );
+    }
+    assert_readable_chart(
+        &out.join("terminal_velocity_m_s_vs_fluid.viscosity_pa_s.svg"),
+        "terminal_velocity_m_s against fluid.viscosity_pa_s",
+        &["fluid.viscosity_pa_s [Pa·s]", "terminal_velocity_m_s [m/s]"],
+    );
+}
+
+/// Two keys make the full grid (2 × 3 cases, the first key outermost); at each density the
+/// doubled diameter quadruples the Stokes velocity.
+#[test]
+fn two_keys_run_their_full_grid() {
+    let dir = tmp();
+    let o = sweep(
+        &[
+            STOKES,
+            // 33 response times of the larger sphere (τ = ρ_p d²/18μ = 6 ms): at terminal speed.
+            "--set",
+            "time.end_s=0.2",
+            "--vary",
+            "spheres[0].diameter_m=1e-4,2e-4",
+            "--vary",
+            "fluid.density_kg_m3=1000:1200:3",
+        ],
+        dir.path(),
+    );
+    assert_exit(&o, 0);
+    let out = dir.path().join("stokes_single_vary");
+    let (h, rows) = read_csv(&out.join("vary.csv"));
+    assert_eq!(
+        h[..3],
+        ["spheres[0].diameter_m", "fluid.density_kg_m3", "body"]
+    );
+    assert_eq!(rows.len(), 6);
+    let at = |d: f64, rho: f64| {
+        let r = rows
+            .iter()
+            .find(|r| {
+                col(&h, r, "spheres[0].diameter_m") == d && col(&h, r, "fluid.density_kg_m3") == rho
+            })
+            .unwrap_or_else(|| panic!("no case d = {d}, ρ = {rho}"));
+        col(&h, r, "terminal_velocity_m_s")
+    };
+    for rho in [1000.0, 1100.0, 1200.0] {
+        let ratio = at(2e-4, rho) / at(1e-4, rho);
+        assert!((ratio - 4.0).abs() < 1e-6, "ρ = {rho}: {ratio}");
+    }
+    // One series per value of the second key.
+    let texts = assert_readable_chart(
+        &out.join("terminal_velocity_m_s_vs_spheres_0_.diameter_m.svg"),
+        "terminal_velocity_m_s against spheres[0].diameter_m",
+        &["spheres[0].diameter_m [m]", "terminal_velocity_m_s [m/s]"],
+    );
+    for rho in ["1000", "1100", "1200"] {
+        let label = format!("fedem-table1, fluid.density_kg_m3 = {rho}");
+        assert!(
+            texts.iter().any(|t| t.contains(&label)),
+            "{label} in {texts:?}"
+        );
+    }
+}
+
+/// A misspelt key, an out-of-range value anywhere in the grid and a kind without results are
+/// refused with exit 2 before any case runs, naming the key and what is allowed; nothing is
+/// written.
+#[test]
+fn a_bad_key_or_value_is_refused_before_anything_runs() {
+    let dir = tmp();
+    let cases: [(&[&str], &[&str]); 4] = [
+        (
+            &[STOKES, "--vary", "fluid.viscosty_pa_s=1e-3,2e-3"],
+            &["fluid.viscosty_pa_s", "unknown field"],
+        ),
+        (
+            &[STOKES, "--vary", "fluid.viscosity_pa_s=-1e-3:1e-3:3"],
+            &["fluid.viscosity_pa_s", "out of range", "allowed 0 <"],
+        ),
+        (
+            &[STOKES, "--vary", "fluid.viscosity_pa_s=1e-3:2e-3"],
+            &["--vary", "KEY=LO:HI:N"],
+        ),
+        (
+            &[
+                "scenarios/sedimentation_sample1.toml",
+                "--vary",
+                "fluid.viscosity_pa_s=1e-3,2e-3",
+            ],
+            &["kind", "cannot be swept"],
+        ),
+    ];
+    for (args, words) in cases {
+        let o = sweep(args, dir.path());
+        assert_exit(&o, 2);
+        let err = String::from_utf8_lossy(&o.stderr);
+        for w in words {
+            assert!(err.contains(w), "{args:?}: `{w}` not in {err}");
+        }
+        assert!(
+            !dir.path().exists() || std::fs::read_dir(dir.path()).unwrap().next().is_none(),
+            "{args:?} wrote something"
+        );
+    }
+}
+
+/// `--shard I/N` runs a slice of the grid into `vary_part_I_of_N.csv`; `--merge` joins the
+/// parts into the same table as the unsharded sweep (wall times aside) and its charts.
+#[test]
+fn merged_shards_equal_the_unsharded_parameter_sweep() {
+    let dir = tmp();
+    let vary = ["--vary", "fluid.viscosity_pa_s=1e-3:3e-3:5"];
+    let whole = dir.path().join("whole");
+    assert_exit(&sweep(&[&[STOKES][..], &vary].concat(), &whole), 0);
+    let parts = dir.path().join("parts");
+    for s in ["1/3", "2/3", "3/3"] {
+        assert_exit(
+            &sweep(&[&[STOKES, "--shard", s][..], &vary].concat(), &parts),
+            0,
+        );
+    }
+    let folder = parts.join("stokes_single_vary");
+    assert!(folder.join("vary_part_2_of_3.csv").is_file());
+    let o = settle()
+        .args(["sweep", "--quiet", "--merge"])
+        .arg(&folder)
+        .output()
+        .unwrap();
+    assert_exit(&o, 0);
+    let strip = |p: &Path| {
+        let (h, rows) = read_csv(p);
+        let w = h.iter().position(|c| c == "wall_time_s").unwrap();
+        let rows: Vec<Vec<String>> = rows
+            .into_iter()
+            .map(|mut r| {
+                r[w].clear();
+                r
+            })
+            .collect();
+        (h, rows)
+    };
+    let a = strip(&whole.join("stokes_single_vary/vary.csv"));
+    let b = strip(&folder.join("vary.csv"));
+    assert_eq!(a.1.len(), 5);
+    assert_eq!(a, b);
+    assert!(folder
+        .join("terminal_velocity_m_s_vs_fluid.viscosity_pa_s.svg")
+        .is_file());
+}
+
+/// SIGTERM during a long parameter sweep: exit 130 within seconds, nothing written (as the dt
+/// sweep).
+#[cfg(unix)]
+#[test]
+fn sigterm_stops_a_parameter_sweep_and_writes_nothing() {
+    use crate::common::signalled;
+    use std::time::Duration;
+    let dir = tmp();
+    let out = dir.path().join("out");
+    // 27 spheres at dt = 1e-7 s over up to 120 s, twice: far more than the test's patience.
+    let mut cmd = settle();
+    cmd.args([
+        "sweep",
+        "scenarios/valentik_susp1.toml",
+        "--set",
+        "time.dt_s=1e-7",
+        "--vary",
+        "fluid.yield_stress_pa=20,30",
+        "--quiet",
+        "--out",
+    ])
+    .arg(&out);
+    let o = signalled(
+        cmd,
+        "TERM",
+        Duration::from_millis(1500),
+        Duration::from_secs(5),
+    );
+    assert!(o.waited < Duration::from_secs(5), "not stopped within 5 s");
+    assert_eq!(o.code, Some(130), "stderr: {}", o.stderr);
+    assert!(o.stderr.contains("interrupted"), "stderr: {}", o.stderr);
+    let left: Vec<_> = std::fs::read_dir(&out)
+        .map(|d| d.flatten().map(|e| e.file_name()).collect())
+        .unwrap_or_default();
+    assert!(left.is_empty(), "an interrupted sweep wrote {left:?}");
+}
