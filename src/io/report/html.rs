@@ -41,6 +41,7 @@ tbody tr:nth-child(even){background:#f8f9fa}
 .wide td:first-child,.wide th:first-child{position:sticky;left:0;background:inherit;
  box-shadow:1px 0 0 #c9ced4}
 .wide thead tr{background:#f1f3f5}
+td.t{white-space:nowrap}
 td.n{text-align:right;font-variant-numeric:tabular-nums;white-space:nowrap}
 .kv{display:grid;grid-template-columns:repeat(auto-fill,minmax(270px,1fr));gap:0 18px;
  font-size:13.5px;margin:.3em 0}

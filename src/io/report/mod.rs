@@ -30,7 +30,7 @@ pub const RUN_TABLES: &[&str] = &["summary.csv", "metrics.csv", "instrument_erro
 pub const COMBINED_TABLES: &[&str] = &["metrics.csv", "instrument_errors.csv", "summary.csv"];
 
 /// The result tables a sweep's page shows, in this order, when the sweep wrote them.
-pub const SWEEP_TABLES: &[&str] = &["recommended_dt.csv", "sweep.csv"];
+pub const SWEEP_TABLES: &[&str] = &["recommended_dt.csv", "sweep.csv", "vary.csv"];
 
 /// Rows of a table the page shows; the rest is counted and linked.
 pub const MAX_ROWS: usize = 30;

@@ -73,10 +73,15 @@ fn data_cell(raw: &str) -> String {
         )
     } else if numeric {
         format!("<td class=\"n\">{}</td>", esc(&shown))
+    } else if shown.chars().count() <= SHORT_TEXT_CHARS {
+        format!("<td class=\"t\">{}</td>", esc(&shown))
     } else {
         format!("<td>{}</td>", esc(&shown))
     }
 }
+
+/// Text cells up to this many characters are never broken over lines (`fedem-table1`).
+const SHORT_TEXT_CHARS: usize = 24;
 
 /// The HTML of the CSV file `path` (linked as `rel`): at most `max_rows` rows, then a line
 /// saying how many more the file has. `None` when the file cannot be read as CSV.
@@ -229,7 +234,7 @@ mod tests {
     fn text_cells_are_escaped() {
         let h = table("a,b,c\n<x>,1,2\n", 30);
         assert!(
-            h.contains("<td>&lt;x&gt;</td>") && !h.contains("<x>"),
+            h.contains("<td class=\"t\">&lt;x&gt;</td>") && !h.contains("<x>"),
             "{h}"
         );
     }
