@@ -235,6 +235,12 @@ fn value_text(v: &toml::Value) -> String {
         toml::Value::Boolean(b) => if *b { "yes" } else { "no" }.to_string(),
         toml::Value::Array(a) if a.is_empty() => "none".to_string(),
         toml::Value::Array(a) => a.iter().map(value_text).collect::<Vec<_>>().join(", "),
+        toml::Value::Table(t) if t.is_empty() => "none".to_string(),
+        toml::Value::Table(t) => t
+            .iter()
+            .map(|(k, v)| format!("{k}: {}", value_text(v)))
+            .collect::<Vec<_>>()
+            .join("; "),
         other => other.to_string(),
     }
 }
@@ -595,6 +601,7 @@ mod tests {
             dir.join("run.toml"),
             "[run]\nstatus = \"complete\"\nwall_time_s = 2.064213979\n\
              warnings = [\"Re = 12 > 0.5: Stokes drag <invalid>\", \"second\"]\n\
+             overrides = { set = [\"a.b=1\", \"c=2\"] }\n\
              [scenario]\nname = \"demo\"\nkind = \"free_settling\"\ndescription = \"a < b\"\n",
         )
         .unwrap();
@@ -622,6 +629,7 @@ mod tests {
         assert!(h.contains("<li>Re = 12 &gt; 0.5: Stokes drag &lt;invalid&gt;</li>"));
         assert!(h.contains("<p class=\"desc\">a &lt; b</p>"));
         assert!(h.contains("2.064 s (the run&#39;s cost)"));
+        assert!(h.contains(">set: a.b=1, c=2<"), "{h}");
         assert!(h.contains("<td class=\"n\" title=\"0.123456\">0.1235</td>"));
         assert!(h.contains("<figure data-file=\"snapshots/v.svg\"><svg viewBox=\"0 0 10 5\""));
         assert!(h.contains("Title &amp; more — <a href=\"snapshots/v.svg\">"));
