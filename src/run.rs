@@ -226,6 +226,8 @@ pub fn run_one_with(p: &Prepared, out_dir: &Path, ctx: &RunContext) -> Result<Fi
     let text = toml::to_string(&meta).map_err(|e| io(std::io::Error::other(e)))?;
     let text = format!("{RUN_TOML_HEAD}{text}");
     output::write_atomic(&stage.path("run.toml"), text.as_bytes()).map_err(io)?;
+    output::report::write_report(&stage.path(""), &output::report::Page::run(&s.name))
+        .map_err(io)?;
     let out = commit(stage, &p.path)?;
     if report.interrupted {
         return Err(Error::Interrupted(out));
@@ -470,6 +472,12 @@ fn write_combined(out_dir: &Path, reports: &[FileReport]) -> Result<(), Error> {
         )
         .map_err(io)?;
     }
+    let names: Vec<String> = reports
+        .iter()
+        .map(|r| r.prepared.scenario.name.clone())
+        .collect();
+    output::report::write_report(&stage.path(""), &output::report::Page::combined(&names))
+        .map_err(io)?;
     // Checked before the run (check_destinations); a folder appearing since is an I/O error.
     stage.commit().map_err(io)?;
     Ok(())

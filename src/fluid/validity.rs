@@ -191,7 +191,7 @@ mod tests {
 
     #[test]
     fn stokes_warns_only_above_its_range() {
-        assert_eq!(stokes_warning(&[("a".into(), 0.93)]), None);
+        assert_eq!(stokes_warning(&[("a".into(), 0.49)]), None);
         let w = stokes_warning(&[("a".into(), 0.5), ("b".into(), 3.7e6)]).unwrap();
         assert!(w.contains("1 of 2") && w.contains("3.700e6") && w.contains("sphere b"));
         assert!(w.contains("drag.law = \"dallavalle\""), "{w}");

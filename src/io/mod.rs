@@ -13,6 +13,7 @@
 pub mod chart;
 pub mod fmt;
 pub mod metrics;
+pub mod report;
 
 use std::fs;
 use std::io;

@@ -149,6 +149,8 @@ fn sweep_file(p: &Prepared, plan: &Plan, out: &Path, quiet: bool) -> Result<(), 
         quiet,
     };
     write_results(&stage.path(""), &rows, &cx)?;
+    crate::io::report::write_report(&stage.path(""), &crate::io::report::Page::sweep(&name))
+        .map_err(io)?;
     let dest = stage.commit().map_err(io)?;
     if !quiet {
         println!("  -> {}", dest.display());
@@ -234,6 +236,8 @@ fn merge_dt(args: &Args, files: Vec<PathBuf>) -> Result<(), Error> {
         quiet: args.quiet,
     };
     write_results(&dest, &rows, &cx)?;
+    crate::io::report::write_report(&dest, &crate::io::report::Page::sweep(cx.title))
+        .map_err(|e| Error::Io(dest.clone(), e))?;
     if !args.quiet {
         println!(
             "merged {} parts ({} rows) -> {}",

@@ -37,7 +37,7 @@ pub fn write_results(dir: &Path, rows: &[Row], cx: &Context) -> Result<(), Error
     charts(dir, cx.title, &sums)?;
     counts_chart(dir, cx.title, rows)?;
     if !cx.quiet {
-        println!("{}", table_lines(cx.title, &sums).join("\n"));
+        println!("{}", table_lines(cx.title, cx.tol, &sums).join("\n"));
     }
     let recommended: Vec<Recommended> = Integrator::ALL
         .into_iter()
@@ -103,11 +103,11 @@ fn recommended_csv(rec: &[Recommended], cx: &Context) -> io::Result<Vec<u8>> {
 /// The console table of a sweep, one line per case, numbers as [`crate::io::fmt`] writes them
 /// (dt as given, errors with 2 significant digits). An unstable case shows `unstable` and its
 /// reason instead of errors (its values are NaN in `sweep.csv`).
-pub fn table_lines(title: &str, sums: &[CaseSummary]) -> Vec<String> {
+pub fn table_lines(title: &str, tol: f64, sums: &[CaseSummary]) -> Vec<String> {
     let mut lines = vec![
         format!("{title}: {} cases", sums.len()),
         format!(
-            "  {:<12} {:>10} {:>9} {:>10} {:>9}  max |error vs finest| per quantity",
+            "  {:<12} {:>10} {:>10} {:>10} {:>9}  max |error vs finest| per quantity",
             "integrator", "dt_s", "status", "wall_s", "steps"
         ),
     ];
@@ -115,7 +115,7 @@ pub fn table_lines(title: &str, sums: &[CaseSummary]) -> Vec<String> {
         let errs = if s.stable {
             s.errors
                 .iter()
-                .map(|(q, (f, _))| format!("{q}={}", sig(*f, 2)))
+                .map(|(q, (f, _))| format!("{q}={}%", sig(100.0 * *f, 2)))
                 .collect::<Vec<_>>()
                 .join(" ")
         } else {
@@ -123,16 +123,34 @@ pub fn table_lines(title: &str, sums: &[CaseSummary]) -> Vec<String> {
             s.reason.clone()
         };
         lines.push(format!(
-            "  {:<12} {:>10} {:>9} {:>10} {:>9}  {}",
+            "  {:<12} {:>10} {:>10} {:>10} {:>9}  {}",
             s.integrator.name(),
             short(s.dt_s),
-            if s.stable { "stable" } else { "UNSTABLE" },
+            status_label(s, tol),
             g(s.wall_time_s),
             s.steps,
             errs
         ));
     }
     lines
+}
+
+/// The status a person reads: `UNSTABLE` (the run blew up), `inaccurate` (bounded, but some
+/// quantity is further than `tol` from the finest dt: issue 13 found `explicit 3.0e-2` labelled
+/// stable with a 32 000 % error), `reference` (the finest stable dt, every error 0 by
+/// definition) or `ok` (within `tol`).
+fn status_label(s: &CaseSummary, tol: f64) -> &'static str {
+    if !s.stable {
+        return "UNSTABLE";
+    }
+    let worst = s.errors.values().map(|(f, _)| *f).fold(0.0, f64::max);
+    if s.errors.values().any(|(f, _)| f.is_nan()) || worst > tol {
+        "inaccurate"
+    } else if worst == 0.0 {
+        "reference"
+    } else {
+        "ok"
+    }
 }
 
 /// The console line of one recommended dt; `unverified` when it is the finest stable dt tried.
@@ -303,7 +321,7 @@ mod tests {
             case(Integrator::Explicit, 1e-2, false, 0.0),
             case(Integrator::Explicit, 1e-3, true, 0.0),
         ];
-        let lines = table_lines("t", &sums);
+        let lines = table_lines("t", 0.01, &sums);
         assert!(lines[2].contains("UNSTABLE"), "{}", lines[2]);
         assert!(lines[2].contains("velocity oscillates"), "{}", lines[2]);
         assert!(
@@ -312,11 +330,29 @@ mod tests {
             lines[2]
         );
         assert!(
-            lines[3].ends_with("terminal_velocity_m_s=0"),
+            lines[3].ends_with("terminal_velocity_m_s=0%"),
             "{}",
             lines[3]
         );
         assert!(lines[3].contains(" 0.001 "), "dt as given: {}", lines[3]);
+    }
+
+    /// Issue 13: `explicit 3.0e-2` was labelled stable with a 32 000 % error. A bounded case
+    /// beyond the tolerance reads `inaccurate`, its error in percent; the finest reads
+    /// `reference`; one within the tolerance `ok`.
+    #[test]
+    fn a_bounded_case_far_from_the_finest_is_inaccurate() {
+        let sums = [
+            case(Integrator::Explicit, 3e-2, true, 320.0),
+            case(Integrator::Explicit, 1e-3, true, 0.004),
+            case(Integrator::Explicit, 1e-4, true, 0.0),
+        ];
+        let lines = table_lines("t", 0.01, &sums);
+        assert!(lines[2].contains(" inaccurate "), "{}", lines[2]);
+        assert!(lines[2].contains("=32000%"), "{}", lines[2]);
+        assert!(lines[3].contains(" ok "), "{}", lines[3]);
+        assert!(lines[3].contains("=0.40%"), "{}", lines[3]);
+        assert!(lines[4].contains(" reference "), "{}", lines[4]);
     }
 
     /// Issue 13: the recommended dt was simply the finest dt tried, with nothing saying that no

@@ -6,6 +6,7 @@ mod checkpoint;
 pub(crate) mod console;
 mod interrupt;
 mod reduce;
+mod report;
 mod rerun;
 mod sweep;
 mod tutorial;

@@ -24,18 +24,22 @@ fn run_in(cwd: &Path, args: &[&str], out: &Path) {
     assert_exit(&o, 0);
 }
 
-/// Asserts that folders `a` and `b` hold the same files with the same bytes, `run.toml` and
-/// the folder marker aside; returns how many data files (CSV) were compared.
+/// Files that differ between a run and its rerun: `run.toml` (wall time), the folder marker,
+/// and `report.html`, which shows run.toml's record.
+const SKIPPED: &[&str] = &["run.toml", ".settle-run", "report.html"];
+
+/// Asserts that folders `a` and `b` hold the same files with the same bytes, [`SKIPPED`]
+/// aside; returns how many data files (CSV) were compared.
 fn assert_same_outputs(a: &Path, b: &Path) -> usize {
     let files: Vec<PathBuf> = tree(a)
         .into_iter()
         .filter(|f| a.join(f).is_file())
-        .filter(|f| f != Path::new("run.toml") && f != Path::new(".settle-run"))
+        .filter(|f| !SKIPPED.iter().any(|s| f == Path::new(s)))
         .collect();
     let other: Vec<PathBuf> = tree(b)
         .into_iter()
         .filter(|f| b.join(f).is_file())
-        .filter(|f| f != Path::new("run.toml") && f != Path::new(".settle-run"))
+        .filter(|f| !SKIPPED.iter().any(|s| f == Path::new(s)))
         .collect();
     assert_eq!(files, other, "the two runs wrote different files");
     for f in &files {

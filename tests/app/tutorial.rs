@@ -13,16 +13,6 @@ use std::path::Path;
 const README: &str = include_str!("../../README.md");
 const CI: &str = include_str!("../../.ci/run");
 
-/// Tutorial commands that need a feature of issue 13 not on this branch yet: skipped, with the
-/// feature. Remove an entry once its feature is merged; the test then runs the command.
-const PENDING_COMMANDS: &[(&str, &str)] = &[];
-
-/// Output files the tutorial names that a feature not on this branch yet writes.
-const PENDING_FILES: &[(&str, &str)] = &[(
-    "report.html",
-    "the report page of a run (issue 13 item 2, helper `report`)",
-)];
-
 /// What the tutorial asks the reader to do.
 struct Tutorial {
     /// Files to write: name and text.
@@ -123,10 +113,6 @@ fn readme_says(words: &str) -> bool {
     flat.contains(words)
 }
 
-fn pending<'a>(item: &str, list: &'a [(&str, &str)]) -> Option<&'a str> {
-    list.iter().find(|(p, _)| item.contains(p)).map(|(_, f)| *f)
-}
-
 /// The column `col` of the first row of a CSV the tutorial's runs wrote.
 fn first_row(path: &Path, col: &str) -> String {
     let (header, rows) = read_csv(path);
@@ -137,7 +123,7 @@ fn first_row(path: &Path, col: &str) -> String {
     rows[0][i].clone()
 }
 
-/// Every tutorial command that does not need a pending feature exits 0, and every file the
+/// Every tutorial command exits 0, and every file the
 /// tutorial names appears; the figures its prose states are those the runs wrote.
 #[test]
 fn the_tutorial_runs_and_writes_the_files_it_names() {
@@ -153,10 +139,6 @@ fn the_tutorial_runs_and_writes_the_files_it_names() {
     let mut ran = 0;
     for args in &t.commands {
         let line = args.join(" ");
-        if let Some(feature) = pending(&line, PENDING_COMMANDS) {
-            eprintln!("skipped until merged ({feature}): settle {line}");
-            continue;
-        }
         let out = settle()
             .args(args)
             .arg("--quiet")
@@ -171,17 +153,13 @@ fn the_tutorial_runs_and_writes_the_files_it_names() {
         );
         ran += 1;
     }
-    assert!(ran >= 3, "{ran} commands ran");
+    assert!(ran >= 5, "{ran} commands ran");
     assert!(
         t.outputs.len() >= 6,
         "the tutorial names its files: {:?}",
         t.outputs
     );
     for f in &t.outputs {
-        if let Some(feature) = pending(f, PENDING_FILES) {
-            eprintln!("not checked until merged ({feature}): {f}");
-            continue;
-        }
         let meta = std::fs::metadata(dir.path().join(f))
             .unwrap_or_else(|e| panic!("the tutorial names `{f}`: {e}"));
         assert!(meta.len() > 0, "`{f}` is empty");
@@ -280,26 +258,6 @@ fn the_yield_stress_that_holds_the_tutorial_ball() {
             regime == "static",
             regime_static,
             "τ_y = {tau} Pa: {regime}"
-        );
-    }
-}
-
-/// The pending lists name commands and files the tutorial still has (a stale entry would skip
-/// nothing and hide nothing).
-#[test]
-fn every_pending_entry_is_in_the_tutorial() {
-    let t = tutorial();
-    let lines: Vec<String> = t.commands.iter().map(|c| c.join(" ")).collect();
-    for (p, feature) in PENDING_COMMANDS {
-        assert!(
-            lines.iter().any(|l| l.contains(p)),
-            "no tutorial command needs {feature}"
-        );
-    }
-    for (p, feature) in PENDING_FILES {
-        assert!(
-            t.outputs.iter().any(|f| f.contains(p)),
-            "no tutorial file needs {feature}"
         );
     }
 }

@@ -201,6 +201,8 @@ fn sweep_file(plan: &VaryPlan, out: &Path, quiet: bool) -> Result<(), Error> {
     let io = |e| Error::Io(out.join(&folder), e);
     let stage = StagedDir::new(out, &folder).map_err(io)?;
     write_results(&stage.path(""), name, &table, quiet)?;
+    crate::io::report::write_report(&stage.path(""), &crate::io::report::Page::sweep(&folder))
+        .map_err(io)?;
     let dest = stage.commit().map_err(io)?;
     if !quiet {
         println!("  -> {}", dest.display());

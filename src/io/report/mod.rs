@@ -1,0 +1,655 @@
+//! A page a person reads: `report.html` in a results folder, built only from the files the run
+//! wrote there (no domain types): the scenario's name, kind and description and the run's record
+//! from `run.toml`, its validity warnings, the key result tables, every chart (`*.svg` inlined,
+//! `*.png` as a base64 `data:` URI), the list of output files and the effective scenario.
+//!
+//! The page is self-contained: one HTML file with its style sheet inlined, no script, no font or
+//! image fetched from anywhere; its only links are relative, to the folder's own files and (on
+//! the combined page) to the runs' pages `../NAME/report.html`.
+
+mod html;
+mod table;
+
+pub use html::{base64, esc, sig};
+
+use html::{href, inline_svg, scope_ids, svg_title};
+use std::fmt::Write as _;
+use std::fs;
+use std::io;
+use std::path::{Path, PathBuf};
+use table::csv_table;
+
+/// The page's file name in a results folder.
+pub const FILE_NAME: &str = "report.html";
+
+/// The result tables a run's page shows, in this order, when the run wrote them.
+pub const RUN_TABLES: &[&str] = &["summary.csv", "metrics.csv", "instrument_errors.csv"];
+
+/// The result tables the combined page shows, in this order, when present: the error statistics
+/// and the instruments' errors before the long per-sphere table.
+pub const COMBINED_TABLES: &[&str] = &["metrics.csv", "instrument_errors.csv", "summary.csv"];
+
+/// The result tables a sweep's page shows, in this order, when the sweep wrote them.
+pub const SWEEP_TABLES: &[&str] = &["recommended_dt.csv", "sweep.csv", "vary.csv"];
+
+/// Rows of a table the page shows; the rest is counted and linked.
+pub const MAX_ROWS: usize = 30;
+
+/// Entries of one folder the file list names; the rest is counted.
+const MAX_FILES_PER_FOLDER: usize = 25;
+
+/// What a page shows beyond what the folder itself holds.
+#[derive(Clone, Copy, Debug)]
+pub struct Page<'a> {
+    /// Heading when the folder has no `run.toml` (a run's page takes the scenario's name).
+    pub title: &'a str,
+    /// CSV files shown as tables, in this order, when present.
+    pub tables: &'a [&'a str],
+    /// Run folders beside this one (`../NAME/`), linked with their status and warnings: the
+    /// combined page of a several-file run. Empty for a run's own page.
+    pub runs: &'a [String],
+}
+
+impl<'a> Page<'a> {
+    /// The page of one run (`OUT/NAME/`).
+    pub fn run(title: &'a str) -> Self {
+        Self {
+            title,
+            tables: RUN_TABLES,
+            runs: &[],
+        }
+    }
+
+    /// The combined page of several runs (`OUT/combined/`), linking to `../NAME/report.html`.
+    pub fn combined(runs: &'a [String]) -> Self {
+        Self {
+            title: "combined",
+            tables: COMBINED_TABLES,
+            runs,
+        }
+    }
+
+    /// The page of a sweep (`OUT/<name>_sweep/`).
+    pub fn sweep(title: &'a str) -> Self {
+        Self {
+            title,
+            tables: SWEEP_TABLES,
+            runs: &[],
+        }
+    }
+}
+
+/// Writes `dir/report.html` ([`render`]) atomically.
+pub fn write_report(dir: &Path, page: &Page) -> io::Result<()> {
+    let text = render(dir, page)?;
+    crate::io::write_atomic(&dir.join(FILE_NAME), text.as_bytes())
+}
+
+/// The report page of the results folder `dir`, as HTML text. Reads `dir/run.toml` when present,
+/// the tables `page.tables`, every `*.svg` and `*.png` in `dir` and its subfolders, and for
+/// `page.runs` each `../NAME/run.toml`.
+pub fn render(dir: &Path, page: &Page) -> io::Result<String> {
+    let run_toml = read_run_toml(dir);
+    let run = run_toml.as_ref().and_then(|t| t.get("run")?.as_table());
+    let scenario = run_toml.as_ref().map(scenario_table);
+    let field = |k: &str| scenario.as_ref().and_then(|s| s.get(k)?.as_str());
+    let name = field("name").unwrap_or(page.title);
+    let charts = chart_files(dir)?;
+    let mut h = String::new();
+    let _ = write!(
+        h,
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
+         <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\
+         <title>{} — settle report</title><style>{}</style></head><body>\n",
+        esc(name),
+        html::CSS
+    );
+    // Header: name, kind, status, description.
+    let _ = write!(h, "<header><h1>{}</h1><div>", esc(name));
+    if let Some(kind) = field("kind") {
+        let _ = write!(h, "<span class=\"badge\">kind: {}</span>", esc(kind));
+    }
+    if let Some(status) = run.and_then(|r| r.get("status")?.as_str()) {
+        let _ = write!(
+            h,
+            "<span class=\"badge {}\">{}</span>",
+            class_name(status),
+            esc(status)
+        );
+    }
+    let n_warnings = string_list(run.and_then(|r| r.get("warnings"))).len();
+    if n_warnings > 0 {
+        let _ = write!(
+            h,
+            "<a class=\"badge warned\" href=\"#warnings\">{n_warnings} validity warning{}</a>",
+            if n_warnings == 1 { "" } else { "s" }
+        );
+    }
+    if !page.runs.is_empty() {
+        let _ = write!(
+            h,
+            "<span class=\"badge\">{} runs combined</span>",
+            page.runs.len()
+        );
+    }
+    h.push_str("</div>");
+    if let Some(d) = field("description").filter(|d| !d.trim().is_empty()) {
+        let _ = write!(h, "<p class=\"desc\">{}</p>", esc(d));
+    }
+    let mut sections: Vec<(&str, &str, String)> = Vec::new();
+    if let Some(run) = run {
+        sections.push(("warnings", "Warnings", warnings_section(run)));
+        sections.push(("record", "Run record", record_section(run)));
+    }
+    if !page.runs.is_empty() {
+        sections.push(("runs", "Runs", runs_section(dir, page.runs)));
+    }
+    sections.push(("results", "Results", tables_section(dir, page.tables)));
+    sections.push(("charts", "Charts", charts_section(dir, &charts, page.runs)?));
+    sections.push(("files", "Files", files_section(dir)?));
+    if let Some(s) = &scenario {
+        sections.push(("scenario", "Scenario", scenario_section(s)));
+    }
+    sections.retain(|(_, _, html)| !html.is_empty());
+    h.push_str("<nav>");
+    for (id, label, _) in &sections {
+        let _ = write!(h, "<a href=\"#{id}\">{label}</a>");
+    }
+    h.push_str("</nav></header>\n");
+    for (_, _, html) in &sections {
+        h.push_str(html);
+    }
+    h.push_str(
+        "<footer><p class=\"note\">Written by settle from the files of this folder; \
+         the numbers in the tables are rounded to 4 significant digits (hover for the \
+         value in the CSV).</p></footer>\n</body></html>\n",
+    );
+    Ok(h)
+}
+
+/// `dir/run.toml` as a table; `None` when absent or unreadable.
+fn read_run_toml(dir: &Path) -> Option<toml::Table> {
+    fs::read_to_string(dir.join("run.toml")).ok()?.parse().ok()
+}
+
+/// The effective scenario recorded in `run.toml`: its `[scenario]` table, or (a run.toml written
+/// as a scenario file with a `[run]` record) everything but `[run]` and `[engine_settings]`.
+fn scenario_table(t: &toml::Table) -> toml::Table {
+    if let Some(s) = t.get("scenario").and_then(|s| s.as_table()) {
+        return s.clone();
+    }
+    t.iter()
+        .filter(|(k, _)| !matches!(k.as_str(), "run" | "engine_settings"))
+        .map(|(k, v)| (k.clone(), v.clone()))
+        .collect()
+}
+
+/// A CSS class name from a status word (letters only).
+fn class_name(s: &str) -> String {
+    s.chars().filter(|c| c.is_ascii_alphanumeric()).collect()
+}
+
+/// The run's validity warnings (`[run] warnings`), in a box that stands out, or "none".
+fn warnings_section(run: &toml::Table) -> String {
+    let warnings = string_list(run.get("warnings"));
+    let mut h = String::from("<section id=\"warnings\"><h2>Validity warnings</h2>");
+    if warnings.is_empty() {
+        h.push_str(
+            "<div class=\"box ok\"><strong>none</strong>: every law was used within its \
+             range as far as settle checks.</div>",
+        );
+    } else {
+        let _ = write!(
+            h,
+            "<div class=\"box warn\"><strong>{} warning{}</strong> — read before using the \
+             results:<ul>",
+            warnings.len(),
+            if warnings.len() == 1 { "" } else { "s" }
+        );
+        for w in &warnings {
+            let _ = write!(h, "<li>{}</li>", esc(w));
+        }
+        h.push_str("</ul></div>");
+    }
+    h.push_str("</section>\n");
+    h
+}
+
+/// The strings of a TOML array (other items written as TOML).
+fn string_list(v: Option<&toml::Value>) -> Vec<String> {
+    v.and_then(|v| v.as_array())
+        .map(|a| {
+            a.iter()
+                .map(|x| x.as_str().map_or_else(|| x.to_string(), str::to_string))
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+/// A TOML value as a person reads it: floats to 4 significant digits, lists joined.
+fn value_text(v: &toml::Value) -> String {
+    match v {
+        toml::Value::String(s) => s.clone(),
+        toml::Value::Float(f) => sig(*f, 4),
+        toml::Value::Integer(i) => i.to_string(),
+        toml::Value::Boolean(b) => if *b { "yes" } else { "no" }.to_string(),
+        toml::Value::Array(a) if a.is_empty() => "none".to_string(),
+        toml::Value::Array(a) => a.iter().map(value_text).collect::<Vec<_>>().join(", "),
+        toml::Value::Table(t) if t.is_empty() => "none".to_string(),
+        toml::Value::Table(t) => t
+            .iter()
+            .map(|(k, v)| format!("{k}: {}", value_text(v)))
+            .collect::<Vec<_>>()
+            .join("; "),
+        other => other.to_string(),
+    }
+}
+
+/// The run's record (`[run]` of run.toml but its warnings): status, engine, integrator, time
+/// step, steps, bodies, wall time (the run's cost), settle version, then any other field.
+fn record_section(run: &toml::Table) -> String {
+    const ORDER: &[&str] = &[
+        "status",
+        "engine",
+        "integrator",
+        "dt_s",
+        "steps",
+        "bodies",
+        "wall_time_s",
+        "settle_version",
+        "scenario_file",
+        "resumed",
+    ];
+    let mut keys: Vec<&str> = ORDER
+        .iter()
+        .copied()
+        .filter(|k| run.contains_key(*k))
+        .collect();
+    keys.extend(
+        run.keys()
+            .map(String::as_str)
+            .filter(|k| !ORDER.contains(k) && *k != "warnings"),
+    );
+    let mut h = String::from(
+        "<section id=\"record\"><h2>Run record</h2>\
+         <p class=\"note\">From <a href=\"run.toml\">run.toml</a>.</p><div class=\"kv\">",
+    );
+    for k in keys {
+        let v = &run[k];
+        let text = match k {
+            "wall_time_s" => format!("{} s (the run's cost)", value_text(v)),
+            "dt_s" => format!("{} s", value_text(v)),
+            _ => value_text(v),
+        };
+        let _ = write!(
+            h,
+            "<div{}><span class=\"k\">{}</span><span class=\"v\">{}</span></div>",
+            if text.chars().count() > 24 {
+                " class=\"long\""
+            } else {
+                ""
+            },
+            esc(k),
+            esc(&text)
+        );
+    }
+    h.push_str("</div></section>\n");
+    h
+}
+
+/// The combined page's list of runs: each linked to its own page, with its kind, status,
+/// number of warnings (and the warnings themselves) and wall time.
+fn runs_section(dir: &Path, runs: &[String]) -> String {
+    let parent = dir.parent().map(Path::to_path_buf).unwrap_or_default();
+    let mut h = String::from(
+        "<section id=\"runs\"><h2>Runs</h2><div class=\"scroll\"><table><thead><tr>\
+         <th>run</th><th>kind</th><th>status</th><th>warnings</th><th>wall time (s)</th>\
+         <th>description</th></tr></thead><tbody>\n",
+    );
+    let mut all_warnings = Vec::new();
+    for name in runs {
+        let t = read_run_toml(&parent.join(name));
+        let run = t.as_ref().and_then(|t| t.get("run")?.as_table());
+        let sc = t.as_ref().map(scenario_table);
+        let get = |k: &str| {
+            sc.as_ref()
+                .and_then(|s| s.get(k)?.as_str().map(str::to_string))
+                .unwrap_or_default()
+        };
+        let status = run
+            .and_then(|r| r.get("status")?.as_str())
+            .unwrap_or("no run.toml");
+        let warnings = string_list(run.and_then(|r| r.get("warnings")));
+        let wall = run
+            .and_then(|r| r.get("wall_time_s"))
+            .map(value_text)
+            .unwrap_or_default();
+        let link = href(&format!("../{name}/{FILE_NAME}"));
+        let _ = writeln!(
+            h,
+            "<tr><td><a href=\"{link}\">{}</a></td><td>{}</td>\
+             <td><span class=\"badge {}\">{}</span></td>\
+             <td class=\"n\">{}</td><td class=\"n\">{}</td><td>{}</td></tr>",
+            esc(name),
+            esc(&get("kind")),
+            class_name(status),
+            esc(status),
+            if warnings.is_empty() {
+                "0".to_string()
+            } else {
+                format!("<span class=\"badge warned\">{}</span>", warnings.len())
+            },
+            esc(&wall),
+            esc(&get("description")),
+        );
+        all_warnings.extend(warnings.into_iter().map(|w| (name.clone(), w)));
+    }
+    h.push_str("</tbody></table></div>");
+    if all_warnings.is_empty() {
+        h.push_str(
+            "<div class=\"box ok\">Validity warnings: <strong>none</strong> in any run.</div>",
+        );
+    } else {
+        let _ = write!(
+            h,
+            "<div class=\"box warn\"><strong>{} validity warning{}</strong> in these runs:<ul>",
+            all_warnings.len(),
+            if all_warnings.len() == 1 { "" } else { "s" }
+        );
+        for (run, w) in &all_warnings {
+            let _ = write!(h, "<li><strong>{}</strong>: {}</li>", esc(run), esc(w));
+        }
+        h.push_str("</ul></div>");
+    }
+    h.push_str("</section>\n");
+    h
+}
+
+/// The key result tables present in `dir`, each headed by its linked file name.
+fn tables_section(dir: &Path, tables: &[&str]) -> String {
+    let mut h = String::from("<section id=\"results\"><h2>Results</h2>");
+    let mut any = false;
+    for name in tables {
+        let path = dir.join(name);
+        if !path.is_file() {
+            continue;
+        }
+        let _ = write!(h, "<h3><a href=\"{}\">{}</a></h3>", href(name), esc(name));
+        match csv_table(&path, name, MAX_ROWS) {
+            Some(t) => h.push_str(&t),
+            None => h.push_str("<p class=\"note\">(not readable as a table)</p>"),
+        }
+        any = true;
+    }
+    if !any {
+        h.push_str("<p class=\"note\">No result table in this folder: see the files below.</p>");
+    }
+    h.push_str("</section>\n");
+    h
+}
+
+/// Every chart in `dir` and its subfolders (`*.svg`, `*.png`), as paths relative to `dir`:
+/// the folder's own first, then each subfolder's, each sorted by name.
+pub fn chart_files(dir: &Path) -> io::Result<Vec<String>> {
+    Ok(list_files(dir)?
+        .into_iter()
+        .filter(|r| {
+            let l = r.to_ascii_lowercase();
+            l.ends_with(".svg") || l.ends_with(".png")
+        })
+        .collect())
+}
+
+/// Every file in `dir` and its subfolders (relative paths, `/`-separated; hidden entries,
+/// temporary files and the page itself left out): the folder's own files first, sorted, then
+/// each subfolder's.
+fn list_files(dir: &Path) -> io::Result<Vec<String>> {
+    fn walk(base: &Path, rel: &str, depth: usize, out: &mut Vec<String>) -> io::Result<()> {
+        let here: PathBuf = if rel.is_empty() {
+            base.to_path_buf()
+        } else {
+            base.join(rel)
+        };
+        let mut entries: Vec<(String, bool)> = fs::read_dir(&here)?
+            .flatten()
+            .filter_map(|e| {
+                let n = e.file_name().to_str()?.to_string();
+                let is_dir = e.file_type().ok()?.is_dir();
+                (!n.starts_with('.') && !n.ends_with(crate::io::TMP_SUFFIX)).then_some((n, is_dir))
+            })
+            .collect();
+        entries.sort();
+        let join = |n: &str| {
+            if rel.is_empty() {
+                n.to_string()
+            } else {
+                format!("{rel}/{n}")
+            }
+        };
+        for (n, _) in entries
+            .iter()
+            .filter(|(n, d)| !*d && (!rel.is_empty() || n != FILE_NAME))
+        {
+            out.push(join(n));
+        }
+        if depth < 3 {
+            for (n, _) in entries.iter().filter(|(_, d)| *d) {
+                walk(base, &join(n), depth + 1, out)?;
+            }
+        }
+        Ok(())
+    }
+    let mut out = Vec::new();
+    walk(dir, "", 0, &mut out)?;
+    Ok(out)
+}
+
+/// Every chart of `dir` (and, on the combined page, of each run in `runs`), inlined, numbered,
+/// with a caption: its title and its linked file name.
+fn charts_section(dir: &Path, charts: &[String], runs: &[String]) -> io::Result<String> {
+    let parent = dir.parent().map(Path::to_path_buf).unwrap_or_default();
+    let mut groups: Vec<(Option<&str>, Vec<String>)> = Vec::new();
+    if !charts.is_empty() {
+        groups.push((None, charts.to_vec()));
+    }
+    for run in runs {
+        let files = chart_files(&parent.join(run)).unwrap_or_default();
+        if !files.is_empty() {
+            groups.push((Some(run), files));
+        }
+    }
+    if groups.is_empty() {
+        return Ok(String::new());
+    }
+    let mut h = String::from("<section id=\"charts\"><h2>Charts</h2>\n");
+    let mut n = 0;
+    for (run, files) in &groups {
+        if let Some(run) = run {
+            let _ = writeln!(
+                h,
+                "<h3>{} <span class=\"note\">(<a href=\"{}\">its report</a>)</span></h3>",
+                esc(run),
+                href(&format!("../{run}/{FILE_NAME}"))
+            );
+        }
+        for rel in files {
+            n += 1;
+            let (path, link) = match run {
+                Some(run) => (parent.join(run).join(rel), format!("../{run}/{rel}")),
+                None => (dir.join(rel), rel.clone()),
+            };
+            h.push_str(&figure(&path, &link, n)?);
+        }
+    }
+    h.push_str("</section>\n");
+    Ok(h)
+}
+
+/// One chart as a numbered figure: an SVG inlined (its ids made unique to figure `n`), a PNG as
+/// a base64 `data:` URI, captioned with the chart's title and a link to the file.
+fn figure(path: &Path, link: &str, n: usize) -> io::Result<String> {
+    let (body, title) = if link.to_ascii_lowercase().ends_with(".svg") {
+        let text = fs::read_to_string(path)?;
+        match inline_svg(&text) {
+            Some(svg) => (scope_ids(&svg, &format!("f{n}-")), svg_title(&text)),
+            None => (
+                "<p class=\"note\">(not a readable SVG)</p>".to_string(),
+                None,
+            ),
+        }
+    } else {
+        (
+            format!(
+                "<img alt=\"{}\" src=\"data:image/png;base64,{}\">",
+                esc(link),
+                base64(&fs::read(path)?)
+            ),
+            None,
+        )
+    };
+    Ok(format!(
+        "<figure data-file=\"{}\">{body}<figcaption><strong>Figure {n}.</strong> {}\
+         <a href=\"{}\">{}</a></figcaption></figure>\n",
+        esc(link),
+        title.map(|t| format!("{} — ", esc(&t))).unwrap_or_default(),
+        href(link),
+        esc(link)
+    ))
+}
+
+/// A file size as a person reads it (B, kB, MB, GB; powers of 1000).
+fn size_text(bytes: u64) -> String {
+    let b = bytes as f64;
+    match bytes {
+        0..=999 => format!("{bytes} B"),
+        1_000..=999_999 => format!("{} kB", sig(b / 1e3, 3)),
+        1_000_000..=999_999_999 => format!("{} MB", sig(b / 1e6, 3)),
+        _ => format!("{} GB", sig(b / 1e9, 3)),
+    }
+}
+
+/// Every output file, linked, with its size; a folder with many files names the first
+/// [`MAX_FILES_PER_FOLDER`] and counts the rest.
+fn files_section(dir: &Path) -> io::Result<String> {
+    let files = list_files(dir)?;
+    let mut h = format!(
+        "<section id=\"files\"><h2>Files</h2><p class=\"note\">{} files in this folder \
+         (links open them).</p><ul class=\"files\">",
+        files.len()
+    );
+    let mut per_folder: std::collections::BTreeMap<&str, usize> = Default::default();
+    for rel in &files {
+        let folder = rel.rsplit_once('/').map_or("", |(f, _)| f);
+        let n = per_folder.entry(folder).or_default();
+        *n += 1;
+        if !folder.is_empty() && *n > MAX_FILES_PER_FOLDER {
+            continue;
+        }
+        let size = fs::metadata(dir.join(rel)).map(|m| m.len()).unwrap_or(0);
+        let _ = write!(
+            h,
+            "<li><a href=\"{}\">{}</a> <span class=\"size\">{}</span></li>",
+            href(rel),
+            esc(rel),
+            size_text(size)
+        );
+    }
+    for (folder, n) in per_folder
+        .iter()
+        .filter(|(f, n)| !f.is_empty() && **n > MAX_FILES_PER_FOLDER)
+    {
+        let _ = write!(
+            h,
+            "<li>… {} more in <a href=\"{}/\">{}/</a></li>",
+            n - MAX_FILES_PER_FOLDER,
+            href(folder),
+            esc(folder)
+        );
+    }
+    h.push_str("</ul></section>\n");
+    Ok(h)
+}
+
+/// The effective scenario as TOML, folded.
+fn scenario_section(s: &toml::Table) -> String {
+    let text = toml::to_string(s).unwrap_or_default();
+    format!(
+        "<section id=\"scenario\"><h2>Scenario</h2><details><summary>Effective scenario \
+         (TOML, every default filled in)</summary><pre>{}</pre></details></section>\n",
+        esc(&text)
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A results folder with a run.toml recording two warnings (one with markup), a table and
+    /// a chart, removed when dropped.
+    struct Folder(PathBuf);
+
+    impl Drop for Folder {
+        fn drop(&mut self) {
+            let _ = fs::remove_dir_all(&self.0);
+        }
+    }
+
+    fn folder(test: &str) -> Folder {
+        let dir = std::env::temp_dir().join(format!("settle-report-{test}-{}", std::process::id()));
+        fs::create_dir_all(dir.join("snapshots")).unwrap();
+        fs::write(
+            dir.join("run.toml"),
+            "[run]\nstatus = \"complete\"\nwall_time_s = 2.064213979\n\
+             warnings = [\"Re = 12 > 0.5: Stokes drag <invalid>\", \"second\"]\n\
+             overrides = { set = [\"a.b=1\", \"c=2\"] }\n\
+             [scenario]\nname = \"demo\"\nkind = \"free_settling\"\ndescription = \"a < b\"\n",
+        )
+        .unwrap();
+        fs::write(
+            dir.join("summary.csv"),
+            "id,v_m_s,regime\nS1,0.123456,jump\n",
+        )
+        .unwrap();
+        fs::write(
+            dir.join("snapshots/v.svg"),
+            "<svg width=\"10\" height=\"5\"><text>Title &amp; more</text></svg>",
+        )
+        .unwrap();
+        Folder(dir)
+    }
+
+    #[test]
+    fn warnings_stand_out_escaped_and_every_part_is_there() {
+        let f = folder("warnings");
+        let h = render(&f.0, &Page::run("demo")).unwrap();
+        assert!(
+            h.contains("<div class=\"box warn\"><strong>2 warnings</strong>"),
+            "{h}"
+        );
+        assert!(h.contains("<li>Re = 12 &gt; 0.5: Stokes drag &lt;invalid&gt;</li>"));
+        assert!(h.contains("<p class=\"desc\">a &lt; b</p>"));
+        assert!(h.contains("2.064 s (the run&#39;s cost)"));
+        assert!(h.contains(">set: a.b=1, c=2<"), "{h}");
+        assert!(h.contains("<td class=\"n\" title=\"0.123456\">0.1235</td>"));
+        assert!(h.contains("<figure data-file=\"snapshots/v.svg\"><svg viewBox=\"0 0 10 5\""));
+        assert!(h.contains("Title &amp; more — <a href=\"snapshots/v.svg\">"));
+        assert!(h.contains("[scenario]") || h.contains("name = &quot;demo&quot;"));
+        assert!(!h.contains("report.html\">"), "the page lists itself");
+    }
+
+    #[test]
+    fn no_warnings_reads_none() {
+        let f = folder("none");
+        let t = fs::read_to_string(f.0.join("run.toml")).unwrap();
+        let t = t.replace(
+            "warnings = [\"Re = 12 > 0.5: Stokes drag <invalid>\", \"second\"]",
+            "warnings = []",
+        );
+        fs::write(f.0.join("run.toml"), t).unwrap();
+        let h = render(&f.0, &Page::run("demo")).unwrap();
+        assert!(
+            h.contains("<div class=\"box ok\"><strong>none</strong>"),
+            "{h}"
+        );
+    }
+}
