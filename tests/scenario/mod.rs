@@ -1,5 +1,6 @@
 //! `src/scenario/`: loading and validating scenarios and their input files.
 
 mod bad_input;
+mod outputs_docs;
 mod schema_docs;
 mod spheres_csv;
