@@ -23,10 +23,11 @@ pub struct Cli {
 enum Command {
     /// Run one or more scenario files; results go to OUT/<scenario name>/.
     ///
-    /// Each run writes summary.csv (one row per body), timeseries.csv (if recorded), probes.csv
-    /// (velocities at [measure].velocity_at_s), metrics.csv and terminal_velocity.svg (when
-    /// measured velocities exist), and run.toml (effective parameters, version, dt, steps, wall
-    /// time). With several files, OUT/combined/ holds the joint summary and metrics.
+    /// Each run writes its kind's CSV files and charts (every file is listed in
+    /// docs/scenarios/<kind>.md; summary.csv for every kind), report.html (a self-contained page:
+    /// scenario, record, validity warnings, results, every chart) and run.toml (effective
+    /// scenario, overrides as given, version, dt, steps, wall time, warnings). With several files,
+    /// OUT/combined/ holds the joint summary, metrics, charts and report.html.
     /// `settle run OUT/NAME/run.toml` runs the same case again (the --set list and --dt it was
     /// run with are recorded in it, already applied; input files as absolute paths).
     /// Exit codes: 0 success, 2 bad input (nothing written), 3 unstable run (nothing written),
