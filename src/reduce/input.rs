@@ -158,46 +158,59 @@ fn required(file: &Path, key: &str, x: Option<f64>, what: &str) -> Result<f64, E
 
 /// The standard and the hydrometer: the command line's, else the file's.
 fn kinds(file: &Path, p: &Parsed, req: &Request) -> Result<(Standard, HydrometerType), Error> {
-    let pick = |opt: &Option<String>, key: &str| {
-        opt.clone().map(|v| (v, format!("--{key}"))).or_else(|| {
-            p.figures
-                .get(key)
-                .map(|(v, l)| (v.clone(), format!("line {l}")))
-        })
-    };
-    let standard = match pick(&req.standard, "standard") {
-        None => {
-            return Err(Error::bad_input(
-                file,
-                Some("standard"),
-                "missing: give --standard d422|d7928 or the line `# standard = d7928`",
-            ))
-        }
-        Some((v, at)) => Standard::parse(&v).ok_or_else(|| {
-            Error::bad_input(
-                file,
-                Some("standard"),
-                format!("{at}: unknown standard `{v}`; allowed: d422, d7928"),
-            )
-        })?,
-    };
-    let hydrometer = match pick(&req.hydrometer, "hydrometer") {
-        None => {
-            return Err(Error::bad_input(
-                file,
-                Some("hydrometer"),
-                "missing: give --hydrometer 152H|151H or the line `# hydrometer = 152H`",
-            ))
-        }
-        Some((v, at)) => HydrometerType::parse(&v).ok_or_else(|| {
-            Error::bad_input(
-                file,
-                Some("hydrometer"),
-                format!("{at}: unknown hydrometer `{v}`; allowed: 152H, 151H"),
-            )
-        })?,
-    };
+    let standard = choice(
+        file,
+        p,
+        &req.standard,
+        "standard",
+        "d422, d7928",
+        Standard::parse,
+    )?;
+    let hydrometer = choice(
+        file,
+        p,
+        &req.hydrometer,
+        "hydrometer",
+        "151H, 152H",
+        HydrometerType::parse,
+    )?;
     Ok((standard, hydrometer))
+}
+
+/// One of the test's named choices (`standard`, `hydrometer`): the command-line option wins
+/// over the file's `# key = value` line; missing or unknown is bad input naming where it came
+/// from and the `allowed` values (the last one is the example given).
+fn choice<T>(
+    file: &Path,
+    p: &Parsed,
+    option: &Option<String>,
+    key: &str,
+    allowed: &str,
+    parse: impl Fn(&str) -> Option<T>,
+) -> Result<T, Error> {
+    let given = option.clone().map(|v| (v, format!("--{key}"))).or_else(|| {
+        p.figures
+            .get(key)
+            .map(|(v, l)| (v.clone(), format!("line {l}")))
+    });
+    let example = allowed.split(", ").last().unwrap_or(allowed);
+    let Some((v, at)) = given else {
+        return Err(Error::bad_input(
+            file,
+            Some(key),
+            format!(
+                "missing: give --{key} {} or the line `# {key} = {example}`",
+                allowed.replace(", ", "|")
+            ),
+        ));
+    };
+    parse(&v).ok_or_else(|| {
+        Error::bad_input(
+            file,
+            Some(key),
+            format!("{at}: unknown {key} `{v}`; allowed: {allowed}"),
+        )
+    })
 }
 
 /// The hydrometer's measured dimensions (D7928), in SI.
