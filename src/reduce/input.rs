@@ -170,8 +170,7 @@ fn kinds(file: &Path, p: &Parsed, req: &Request) -> Result<(Standard, Hydrometer
         file,
         p,
         &req.hydrometer,
-        "hydrometer",
-        "151H, 152H",
+        ("hydrometer", "152H, 151H", "152H"),
         HydrometerType::parse,
     )?;
     Ok((standard, hydrometer))
@@ -179,13 +178,12 @@ fn kinds(file: &Path, p: &Parsed, req: &Request) -> Result<(Standard, Hydrometer
 
 /// One of the test's named choices (`standard`, `hydrometer`): the command-line option wins
 /// over the file's `# key = value` line; missing or unknown is bad input naming where it came
-/// from and the `allowed` values (the last one is the example given).
+/// from, the `allowed` values and an `example`.
 fn choice<T>(
     file: &Path,
     p: &Parsed,
     option: &Option<String>,
-    key: &str,
-    allowed: &str,
+    (key, allowed, example): (&str, &str, &str),
     parse: impl Fn(&str) -> Option<T>,
 ) -> Result<T, Error> {
     let given = option.clone().map(|v| (v, format!("--{key}"))).or_else(|| {
@@ -193,7 +191,6 @@ fn choice<T>(
             .get(key)
             .map(|(v, l)| (v.clone(), format!("line {l}")))
     });
-    let example = allowed.split(", ").last().unwrap_or(allowed);
     let Some((v, at)) = given else {
         return Err(Error::bad_input(
             file,
