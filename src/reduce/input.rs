@@ -162,8 +162,7 @@ fn kinds(file: &Path, p: &Parsed, req: &Request) -> Result<(Standard, Hydrometer
         file,
         p,
         &req.standard,
-        "standard",
-        "d422, d7928",
+        ("standard", "d422, d7928", "d7928"),
         Standard::parse,
     )?;
     let hydrometer = choice(
