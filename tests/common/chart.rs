@@ -4,46 +4,12 @@
 
 use std::path::Path;
 
-/// Every piece of text in an SVG file, unescaped, trimmed, in document order.
+/// Every piece of text in an SVG file, unescaped, trimmed, in document order
+/// ([`settle::io::chart::svg_texts`]).
 pub fn svg_texts(path: &Path) -> Vec<String> {
     let svg = std::fs::read_to_string(path)
         .unwrap_or_else(|e| panic!("{}: cannot read ({e})", path.display()));
-    let mut out = Vec::new();
-    let mut rest = svg.as_str();
-    while let Some(i) = rest.find("<text") {
-        rest = &rest[i..];
-        let Some(open_end) = rest.find('>') else {
-            break;
-        };
-        let Some(close) = rest.find("</text>") else {
-            break;
-        };
-        let inner = &rest[open_end + 1..close];
-        // Nested <tspan> pieces: keep their text only.
-        let mut text = String::new();
-        let mut in_tag = false;
-        for c in inner.chars() {
-            match c {
-                '<' => in_tag = true,
-                '>' => in_tag = false,
-                c if !in_tag => text.push(c),
-                _ => {}
-            }
-        }
-        let text = text
-            .replace("&lt;", "<")
-            .replace("&gt;", ">")
-            .replace("&quot;", "\"")
-            .replace("&apos;", "'")
-            .replace("&#39;", "'")
-            .replace("&amp;", "&");
-        let text = text.trim().to_string();
-        if !text.is_empty() {
-            out.push(text);
-        }
-        rest = &rest[close + "</text>".len()..];
-    }
-    out
+    settle::io::chart::svg_texts(&svg)
 }
 
 /// The number a tick label prints, if the text is one (a leading sign, `−` or `-`, an optional

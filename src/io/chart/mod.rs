@@ -22,7 +22,10 @@
 //! ```
 
 mod draw;
+pub mod read;
 pub mod ticks;
+
+pub use read::svg_texts;
 
 use std::path::Path;
 

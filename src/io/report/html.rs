@@ -169,29 +169,7 @@ pub fn base64(bytes: &[u8]) -> String {
 /// The title of an SVG chart: its first `<text>` element (settle's charts draw the title
 /// first), unescaped and trimmed; `None` when it has no text.
 pub fn svg_title(svg: &str) -> Option<String> {
-    let start = svg.find("<text")?;
-    let rest = &svg[start..];
-    let open_end = rest.find('>')?;
-    let close = rest.find("</text>")?;
-    let mut text = String::new();
-    let mut in_tag = false;
-    for c in rest[open_end + 1..close].chars() {
-        match c {
-            '<' => in_tag = true,
-            '>' => in_tag = false,
-            c if !in_tag => text.push(c),
-            _ => {}
-        }
-    }
-    let text = text
-        .replace("&lt;", "<")
-        .replace("&gt;", ">")
-        .replace("&quot;", "\"")
-        .replace("&apos;", "'")
-        .replace("&#39;", "'")
-        .replace("&amp;", "&");
-    let text = text.split_whitespace().collect::<Vec<_>>().join(" ");
-    (!text.is_empty()).then_some(text)
+    crate::io::chart::svg_texts(svg).into_iter().next()
 }
 
 /// An SVG file's markup for embedding in HTML: from its `<svg` element on (no XML prolog or
