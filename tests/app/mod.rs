@@ -5,6 +5,7 @@
 mod checkpoint;
 pub(crate) mod console;
 mod interrupt;
+mod readings;
 mod reduce;
 mod report;
 mod rerun;

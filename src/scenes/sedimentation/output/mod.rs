@@ -8,6 +8,7 @@ pub mod cylinder;
 pub mod granulometry;
 pub mod pictures;
 pub mod plot;
+pub mod readings;
 pub mod transient;
 
 use super::instruments::{BulbRow, InstrumentReading};
@@ -67,6 +68,7 @@ pub fn write_all(
     }
     let instrument_errors =
         granulometry::write_all(stage, s, sm, setup, &readings, &bulb).map_err(io)?;
+    readings::write_all(stage, s, setup, &readings, &profiles, &snapshots).map_err(io)?;
     if !snapshots.is_empty() {
         let panels = cylinder::panels(&snapshots, setup);
         cylinder::write_csv(&stage.path("cylinder.csv"), &panels, setup.height_m).map_err(io)?;

@@ -1,0 +1,238 @@
+//! `readings.csv` and `readings_d7928.csv`: the run's virtual 152H hydrometer readings in the
+//! laboratory's format, the one `settle reduce` reads (docs/commands/reduce.md): `# key = value`
+//! figures of the test, then `time_min, reading, temperature_c` rows.
+//!
+//! What the run knows is written as a laboratory would write it:
+//! - `hydrometer = 152H`, readings R in g/L as the run's hydrometer reads them (`reading_g_per_l`
+//!   of `instruments.csv`, full precision: no rounding to the 0.5 g/L of the scale);
+//! - `dry_mass_g` the sample's mass (`sample.mass_kg`), `suspension_volume_ml` the volume that
+//!   holds it at the run's initial concentration c₀ (M/c₀: the real cylinder's volume);
+//! - `specific_gravity` G_s = ρ_p/ρ_f;
+//! - `temperature_c` the temperature at which water has the run's viscosity (the reduction
+//!   takes μ of water at that temperature, [`water_viscosity_pa_s`]), so the Stokes diameters
+//!   use the same μ;
+//! - `meniscus_correction = 0` (the virtual hydrometer is read at the liquid level) and
+//!   `blank_reading = 0` (it reads 0 in the clear fluid of the run);
+//! - for D7928 the hydrometer's own dimensions: H_r at the marks −5 and 60 g/L measured from
+//!   the bulb's centre of volume (mid-length, the bulb is symmetric) on the run's 1/ρ scale
+//!   ([`Hydrometer::mark_m`]), the bulb volume and the 27.8 cm² cylinder section of its
+//!   calibration.
+//!
+//! Reduced by `settle reduce`, the percent finer is the run's own exactly when ρ_f = 1000 kg/m³:
+//! P = 0.6226 G_s/(G_s − 1)(V/M) R · 100 with R = 1000 (ρ_s/ρ_f − 1)/0.6226 is the run's
+//! 100 ρ_p (ρ_s − ρ_f)/((ρ_p − ρ_f) c₀) (seed eqs. 17–19), times ρ_f/1000 kg/m³. The
+//! diameters differ by the standards' effective depth: they subtract half the rise of the
+//! suspension when the bulb enters it (V_B/(2A) = 1.2 cm) and take the mark from a linear law
+//! (D422 Table 2, D7928's interpolation between two marks), while the run takes the bulb
+//! centre's true depth in a suspension that does not rise; and by D422's g = 9.80 m/s²
+//! (D7928: 9.807 m/s² and ρ_w(T) for ρ_f).
+//!
+//! D422's schedule is the run's hydrometer times. D7928's (1, 2, 4, 15, 30, 60, 240, 1440 min,
+//! within `time.end_s`) is read, without stepping to any new time, on what the run already
+//! kept at those times: its hydrometer readings, its record profiles and its snapshots. Times
+//! at which it kept nothing are listed in a comment line of `readings_d7928.csv`, not read.
+
+use crate::instruments::hydrometer::{Hydrometer, HydrometerReading};
+use crate::instruments::reduction::{d7928, water_viscosity_pa_s};
+use crate::io::{num, write_atomic, StagedDir};
+use crate::scenario::Scenario;
+use crate::scenes::sedimentation::instruments::{
+    layered_field, InstrumentKind, InstrumentReading, InstrumentSet,
+};
+use crate::scenes::sedimentation::setup::Setup;
+use crate::scenes::sedimentation::state::{profile, Profile, State};
+use std::io;
+
+/// `x` to 10 significant digits (and 0 below 1e-9 in magnitude: the bisection's noise of a
+/// reading of clear fluid), so that the file has no float noise.
+fn clean(x: f64) -> String {
+    if x.abs() < 1e-9 {
+        return "0".into();
+    }
+    num(format!("{x:.9e}").parse().unwrap_or(x))
+}
+
+/// Temperature (°C) at which water has the viscosity `mu` (Pa s), by bisection over 0–40 °C
+/// of [`water_viscosity_pa_s`] (None outside that range).
+pub fn water_temperature_c(mu_pa_s: f64) -> Option<f64> {
+    let (mut lo, mut hi) = (0.0f64, 40.0f64);
+    if !(water_viscosity_pa_s(hi)..=water_viscosity_pa_s(lo)).contains(&mu_pa_s) {
+        return None;
+    }
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        // μ falls with the temperature.
+        if water_viscosity_pa_s(mid) > mu_pa_s {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Some(0.5 * (lo + hi))
+}
+
+/// Writes `readings.csv` (D422, the hydrometer's times) and `readings_d7928.csv` (D7928's
+/// schedule, read on the states the run kept) into `stage`, when the run had hydrometer
+/// readings, a 152H scale (0–60 g/L for G = 2.65) and a viscosity of water at 16–30 °C (the
+/// range both standards accept); otherwise writes nothing.
+pub fn write_all(
+    stage: &StagedDir,
+    s: &Scenario,
+    setup: &Setup,
+    readings: &[InstrumentReading],
+    profiles: &[Profile],
+    snapshots: &[State],
+) -> io::Result<()> {
+    let set = InstrumentSet::new(s, setup);
+    let spec = set.hydrometer.spec;
+    let is_152h = spec.full_scale == 60.0 && spec.calibration_specific_gravity == 2.65;
+    let hyd: Vec<(f64, HydrometerReading)> = readings
+        .iter()
+        .filter(|r| r.kind == InstrumentKind::Hydrometer)
+        .filter_map(|r| r.hydrometer.map(|h| (r.point.time_s, h)))
+        .collect();
+    let Some(t_c) = water_temperature_c(setup.viscosity_pa_s) else {
+        return Ok(());
+    };
+    if hyd.is_empty() || !is_152h || !(16.0..=30.0).contains(&t_c) {
+        return Ok(());
+    }
+    let head = Head {
+        name: &s.name,
+        sample: setup.spec.sample.sample,
+        dry_mass_g: setup.spec.sample.mass_kg * 1e3,
+        volume_ml: setup.spec.sample.mass_kg / set.analysis.c0_kg_m3 * 1e6,
+        gs: set.analysis.grain_density_kg_m3 / set.analysis.fluid_density_kg_m3,
+        t_c,
+    };
+    write_atomic(
+        &stage.path("readings.csv"),
+        head.text("d422", None, &hyd, &[]).as_bytes(),
+    )?;
+    let (at, missing) = d7928_readings(&set, setup, s.time.end_s, &hyd, profiles, snapshots);
+    write_atomic(
+        &stage.path("readings_d7928.csv"),
+        head.text("d7928", Some(&set.hydrometer), &at, &missing)
+            .as_bytes(),
+    )
+}
+
+/// The hydrometer at D7928's times within `end_s`: its reading at that time if the run took
+/// one, else read on the record profile or the snapshot of that time; and the times (min) at
+/// which the run kept nothing.
+fn d7928_readings(
+    set: &InstrumentSet,
+    setup: &Setup,
+    end_s: f64,
+    hyd: &[(f64, HydrometerReading)],
+    profiles: &[Profile],
+    snapshots: &[State],
+) -> (Vec<(f64, HydrometerReading)>, Vec<f64>) {
+    let (rho_p, rho_f) = (
+        set.analysis.grain_density_kg_m3,
+        set.analysis.fluid_density_kg_m3,
+    );
+    let same = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.max(1.0);
+    let read = |pr: &Profile| set.hydrometer.read(&layered_field(pr, setup, rho_p, rho_f));
+    let (mut at, mut missing) = (Vec::new(), Vec::new());
+    for t_min in d7928::TIMES_MIN {
+        let t = t_min * 60.0;
+        if t > end_s * (1.0 + 1e-12) {
+            continue;
+        }
+        let r = hyd
+            .iter()
+            .find(|(x, _)| same(*x, t))
+            .map(|(_, h)| *h)
+            .or_else(|| {
+                let pr = profiles
+                    .iter()
+                    .find(|p| same(p.time_s, t) && p.solid_m3.len() == set.layers);
+                pr.and_then(read)
+            })
+            .or_else(|| {
+                let st = snapshots.iter().find(|st| same(st.time_s, t))?;
+                read(&profile(st, setup, set.layers, rho_p))
+            });
+        match r {
+            Some(r) => at.push((t, r)),
+            None => missing.push(t_min),
+        }
+    }
+    (at, missing)
+}
+
+/// The figures of the test common to both files.
+struct Head<'a> {
+    name: &'a str,
+    sample: u32,
+    dry_mass_g: f64,
+    volume_ml: f64,
+    gs: f64,
+    t_c: f64,
+}
+
+impl Head<'_> {
+    /// The file's text for `standard`, with the hydrometer's dimensions for D7928 (`measured`)
+    /// and a comment naming the schedule's `missing` times (min).
+    fn text(
+        &self,
+        standard: &str,
+        measured: Option<&Hydrometer>,
+        rows: &[(f64, HydrometerReading)],
+        missing: &[f64],
+    ) -> String {
+        let schedule = match standard {
+            "d422" => "the run's hydrometer times".to_string(),
+            _ => format!(
+                "ASTM D7928's schedule ({} min) within the run",
+                d7928::TIMES_MIN.map(num).join(", ")
+            ),
+        };
+        let mut t = format!(
+            "# settle: the virtual 152H hydrometer of {} at {schedule}; reduce with settle reduce\n\
+             # standard = {standard}\n# hydrometer = 152H\n\
+             # sample = {} (sample {})\n# source = settle {} virtual test\n\
+             # dry_mass_g = {}\n# suspension_volume_ml = {}\n# specific_gravity = {}\n\
+             # meniscus_correction = 0\n# blank_reading = 0\n",
+            self.name,
+            self.name,
+            self.sample,
+            env!("CARGO_PKG_VERSION"),
+            clean(self.dry_mass_g),
+            clean(self.volume_ml),
+            clean(self.gs),
+        );
+        if let Some(h) = measured {
+            let centre = 0.5 * h.spec.bulb_length_m;
+            t.push_str(&format!(
+                "# h_r1_cm = {}\n# r1 = -5\n# h_r2_cm = {}\n# r2 = 60\n\
+                 # bulb_volume_ml = {}\n# cylinder_area_cm2 = {}\n",
+                clean((centre + h.mark_m(-5.0)) * 1e2),
+                clean((centre + h.mark_m(60.0)) * 1e2),
+                clean(h.bulb_volume_m3() * 1e6),
+                clean(h.spec.astm_cylinder_area_m2 * 1e4),
+            ));
+        }
+        if !missing.is_empty() {
+            t.push_str(&format!(
+                "# not read at {} min: the run kept no state at those times\n",
+                missing
+                    .iter()
+                    .map(|x| clean(*x))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ));
+        }
+        t.push_str("time_min,reading,temperature_c\n");
+        for (time_s, r) in rows {
+            t.push_str(&format!(
+                "{},{},{}\n",
+                clean(time_s / 60.0),
+                clean(r.reading),
+                clean(self.t_c)
+            ));
+        }
+        t
+    }
+}
