@@ -100,8 +100,9 @@ fn reducing_the_runs_readings_gives_back_its_hydrometer_figures() {
         assert!((d / expected - 1.0).abs() < 1e-6, "{d} vs {expected}");
         worst_raw = worst_raw.max((d / d_run - 1.0).abs());
     }
-    // The raw diameters differ by the depth convention only: 3–7 %, never more.
-    assert!(worst_raw > 0.03 && worst_raw < 0.07, "{worst_raw}");
+    // The raw diameters differ by the depth convention: √(1 − 1.205 cm/y) − 1 for y from
+    // 17.5 cm (R = 0) to 7.7 cm (R = 60) is 3.5–8 % (here R ≤ 29 g/L: 3.5–4.2 %).
+    assert!(worst_raw > 0.03 && worst_raw < 0.08, "{worst_raw}");
 
     // D7928: its schedule where the run kept a state (1 min: the record profile and the
     // snapshot; 2, 15, 30, 60, 1440 min: the hydrometer's readings); not 4 and 240 min.
