@@ -71,7 +71,7 @@ pub fn correlation_warning(cd: CdCorrelation, spheres: &[(String, f64)]) -> Opti
         "{} drag coefficient used above its stated range Re ≤ {}: {} of {} sphere(s) above, largest Re = {} (sphere {id}, at its \
          simulated terminal velocity); the correlation is extrapolated there",
         cd.label(),
-        g(cd.re_max()),
+        short(cd.re_max()),
         above.len(),
         spheres.len(),
         g(*re),
@@ -219,6 +219,27 @@ mod tests {
         let w = stokes_warning(&[("a".into(), 0.5), ("b".into(), 3.7e6)]).unwrap();
         assert!(w.contains("1 of 2") && w.contains("3.700e6") && w.contains("sphere b"));
         assert!(w.contains("drag.law = \"dallavalle\""), "{w}");
+    }
+
+    #[test]
+    fn correlations_warn_only_above_their_stated_range() {
+        let sn = CdCorrelation::SchillerNaumann;
+        assert_eq!(correlation_warning(sn, &[("a".into(), 800.0)]), None);
+        let w = correlation_warning(sn, &[("a".into(), 10.0), ("b".into(), 1200.0)]).unwrap();
+        assert!(
+            w.starts_with("Schiller–Naumann (1933)") && w.contains("Re ≤ 800"),
+            "{w}"
+        );
+        assert!(
+            w.contains("1 of 2") && w.contains("sphere b") && w.contains("1200"),
+            "{w}"
+        );
+        assert_eq!(
+            correlation_warning(CdCorrelation::CliftGauvin, &[("b".into(), 1200.0)]),
+            None
+        );
+        let w = correlation_warning(CdCorrelation::Morrison, &[("c".into(), 2e6)]).unwrap();
+        assert!(w.contains("Re ≤ 1e6:"), "{w}");
     }
 
     #[test]

@@ -210,3 +210,30 @@ fn correlations_tend_to_stokes_at_low_re() {
         assert!((law.slope_n_s_m(0.0) / (3.0 * PI * 1e-3 * 1e-5) - 1.0).abs() < 1e-3);
     }
 }
+
+/// A 5 mm sphere with Schiller–Naumann's law settles at Re ≈ 3000, above its range Re < 800:
+/// the run warns on the console and in run.toml, naming the law and the Reynolds number.
+#[test]
+fn a_correlation_outside_its_range_warns() {
+    let dir = crate::common::tmp();
+    let text = crate::app::console::run(
+        "scenarios/stokes_single.toml",
+        dir.path(),
+        &[
+            "drag.law=schiller-naumann",
+            "spheres[0].diameter_m=5e-3",
+            "time.end_s=2",
+        ],
+    );
+    let w = crate::app::console::toml_warnings(&dir.path().join("stokes_single"));
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert!(
+        w[0].starts_with(
+            "Schiller–Naumann (1933) drag coefficient used above its stated range Re ≤ 800:"
+        ),
+        "{}",
+        w[0]
+    );
+    assert!(w[0].contains("largest Re = 3042"), "{}", w[0]);
+    assert!(text.contains(&format!("  warning: {}", w[0])), "{text}");
+}
