@@ -128,7 +128,7 @@ fn dallavalle_is_96_percent_of_stokes_as_re_goes_to_zero() {
 
 /// Terminal velocity where ½ C_d(Re) ρ_f (π d²/4) v² = (ρ_p − ρ_f)(π d³/6) g, by bisection on
 /// the pure C_d function alone (independent of the crate's solver).
-fn force_balance(cd: fn(f64) -> f64, d: f64, rho_p: f64, rho_f: f64, mu: f64, g: f64) -> f64 {
+fn force_balance(cd: impl Fn(f64) -> f64, d: f64, rho_p: f64, rho_f: f64, mu: f64, g: f64) -> f64 {
     let w = (rho_p - rho_f) * PI * d.powi(3) / 6.0 * g;
     let drag = |v: f64| 0.5 * cd(rho_f * v * d / mu) * rho_f * PI * d * d / 4.0 * v * v;
     let (mut lo, mut hi) = (0.0, 10.0);
@@ -149,12 +149,12 @@ fn force_balance(cd: fn(f64) -> f64, d: f64, rho_p: f64, rho_f: f64, mu: f64, g:
 /// the backward-Euler end speed and stays stable), and the run reports Re ≈ 100.
 #[test]
 fn terminal_velocity_with_each_law_matches_its_force_balance() {
-    let laws: [(&str, fn(f64) -> f64); 3] = [
-        ("schiller-naumann", cd_schiller_naumann),
-        ("clift-gauvin", cd_clift_gauvin),
-        ("morrison", cd_morrison),
-    ];
-    for (key, cd) in laws {
+    for c in [
+        CdCorrelation::SchillerNaumann,
+        CdCorrelation::CliftGauvin,
+        CdCorrelation::Morrison,
+    ] {
+        let (key, cd) = (c.key(), |re| c.cd(re));
         let v_ref = force_balance(cd, 8e-4, 2700.0, 1000.0, 1e-3, 9.81);
         for dt in [1e-4, 0.05] {
             let ov: Vec<String> = [
