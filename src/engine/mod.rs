@@ -139,9 +139,9 @@ impl fmt::Display for BodyId {
 /// (plastic) viscosity.
 pub fn rotational_drag_n_m_s(drag: &SphereDrag) -> f64 {
     let eta = match drag.law {
-        DragLaw::Stokes { viscosity_pa_s } | DragLaw::Dallavalle { viscosity_pa_s, .. } => {
-            viscosity_pa_s
-        }
+        DragLaw::Stokes { viscosity_pa_s }
+        | DragLaw::Dallavalle { viscosity_pa_s, .. }
+        | DragLaw::Correlation { viscosity_pa_s, .. } => viscosity_pa_s,
         DragLaw::Bingham {
             plastic_viscosity_pa_s,
             ..

@@ -10,7 +10,7 @@ use super::bingham::{
     yield_drag_n, BinghamRegime, BINGHAM_RE_HIGH, BINGHAM_RE_LOW,
 };
 use super::buoyancy::sphere_area_m2;
-use super::newtonian::{cd_dallavalle, di_felice_factor, drag_from_cd_n, reynolds};
+use super::newtonian::{cd_dallavalle, di_felice_factor, drag_from_cd_n, reynolds, CdCorrelation};
 use std::f64::consts::PI;
 
 /// Which drag law acts on a sphere, with the fluid properties it needs.
@@ -28,6 +28,15 @@ pub enum DragLaw {
         viscosity_pa_s: f64,
         /// Local fluid volume fraction ε ∈ (0, 1]; 1 for an isolated sphere.
         voidage: f64,
+    },
+    /// A single-sphere C_d(Re) correlation of a Newtonian fluid (Schiller–Naumann, Clift–Gauvin,
+    /// Morrison; see [`CdCorrelation`]): F = ½ C_d(Re) ρ_f A v², Re = ρ_f v d / η (f-EDEM eq. 5).
+    /// Tends to Stokes' law as Re → 0.
+    Correlation {
+        /// Dynamic viscosity η, Pa s.
+        viscosity_pa_s: f64,
+        /// Which correlation.
+        cd: CdCorrelation,
     },
     /// Bingham drag of f-EDEM (eqs. 9, 14, 19).
     Bingham {
@@ -146,6 +155,12 @@ impl SphereDrag {
                 let re = reynolds(rho, voidage * v, d, viscosity_pa_s);
                 drag_from_cd_n(cd_dallavalle(re), rho, d, v) * di_felice_factor(voidage, re)
             }
+            DragLaw::Correlation { viscosity_pa_s, cd } => {
+                if v <= 0.0 {
+                    return 0.0;
+                }
+                drag_from_cd_n(cd.cd(reynolds(rho, v, d, viscosity_pa_s)), rho, d, v)
+            }
             DragLaw::Bingham {
                 yield_stress_pa,
                 plastic_viscosity_pa_s,
@@ -181,7 +196,7 @@ impl SphereDrag {
         let v = speed_m_s.max(0.0);
         match self.law {
             DragLaw::Stokes { viscosity_pa_s } => 3.0 * PI * viscosity_pa_s * d,
-            DragLaw::Dallavalle { .. } => {
+            DragLaw::Dallavalle { .. } | DragLaw::Correlation { .. } => {
                 // Central difference on the smooth law, one-sided near zero.
                 let h = (v * 1e-6).max(1e-15);
                 if v > h {
@@ -276,7 +291,7 @@ impl SphereDrag {
 
     /// Polynomial form F(v) = a + b v + c v² of continuous branch `i` (counted from v = 0 across
     /// the jumps), where the law has one: Stokes (one branch) and the Bingham law of f-EDEM
-    /// (three branches, see [`super::bingham`]). None for Dallavalle.
+    /// (three branches, see [`super::bingham`]). None for Dallavalle and the C_d correlations.
     pub fn branch_polynomial(&self, i: usize) -> Option<(f64, f64, f64)> {
         let f = self.scale;
         self.unscaled_branch_polynomial(i)
@@ -304,7 +319,7 @@ impl SphereDrag {
                     _ => (fy, 0.0, 0.2 * rho * a_p),
                 })
             }
-            DragLaw::Dallavalle { .. } => None,
+            DragLaw::Dallavalle { .. } | DragLaw::Correlation { .. } => None,
         }
     }
 

@@ -5,6 +5,9 @@
 //! | law | validated range | source |
 //! |---|---|---|
 //! | Stokes drag, F = 3π η v d | Re = ρ_f v d / η < 0.5 | issue 13 (Re ≈ 0.5); seed 000 §4.2 allows Re < 1 for its Stokes drag and one-way coupling, but the drag is then already ~9 % too small at Re = 0.5 and ~15 % at Re = 1 (Schiller–Naumann correction 0.15 Re^0.687), so settle warns from 0.5 |
+//! | Schiller–Naumann C_d | Re < 800 | Schiller & Naumann (1933), via Clift, Grace & Weber (1978) ch. 5 |
+//! | Clift–Gauvin C_d | Re < 3·10⁵ | Clift & Gauvin (1971), via Clift, Grace & Weber (1978) ch. 5 |
+//! | Morrison C_d | Re ≤ 10⁶ | Morrison (2013), *An Introduction to Fluid Mechanics*, ch. 8 |
 //! | f-EDEM's Bingham drag (eq. 9, 14, 19) | sphere density 1314–8135 kg/m³, diameter 8–57.1 mm | f-EDEM §5 (conclusions, l. 504–505): "the applicable particle density obtained by this study ranges from 1314 to 8135 kg/m³ and the particle diameter ranges from 8 to 57.1 mm" |
 //! | one-way coupling (the grains do not move the fluid) | volume concentration < 1.6 %, mass concentration < 4 % | seed 000 §4.2: "the volume and mass concentrations must be lower than 1.6% and 4% respectively" |
 //!
@@ -33,6 +36,7 @@ pub const ONE_WAY_MASS_FRACTION_MAX: f64 = 0.04;
 /// is inside.
 const EDGE: f64 = 1e-9;
 
+use crate::fluid::newtonian::CdCorrelation;
 use crate::io::fmt::{g, short};
 
 /// The warning for Stokes drag used above [`STOKES_RE_MAX`], or None. `spheres` holds
@@ -48,6 +52,26 @@ pub fn stokes_warning(spheres: &[(String, f64)]) -> Option<String> {
         "Stokes drag used above its range Re < {} (9 % too little drag at 0.5; seed 000 §4.2 allows Re < 1): {} of {} sphere(s) above, largest Re = {} (sphere {id}, at its \
          simulated or force-balance terminal velocity); Stokes' law then underestimates the drag and overestimates the velocity; use drag.law = \"dallavalle\"",
         short(STOKES_RE_MAX),
+        above.len(),
+        spheres.len(),
+        g(*re),
+    ))
+}
+
+/// The warning for a C_d correlation used above its stated Reynolds number range
+/// ([`CdCorrelation::re_max`]), or None. `spheres` holds (id, Reynolds number at the sphere's
+/// terminal velocity) of every sphere run with that correlation.
+pub fn correlation_warning(cd: CdCorrelation, spheres: &[(String, f64)]) -> Option<String> {
+    let above: Vec<&(String, f64)> = spheres
+        .iter()
+        .filter(|(_, re)| *re > cd.re_max() * (1.0 + EDGE))
+        .collect();
+    let (id, re) = above.iter().max_by(|a, b| a.1.total_cmp(&b.1))?;
+    Some(format!(
+        "{} drag coefficient used above its stated range Re ≤ {}: {} of {} sphere(s) above, largest Re = {} (sphere {id}, at its \
+         simulated terminal velocity); the correlation is extrapolated there",
+        cd.label(),
+        short(cd.re_max()),
         above.len(),
         spheres.len(),
         g(*re),
@@ -195,6 +219,27 @@ mod tests {
         let w = stokes_warning(&[("a".into(), 0.5), ("b".into(), 3.7e6)]).unwrap();
         assert!(w.contains("1 of 2") && w.contains("3.700e6") && w.contains("sphere b"));
         assert!(w.contains("drag.law = \"dallavalle\""), "{w}");
+    }
+
+    #[test]
+    fn correlations_warn_only_above_their_stated_range() {
+        let sn = CdCorrelation::SchillerNaumann;
+        assert_eq!(correlation_warning(sn, &[("a".into(), 800.0)]), None);
+        let w = correlation_warning(sn, &[("a".into(), 10.0), ("b".into(), 1200.0)]).unwrap();
+        assert!(
+            w.starts_with("Schiller–Naumann (1933)") && w.contains("Re ≤ 800"),
+            "{w}"
+        );
+        assert!(
+            w.contains("1 of 2") && w.contains("sphere b") && w.contains("1200"),
+            "{w}"
+        );
+        assert_eq!(
+            correlation_warning(CdCorrelation::CliftGauvin, &[("b".into(), 1200.0)]),
+            None
+        );
+        let w = correlation_warning(CdCorrelation::Morrison, &[("c".into(), 2e6)]).unwrap();
+        assert!(w.contains("Re ≤ 1e6:"), "{w}");
     }
 
     #[test]

@@ -7,6 +7,7 @@ pub mod sedimentation;
 pub mod tilt_friction;
 pub mod validity;
 
+use crate::fluid::newtonian::CdCorrelation;
 use crate::fluid::{DragLaw, SphereDrag};
 use crate::scenario::{DragLawName, Physics, RheologyModel, Scenario, SceneSpec};
 use std::path::PathBuf;
@@ -75,11 +76,18 @@ pub fn drag_law(s: &Scenario, rheology: RheologyModel) -> DragLaw {
             viscosity_pa_s: mu,
             voidage: s.drag.voidage,
         },
+        DragLawName::SchillerNaumann => correlation(mu, CdCorrelation::SchillerNaumann),
+        DragLawName::CliftGauvin => correlation(mu, CdCorrelation::CliftGauvin),
+        DragLawName::Morrison => correlation(mu, CdCorrelation::Morrison),
         DragLawName::BinghamFedem => DragLaw::Bingham {
             yield_stress_pa: rheology.yield_stress_pa(),
             plastic_viscosity_pa_s: mu,
         },
     }
+}
+
+fn correlation(viscosity_pa_s: f64, cd: CdCorrelation) -> DragLaw {
+    DragLaw::Correlation { viscosity_pa_s, cd }
 }
 
 /// The drag of one sphere of diameter `d_m` in the scenario's fluid of rheology `rheology`.

@@ -2,7 +2,7 @@
 //! its validated range ([`crate::fluid::validity`]) at the spheres' results.
 
 use super::{drag_law, Prepared};
-use crate::fluid::validity::{bingham_fedem_warning, stokes_warning};
+use crate::fluid::validity::{bingham_fedem_warning, correlation_warning, stokes_warning};
 use crate::fluid::DragLaw;
 
 /// One sphere as the checks see it: id, diameter (m), density (kg/m³), speed (m/s) at which its
@@ -20,25 +20,29 @@ pub struct SphereAt {
 }
 
 /// The warnings of the scenario's drag law over `spheres`: Stokes drag above its Reynolds
-/// number range; f-EDEM's Bingham drag outside its validated density and diameter ranges.
+/// number range; a C_d correlation above its stated range; f-EDEM's Bingham drag outside its
+/// validated density and diameter ranges.
 pub fn drag_warnings(p: &Prepared, spheres: &[SphereAt]) -> Vec<String> {
     let law = drag_law(&p.scenario, p.rheology);
     let mut out = Vec::new();
+    let reynolds = |viscosity_pa_s: f64| -> Vec<(String, f64)> {
+        spheres
+            .iter()
+            .map(|s| {
+                let re = crate::fluid::newtonian::reynolds(
+                    p.scenario.fluid.density_kg_m3,
+                    s.speed_m_s.abs(),
+                    s.diameter_m,
+                    viscosity_pa_s,
+                );
+                (s.id.clone(), re)
+            })
+            .collect()
+    };
     match law {
-        DragLaw::Stokes { viscosity_pa_s } => {
-            let re: Vec<(String, f64)> = spheres
-                .iter()
-                .map(|s| {
-                    let re = crate::fluid::newtonian::reynolds(
-                        p.scenario.fluid.density_kg_m3,
-                        s.speed_m_s.abs(),
-                        s.diameter_m,
-                        viscosity_pa_s,
-                    );
-                    (s.id.clone(), re)
-                })
-                .collect();
-            out.extend(stokes_warning(&re));
+        DragLaw::Stokes { viscosity_pa_s } => out.extend(stokes_warning(&reynolds(viscosity_pa_s))),
+        DragLaw::Correlation { viscosity_pa_s, cd } => {
+            out.extend(correlation_warning(cd, &reynolds(viscosity_pa_s)))
         }
         DragLaw::Bingham { .. } => {
             let ranges: Vec<(String, f64, f64)> = spheres

@@ -2,5 +2,6 @@
 //! (a table in `data/` or an independent solution) and a test stating its tolerance.
 
 mod paste_drop;
+mod sphere_drag;
 mod stokes_single;
 mod valentik;

@@ -49,13 +49,19 @@ pub enum DragLawName {
     Dallavalle,
     /// f-EDEM eqs. 9, 14, 19 (Bingham fluids only).
     BinghamFedem,
+    /// Schiller–Naumann (1933) C_d, Re < 800 ([`crate::fluid::newtonian::cd_schiller_naumann`]).
+    SchillerNaumann,
+    /// Clift–Gauvin (1971) C_d, Re < 3·10⁵ ([`crate::fluid::newtonian::cd_clift_gauvin`]).
+    CliftGauvin,
+    /// Morrison (2013) C_d, Re ≤ 10⁶ ([`crate::fluid::newtonian::cd_morrison`]).
+    Morrison,
 }
 
 /// The drag law.
 #[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct Drag {
-    /// `stokes`, `dallavalle` or `bingham-fedem`.
+    /// `stokes`, `dallavalle`, `bingham-fedem`, `schiller-naumann`, `clift-gauvin` or `morrison`.
     pub law: DragLawName,
     /// Fluid volume fraction ε for `dallavalle`, in (0, 1]. Default 1 (isolated sphere).
     #[serde(default = "one")]

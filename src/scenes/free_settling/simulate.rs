@@ -85,7 +85,7 @@ pub struct SphereResult {
     /// Bingham Reynolds number at the simulated terminal velocity (eq. 18), if Bingham.
     pub re_bingham: Option<f64>,
     /// Particle Reynolds number ρ_f |v| d / η at the simulated terminal velocity (f-EDEM eq. 6),
-    /// if the drag law is Newtonian (Stokes or Dallavalle).
+    /// if the drag law is Newtonian (Stokes, Dallavalle or a C_d correlation).
     pub reynolds: Option<f64>,
     /// Max over the run of |v − v_analytic| / v_t (Stokes only).
     pub max_velocity_error_rel: Option<f64>,
@@ -511,9 +511,14 @@ fn finish<const D: usize>(
         _ => None,
     };
     let reynolds = match su.drag.law {
-        DragLaw::Stokes { viscosity_pa_s } | DragLaw::Dallavalle { viscosity_pa_s, .. } => Some(
-            crate::fluid::newtonian::reynolds(su.rho_fluid_kg_m3, v_sim.abs(), d, viscosity_pa_s),
-        ),
+        DragLaw::Stokes { viscosity_pa_s }
+        | DragLaw::Dallavalle { viscosity_pa_s, .. }
+        | DragLaw::Correlation { viscosity_pa_s, .. } => Some(crate::fluid::newtonian::reynolds(
+            su.rho_fluid_kg_m3,
+            v_sim.abs(),
+            d,
+            viscosity_pa_s,
+        )),
         DragLaw::Bingham { .. } => None,
     };
     SphereResult {
