@@ -120,7 +120,7 @@ pub(crate) use faults::unstable;
 pub use settings::{ContactDrag, EngineSettings, RapierIntegrationParameters};
 
 use crate::dynamics::Integrator;
-use crate::fluid::{DragLaw, SphereDrag};
+use crate::fluid::SphereDrag;
 use nalgebra::SVector;
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -138,15 +138,7 @@ impl fmt::Display for BodyId {
 /// Rotational drag coefficient of a sphere, N m s: torque = π η d³ ω (Stokes), with η the law's
 /// (plastic) viscosity.
 pub fn rotational_drag_n_m_s(drag: &SphereDrag) -> f64 {
-    let eta = match drag.law {
-        DragLaw::Stokes { viscosity_pa_s }
-        | DragLaw::Dallavalle { viscosity_pa_s, .. }
-        | DragLaw::Correlation { viscosity_pa_s, .. } => viscosity_pa_s,
-        DragLaw::Bingham {
-            plastic_viscosity_pa_s,
-            ..
-        } => plastic_viscosity_pa_s,
-    };
+    let eta = drag.law.viscosity_pa_s();
     std::f64::consts::PI * eta * drag.diameter_m.powi(3)
 }
 

@@ -86,6 +86,31 @@ pub struct SphereDrag {
     scale: f64,
 }
 
+impl DragLaw {
+    /// The viscosity the law acts with, Pa s: the fluid's for a Newtonian law (Stokes,
+    /// Dallavalle, a C_d correlation), the plastic viscosity η_B for the Bingham law.
+    pub fn viscosity_pa_s(&self) -> f64 {
+        match *self {
+            DragLaw::Stokes { viscosity_pa_s }
+            | DragLaw::Dallavalle { viscosity_pa_s, .. }
+            | DragLaw::Correlation { viscosity_pa_s, .. } => viscosity_pa_s,
+            DragLaw::Bingham {
+                plastic_viscosity_pa_s,
+                ..
+            } => plastic_viscosity_pa_s,
+        }
+    }
+
+    /// The viscosity of a Newtonian law, Pa s; None for the Bingham law (whose Reynolds number
+    /// is Re′, f-EDEM eq. 18).
+    pub fn newtonian_viscosity_pa_s(&self) -> Option<f64> {
+        match self {
+            DragLaw::Bingham { .. } => None,
+            _ => Some(self.viscosity_pa_s()),
+        }
+    }
+}
+
 impl SphereDrag {
     /// Binds `law` to a sphere of diameter `diameter_m` in a fluid of density `fluid_density_kg_m3`.
     pub fn new(law: DragLaw, diameter_m: f64, fluid_density_kg_m3: f64) -> Self {

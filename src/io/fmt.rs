@@ -47,7 +47,13 @@ pub fn g_opt(x: Option<f64>) -> String {
 /// An input or a constant as it was written: up to 6 significant digits, trailing zeros
 /// dropped (`1e-5`, `105`, `57.1`, `0.5`); for a scenario's own figures in titles and warnings.
 pub fn short(x: f64) -> String {
-    let s = sig(x, 6);
+    sig_trim(x, 6)
+}
+
+/// [`sig`] with the trailing zeros of the fraction dropped: `0.1547`, `9.19e7`, `0.3`, `1e-4`;
+/// for report tables and titles, where a trailing zero says nothing.
+pub fn sig_trim(x: f64, digits: usize) -> String {
+    let s = sig(x, digits);
     let (body, exp) = match s.split_once('e') {
         Some((b, e)) => (b.to_string(), format!("e{e}")),
         None => (s.clone(), String::new()),

@@ -1,6 +1,7 @@
 //! The pieces of a report page: escaping, relative links, numbers to significant digits, base64
 //! for inlined PNGs, tables from CSV files, charts inlined, and the page's style sheet.
 
+pub use crate::io::fmt::sig_trim as sig;
 use std::fmt::Write as _;
 
 /// Significant digits of the numbers a report's tables show (the CSV keeps every digit).
@@ -89,46 +90,6 @@ pub fn href(rel: &str) -> String {
         }
     }
     out
-}
-
-/// `x` to `digits` significant digits, trailing zeros dropped: `0.15468578` → `0.1547`,
-/// `9.19015e7` → `9.19e7`, `1.3977e-13` → `1.398e-13`; never `-0`.
-pub fn sig(x: f64, digits: usize) -> String {
-    if !x.is_finite() {
-        return format!("{x}");
-    }
-    let digits = digits.max(1);
-    let a = x.abs();
-    let s = if a == 0.0 {
-        "0".to_string()
-    } else if (1e-3..1e6).contains(&a) {
-        let mag = a.log10().floor() as i32;
-        let decimals = (digits as i32 - 1 - mag).max(0) as usize;
-        trim_zeros(&format!("{x:.decimals$}"))
-    } else {
-        let s = format!("{x:.prec$e}", prec = digits - 1);
-        match s.split_once('e') {
-            Some((m, e)) => format!("{}e{e}", trim_zeros(m)),
-            None => s,
-        }
-    };
-    if s.trim_start_matches('-')
-        .chars()
-        .all(|c| c == '0' || c == '.')
-    {
-        "0".to_string()
-    } else {
-        s
-    }
-}
-
-/// Drops the trailing zeros of a decimal fraction (and its point): `0.1500` → `0.15`.
-fn trim_zeros(s: &str) -> String {
-    if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        s.to_string()
-    }
 }
 
 /// A CSV cell as shown: a number with a fraction or an exponent to [`TABLE_DIGITS`]

@@ -510,17 +510,13 @@ fn finish<const D: usize>(
         )),
         _ => None,
     };
-    let reynolds = match su.drag.law {
-        DragLaw::Stokes { viscosity_pa_s }
-        | DragLaw::Dallavalle { viscosity_pa_s, .. }
-        | DragLaw::Correlation { viscosity_pa_s, .. } => Some(crate::fluid::newtonian::reynolds(
-            su.rho_fluid_kg_m3,
-            v_sim.abs(),
-            d,
-            viscosity_pa_s,
-        )),
-        DragLaw::Bingham { .. } => None,
-    };
+    let reynolds = su
+        .drag
+        .law
+        .newtonian_viscosity_pa_s()
+        .map(|viscosity_pa_s| {
+            crate::fluid::newtonian::reynolds(su.rho_fluid_kg_m3, v_sim.abs(), d, viscosity_pa_s)
+        });
     SphereResult {
         case: case.clone(),
         v_simulated_m_s: v_sim,
