@@ -14,6 +14,14 @@
 //! friction. Eq. 19 jumps upwards at Re' = 1 (C_d 24 → 29.315) and Re' = 150 (0.389 → 0.4), so
 //! the drag is a monotone increasing function of v with two upward jumps.
 
+pub mod additive;
+pub mod ansley_smith;
+pub mod beris;
+pub mod plastic;
+pub mod wilson;
+
+pub use plastic::{PlasticLaw, YieldFluid};
+
 use super::buoyancy::{sphere_area_m2, sphere_volume_m3};
 use std::f64::consts::PI;
 

@@ -9,6 +9,7 @@ use super::bingham::{
     bingham_drag_n, bingham_static_resistance_n, reynolds_bingham, speed_at_reynolds_bingham,
     yield_drag_n, BinghamRegime, BINGHAM_RE_HIGH, BINGHAM_RE_LOW,
 };
+use super::bingham::{plastic, PlasticLaw, YieldFluid};
 use super::buoyancy::sphere_area_m2;
 use super::newtonian::{cd_dallavalle, di_felice_factor, drag_from_cd_n, reynolds, CdCorrelation};
 use std::f64::consts::PI;
@@ -44,6 +45,18 @@ pub enum DragLaw {
         yield_stress_pa: f64,
         /// Plastic viscosity η_B, Pa s.
         plastic_viscosity_pa_s: f64,
+    },
+    /// Another yield-stress law (additive, Ansley & Smith, Wilson et al.; see [`PlasticLaw`]) in a
+    /// Bingham or Herschel–Bulkley fluid, optionally with Beris et al.'s static criterion.
+    /// Smooth (no jumps), increasing, with a finite static resistance.
+    Plastic {
+        /// Which law.
+        law: PlasticLaw,
+        /// The fluid's rheogram.
+        fluid: YieldFluid,
+        /// Hold a sphere at rest up to Beris et al.'s critical yield number
+        /// ([`super::bingham::beris`]) when the law's own static resistance is lower.
+        beris: bool,
     },
 }
 
@@ -98,14 +111,15 @@ impl DragLaw {
                 plastic_viscosity_pa_s,
                 ..
             } => plastic_viscosity_pa_s,
+            DragLaw::Plastic { fluid, .. } => fluid.consistency_pa_sn,
         }
     }
 
-    /// The viscosity of a Newtonian law, Pa s; None for the Bingham law (whose Reynolds number
-    /// is Re′, f-EDEM eq. 18).
+    /// The viscosity of a Newtonian law, Pa s; None for the yield-stress laws (f-EDEM's Reynolds
+    /// number is Re′, eq. 18).
     pub fn newtonian_viscosity_pa_s(&self) -> Option<f64> {
         match self {
-            DragLaw::Bingham { .. } => None,
+            DragLaw::Bingham { .. } | DragLaw::Plastic { .. } => None,
             _ => Some(self.viscosity_pa_s()),
         }
     }
@@ -195,16 +209,23 @@ impl SphereDrag {
                 }
                 bingham_drag_n(rho, d, yield_stress_pa, plastic_viscosity_pa_s, v)
             }
+            DragLaw::Plastic { law, fluid, .. } => law.force_n(&fluid, rho, d, v),
         }
     }
 
     /// Static resistance F(0⁺), N: the drag a sphere at rest can oppose to a driving force before
-    /// it moves. Zero for Newtonian laws; (π²/4 + 3π) d² τ_y for the Bingham law.
+    /// it moves. Zero for Newtonian laws; (π²/4 + 3π) d² τ_y for the Bingham law; for the other
+    /// yield-stress laws their own F(0⁺), or Beris et al.'s threshold when the criterion is on and
+    /// that is larger (then the drag drops from it to F(0⁺) once the sphere moves, like static
+    /// and kinetic friction).
     pub fn static_resistance_n(&self) -> f64 {
         match self.law {
             DragLaw::Bingham {
                 yield_stress_pa, ..
             } => self.scale * bingham_static_resistance_n(self.diameter_m, yield_stress_pa),
+            DragLaw::Plastic { law, fluid, beris } => {
+                self.scale * plastic::static_resistance_n(law, &fluid, self.diameter_m, beris)
+            }
             _ => 0.0,
         }
     }
@@ -221,7 +242,7 @@ impl SphereDrag {
         let v = speed_m_s.max(0.0);
         match self.law {
             DragLaw::Stokes { viscosity_pa_s } => 3.0 * PI * viscosity_pa_s * d,
-            DragLaw::Dallavalle { .. } | DragLaw::Correlation { .. } => {
+            DragLaw::Dallavalle { .. } | DragLaw::Correlation { .. } | DragLaw::Plastic { .. } => {
                 // Central difference on the smooth law, one-sided near zero.
                 let h = (v * 1e-6).max(1e-15);
                 if v > h {
@@ -344,7 +365,9 @@ impl SphereDrag {
                     _ => (fy, 0.0, 0.2 * rho * a_p),
                 })
             }
-            DragLaw::Dallavalle { .. } | DragLaw::Correlation { .. } => None,
+            DragLaw::Dallavalle { .. } | DragLaw::Correlation { .. } | DragLaw::Plastic { .. } => {
+                None
+            }
         }
     }
 

@@ -51,7 +51,7 @@ pub fn drag_warnings(p: &Prepared, spheres: &[SphereAt]) -> Vec<String> {
                 .collect();
             out.extend(bingham_fedem_warning(&ranges));
         }
-        DragLaw::Dallavalle { .. } => {}
+        DragLaw::Dallavalle { .. } | DragLaw::Plastic { .. } => {}
     }
     out
 }
