@@ -83,6 +83,10 @@ pub fn drag_law(s: &Scenario, rheology: RheologyModel) -> DragLaw {
             yield_stress_pa: rheology.yield_stress_pa(),
             plastic_viscosity_pa_s: mu,
         },
+        DragLawName::BinghamAdditive | DragLawName::AnsleySmith | DragLawName::Wilson2003 => s
+            .drag
+            .plastic_law(rheology)
+            .expect("validated: a yield-stress law in a yield-stress fluid"),
     }
 }
 

@@ -15,6 +15,10 @@ pub enum Rheology {
     Newtonian,
     /// Bingham plastic: needs `plastic_viscosity_pa_s` and `yield_stress_pa`.
     Bingham,
+    /// Herschel–Bulkley τ = τ_y + K γ̇ⁿ: needs `yield_stress_pa`, `consistency_pa_sn` and
+    /// `flow_index` (drag law `wilson-2003` only).
+    #[serde(rename = "herschel-bulkley")]
+    HerschelBulkley,
 }
 
 /// The fluid.
@@ -31,9 +35,15 @@ pub struct Fluid {
     /// Plastic viscosity η_B, Pa s (Bingham only; > 0).
     #[serde(default)]
     pub plastic_viscosity_pa_s: Option<f64>,
-    /// Yield stress τ_y, Pa (Bingham only; ≥ 0).
+    /// Yield stress τ_y, Pa (Bingham and Herschel–Bulkley; ≥ 0).
     #[serde(default)]
     pub yield_stress_pa: Option<f64>,
+    /// Consistency K, Pa sⁿ (Herschel–Bulkley only; > 0).
+    #[serde(default)]
+    pub consistency_pa_sn: Option<f64>,
+    /// Flow index n, dimensionless (Herschel–Bulkley only; 0.1 ≤ n ≤ 2).
+    #[serde(default)]
+    pub flow_index: Option<f64>,
     /// `full` (default) or `partial`: fluid forces on a sphere crossing the free surface.
     #[serde(default)]
     pub submergence: Submergence,
@@ -55,6 +65,60 @@ pub enum DragLawName {
     CliftGauvin,
     /// Morrison (2013) C_d, Re ≤ 10⁶ ([`crate::fluid::newtonian::cd_morrison`]).
     Morrison,
+    /// Static resistance plus Newtonian drag at ρ v d/η_B, Bingham fluids only
+    /// ([`crate::fluid::bingham::additive`]).
+    BinghamAdditive,
+    /// Ansley & Smith (1967), Bingham fluids only ([`crate::fluid::bingham::ansley_smith`]).
+    AnsleySmith,
+    /// Wilson et al. (2003) secant viscosity, Bingham and Herschel–Bulkley fluids
+    /// ([`crate::fluid::bingham::wilson`]).
+    #[serde(rename = "wilson-2003")]
+    Wilson2003,
+}
+
+impl DragLawName {
+    /// The `drag.law` value of the name (`bingham-fedem`, …).
+    pub fn key(self) -> &'static str {
+        match self {
+            Self::Stokes => "stokes",
+            Self::Dallavalle => "dallavalle",
+            Self::BinghamFedem => "bingham-fedem",
+            Self::SchillerNaumann => "schiller-naumann",
+            Self::CliftGauvin => "clift-gauvin",
+            Self::Morrison => "morrison",
+            Self::BinghamAdditive => "bingham-additive",
+            Self::AnsleySmith => "ansley-smith",
+            Self::Wilson2003 => "wilson-2003",
+        }
+    }
+
+    /// The yield-stress law this name selects besides f-EDEM's, if any.
+    pub fn plastic(self) -> Option<crate::fluid::bingham::PlasticLaw> {
+        use crate::fluid::bingham::PlasticLaw;
+        match self {
+            Self::BinghamAdditive => Some(PlasticLaw::Additive),
+            Self::AnsleySmith => Some(PlasticLaw::AnsleySmith),
+            Self::Wilson2003 => Some(PlasticLaw::Wilson),
+            _ => None,
+        }
+    }
+
+    /// True for the laws of a yield-stress fluid (`bingham-fedem` and the three above).
+    pub fn is_yield_stress(self) -> bool {
+        self == Self::BinghamFedem || self.plastic().is_some()
+    }
+}
+
+/// When a sphere in a yield-stress fluid stays at rest.
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum StaticCriterion {
+    /// The drag law's own static resistance F(0⁺).
+    #[default]
+    Law,
+    /// Also Beris et al. (1985): at rest while τ_y/(Δρ g d) ≥ 0.143/3
+    /// ([`crate::fluid::bingham::beris`]), when that holds more than the law's own.
+    Beris,
 }
 
 /// The drag law.
@@ -66,6 +130,9 @@ pub struct Drag {
     /// Fluid volume fraction ε for `dallavalle`, in (0, 1]. Default 1 (isolated sphere).
     #[serde(default = "one")]
     pub voidage: f64,
+    /// `law` (default) or `beris`: the static criterion of the yield-stress laws.
+    #[serde(default)]
+    pub static_criterion: StaticCriterion,
 }
 
 fn one() -> f64 {
@@ -87,6 +154,15 @@ pub enum RheologyModel {
         /// Yield stress τ_y, Pa.
         yield_stress_pa: f64,
     },
+    /// Herschel–Bulkley, τ = τ_y + K γ̇ⁿ above the yield stress.
+    HerschelBulkley {
+        /// Yield stress τ_y, Pa.
+        yield_stress_pa: f64,
+        /// Consistency K, Pa sⁿ.
+        consistency_pa_sn: f64,
+        /// Flow index n.
+        flow_index: f64,
+    },
 }
 
 impl Fluid {
@@ -100,6 +176,11 @@ impl Fluid {
             Rheology::Bingham => RheologyModel::Bingham {
                 plastic_viscosity_pa_s: self.plastic_viscosity_pa_s?,
                 yield_stress_pa: self.yield_stress_pa?,
+            },
+            Rheology::HerschelBulkley => RheologyModel::HerschelBulkley {
+                yield_stress_pa: self.yield_stress_pa?,
+                consistency_pa_sn: self.consistency_pa_sn?,
+                flow_index: self.flow_index?,
             },
         })
     }
@@ -134,6 +215,7 @@ impl Fluid {
                     msg,
                 )?;
                 only("fluid.yield_stress_pa", self.yield_stress_pa, msg)?;
+                self.no_herschel_bulkley(c)?;
                 Ok(RheologyModel::Newtonian { viscosity_pa_s: mu })
             }
             Rheology::Bingham => {
@@ -154,18 +236,62 @@ impl Fluid {
                     self.viscosity_pa_s,
                     "only allowed with rheology = \"newtonian\"; a bingham fluid uses plastic_viscosity_pa_s",
                 )?;
+                self.no_herschel_bulkley(c)?;
                 Ok(RheologyModel::Bingham {
                     plastic_viscosity_pa_s: eb,
                     yield_stress_pa: ty,
                 })
             }
+            Rheology::HerschelBulkley => self.check_herschel_bulkley(c),
         }
+    }
+
+    /// `consistency_pa_sn` and `flow_index` belong to a Herschel–Bulkley fluid only.
+    fn no_herschel_bulkley(&self, c: &Check) -> Result<(), ScenarioError> {
+        let msg = "only allowed with rheology = \"herschel-bulkley\"";
+        for (key, x) in [
+            ("fluid.consistency_pa_sn", self.consistency_pa_sn),
+            ("fluid.flow_index", self.flow_index),
+        ] {
+            if x.is_some() {
+                return Err(c.err(key, msg));
+            }
+        }
+        Ok(())
+    }
+
+    /// τ_y, K and n of a Herschel–Bulkley fluid, and no Newtonian or Bingham viscosity.
+    fn check_herschel_bulkley(&self, c: &Check) -> Result<RheologyModel, ScenarioError> {
+        let need = |key: &str, x: Option<f64>, what: &str| {
+            x.ok_or_else(|| c.err(key, format!("missing: a herschel-bulkley fluid needs {what}")))
+        };
+        let ty = need("fluid.yield_stress_pa", self.yield_stress_pa, "0 ≤ yield_stress_pa ≤ 1e6 Pa")?;
+        c.range("fluid.yield_stress_pa", ty, cc(0.0, 1e6, "Pa"))?;
+        let k = need("fluid.consistency_pa_sn", self.consistency_pa_sn, "0 < consistency_pa_sn ≤ 1e6 Pa sⁿ")?;
+        c.range("fluid.consistency_pa_sn", k, oc(0.0, 1e6, "Pa sⁿ"))?;
+        let n = need("fluid.flow_index", self.flow_index, "0.1 ≤ flow_index ≤ 2")?;
+        c.range("fluid.flow_index", n, cc(0.1, 2.0, ""))?;
+        let msg = "only allowed with rheology = \"newtonian\" or \"bingham\"; a herschel-bulkley fluid uses consistency_pa_sn and flow_index";
+        for (key, x) in [
+            ("fluid.viscosity_pa_s", self.viscosity_pa_s),
+            ("fluid.plastic_viscosity_pa_s", self.plastic_viscosity_pa_s),
+        ] {
+            if x.is_some() {
+                return Err(c.err(key, msg));
+            }
+        }
+        Ok(RheologyModel::HerschelBulkley {
+            yield_stress_pa: ty,
+            consistency_pa_sn: k,
+            flow_index: n,
+        })
     }
 }
 
 impl RheologyModel {
     /// The viscosity every drag law and every kind takes, Pa s: η of a Newtonian fluid, the
-    /// plastic viscosity η_B of a Bingham fluid.
+    /// plastic viscosity η_B of a Bingham fluid, the consistency K of a Herschel–Bulkley fluid
+    /// (its stress above τ_y at γ̇ = 1/s; a viscosity only for n = 1).
     pub fn drag_viscosity_pa_s(&self) -> f64 {
         match *self {
             RheologyModel::Newtonian { viscosity_pa_s } => viscosity_pa_s,
@@ -173,6 +299,30 @@ impl RheologyModel {
                 plastic_viscosity_pa_s,
                 ..
             } => plastic_viscosity_pa_s,
+            RheologyModel::HerschelBulkley {
+                consistency_pa_sn, ..
+            } => consistency_pa_sn,
+        }
+    }
+
+    /// The rheogram of a yield-stress fluid (Bingham: n = 1, K = η_B); None for a Newtonian one.
+    pub fn yield_fluid(&self) -> Option<crate::fluid::bingham::YieldFluid> {
+        use crate::fluid::bingham::YieldFluid;
+        match *self {
+            RheologyModel::Newtonian { .. } => None,
+            RheologyModel::Bingham {
+                plastic_viscosity_pa_s,
+                yield_stress_pa,
+            } => Some(YieldFluid::bingham(yield_stress_pa, plastic_viscosity_pa_s)),
+            RheologyModel::HerschelBulkley {
+                yield_stress_pa,
+                consistency_pa_sn,
+                flow_index,
+            } => Some(YieldFluid {
+                yield_stress_pa,
+                consistency_pa_sn,
+                flow_index,
+            }),
         }
     }
 
@@ -182,13 +332,28 @@ impl RheologyModel {
             RheologyModel::Newtonian { .. } => 0.0,
             RheologyModel::Bingham {
                 yield_stress_pa, ..
+            }
+            | RheologyModel::HerschelBulkley {
+                yield_stress_pa, ..
             } => yield_stress_pa,
         }
     }
 }
 
 impl Drag {
-    /// Voidage in (0, 1]; `bingham-fedem` exactly for a Bingham fluid (unless `ideal-stokes`).
+    /// The drag law of a yield-stress law name other than `bingham-fedem` in a fluid of
+    /// rheology `rheology` (with the static criterion); None for the other names or a Newtonian
+    /// fluid.
+    pub fn plastic_law(&self, rheology: RheologyModel) -> Option<crate::fluid::DragLaw> {
+        Some(crate::fluid::DragLaw::Plastic {
+            law: self.law.plastic()?,
+            fluid: rheology.yield_fluid()?,
+            beris: self.static_criterion == StaticCriterion::Beris,
+        })
+    }
+
+    /// Voidage in (0, 1]; a yield-stress law exactly for a yield-stress fluid (unless
+    /// `ideal-stokes`), and a law that takes the fluid's rheogram.
     pub(crate) fn check(
         &self,
         c: &Check,
@@ -196,16 +361,34 @@ impl Drag {
         physics: Physics,
     ) -> Result<(), ScenarioError> {
         c.range("drag.voidage", self.voidage, oc(0.0, 1.0, ""))?;
-        let bingham = fluid.rheology == Rheology::Bingham;
-        if self.law == DragLawName::BinghamFedem && !bingham {
-            return Err(c.err("drag.law", "`bingham-fedem` needs fluid.rheology = \"bingham\"; allowed for a newtonian fluid: `stokes`, `dallavalle`"));
-        }
-        if self.law != DragLawName::BinghamFedem && bingham && physics == Physics::Full {
-            return Err(c.err(
+        const YIELD_LAWS: &str = "`bingham-fedem`, `bingham-additive`, `ansley-smith`, `wilson-2003`";
+        match fluid.rheology {
+            Rheology::Newtonian if self.law.is_yield_stress() => Err(c.err(
                 "drag.law",
-                "a bingham fluid needs `bingham-fedem` (or physics = \"ideal-stokes\")",
-            ));
+                format!("{} needs a yield-stress fluid (fluid.rheology = \"bingham\" or \"herschel-bulkley\"); allowed for a newtonian fluid: `stokes`, `dallavalle`, `schiller-naumann`, `clift-gauvin`, `morrison`", law_key(self.law)),
+            )),
+            Rheology::Bingham if !self.law.is_yield_stress() && physics == Physics::Full => Err(c.err(
+                "drag.law",
+                format!("a bingham fluid needs a yield-stress law: {YIELD_LAWS} (or physics = \"ideal-stokes\")"),
+            )),
+            Rheology::HerschelBulkley if physics == Physics::IdealStokes => Err(c.err(
+                "physics",
+                "a herschel-bulkley fluid has no single viscosity for `ideal-stokes`; use physics = \"full\" with drag.law = \"wilson-2003\"",
+            )),
+            Rheology::HerschelBulkley
+                if !self.law.plastic().is_some_and(|p| p.supports_herschel_bulkley()) =>
+            {
+                Err(c.err(
+                    "drag.law",
+                    format!("{} does not take a herschel-bulkley fluid; the law that does: `wilson-2003` (the others need a bingham fluid, flow index 1)", law_key(self.law)),
+                ))
+            }
+            _ => Ok(()),
         }
-        Ok(())
     }
+}
+
+/// The `drag.law` spelling of a law name, in backquotes.
+fn law_key(law: DragLawName) -> String {
+    format!("`{}`", law.key())
 }
