@@ -115,6 +115,29 @@ enum Command {
         #[arg(long, default_value = "out")]
         out: PathBuf,
     },
+    /// Every drag law of a yield-stress fluid on spheres with measured terminal velocities.
+    ///
+    /// By default the 121 spheres of Valentik & Whitmore (1965) in six clay suspensions (f-EDEM
+    /// Tables 2-3, built in). Per law (bingham-fedem, bingham-additive, ansley-smith,
+    /// wilson-2003, and the last two with Beris et al.'s static criterion): velocity error of the
+    /// force-balance terminal velocity (mean, median, max |error|, bias, within 10 % and 25 %),
+    /// force error at the measured speed, spheres predicted static or on a jump, and
+    /// leave-one-suspension-out figures for f-EDEM's fitted eq. 19. Writes OUT/laws/laws.csv,
+    /// predictions.csv, cd_vs_re.svg, parity.svg, error_vs_yield_number.svg.
+    /// See docs/commands/laws.md.
+    Laws {
+        /// A spheres CSV (sphere_id, suspension, diameter_m, density_kg_m3,
+        /// v_terminal_measured_m_s [, re_bingham_tabulated, cd_tabulated]); needs --fluids.
+        #[arg(requires = "fluids")]
+        spheres: Option<PathBuf>,
+        /// The fluids CSV of SPHERES (suspension, density_kg_m3, yield_stress_pa, and
+        /// plastic_viscosity_pa_s or consistency_pa_sn and flow_index).
+        #[arg(long, requires = "spheres")]
+        fluids: Option<PathBuf>,
+        /// Output folder; results go to OUT/laws/.
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+    },
 }
 
 /// Parses the arguments, runs, and returns the process exit code.
@@ -221,6 +244,28 @@ pub fn main() -> i32 {
                     }
                     for w in &r.warnings {
                         println!("  warning: {w}");
+                    }
+                    0
+                }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    e.exit_code()
+                }
+            }
+        }
+        Command::Laws {
+            spheres,
+            fluids,
+            out,
+        } => {
+            let req = crate::laws::Request {
+                files: spheres.zip(fluids),
+                out_dir: out,
+            };
+            match crate::laws::run(&req) {
+                Ok(r) => {
+                    for l in &r.lines {
+                        println!("{l}");
                     }
                     0
                 }
