@@ -119,8 +119,8 @@ pub fn parity(path: &Path, data: &DataSet, results: &[LawResult]) -> std::io::Re
     grid_svg(path, "Predicted against measured terminal velocity, per law", &charts, 3)
 }
 
-/// Velocity error (%) against the yield number τ_y/(Δρ g d) (log), one series per law, with
-/// Beris et al.'s critical yield number.
+/// Velocity error (%) against the yield number τ_y/(Δρ g d) (log), one series per law (without
+/// the `+beris` variants), with Beris et al.'s critical yield number.
 pub fn error_vs_yield_number(
     path: &Path,
     data: &DataSet,
@@ -133,7 +133,13 @@ pub fn error_vs_yield_number(
     let mut lo = f64::INFINITY;
     let mut hi = 0.0f64;
     let (mut ylo, mut yhi) = (0.0f64, 0.0f64);
-    for (c, r) in results.iter().enumerate() {
+    // The `+beris` variants differ from their law only for spheres above the critical Y, which
+    // the dashed line marks; drawing both would hide the law under its variant.
+    for (c, r) in results
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| !matches!(r.law, Law::Plastic(_, true)))
+    {
         let pts: Vec<(f64, f64)> = r
             .predictions
             .iter()

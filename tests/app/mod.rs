@@ -1,10 +1,11 @@
 //! The application layer: `src/run.rs`, `src/checkpoint.rs`, `src/interrupt.rs`, `src/sweep/`,
-//! `src/reduce/`.
+//! `src/reduce/`, `src/laws/`.
 
 #[cfg(unix)]
 mod checkpoint;
 pub(crate) mod console;
 mod interrupt;
+mod laws;
 mod readings;
 mod reduce;
 mod report;
