@@ -133,3 +133,87 @@ fn every_law_balances_the_net_weight_at_its_predicted_speed() {
         }
     }
 }
+
+/// The simulator and `settle laws` agree: valentik_susp3 run under each new law reaches, for
+/// every sphere that moves, the terminal velocity `settle laws` predicts (within 1e-4).
+#[test]
+fn simulated_terminal_velocities_are_the_laws_predictions() {
+    let data = DataSet::valentik();
+    let results = evaluate(&data);
+    for law in [
+        Law::Plastic(PlasticLaw::Additive, false),
+        Law::Plastic(PlasticLaw::AnsleySmith, false),
+        Law::Plastic(PlasticLaw::Wilson, true),
+    ] {
+        let Law::Plastic(p, beris) = law else { unreachable!() };
+        let out = crate::common::tmp();
+        let o = crate::common::settle()
+            .args(["run", "scenarios/valentik_susp3.toml", "-q", "--out"])
+            .arg(out.path())
+            .args(["--set", &format!("drag.law={}", p.key())])
+            .args(["--set", &format!("drag.static_criterion={}", if beris { "beris" } else { "law" })])
+            .output()
+            .unwrap();
+        crate::common::assert_exit(&o, 0);
+        let r = results.iter().find(|r| r.law == law).unwrap();
+        let rows = crate::common::read_csv_records(&out.path().join("valentik_susp3/summary.csv"));
+        assert_eq!(rows.len(), 18);
+        for row in rows {
+            let pred = r.for_sphere(&data, &row["sphere_id"]).unwrap();
+            let sim: f64 = row["v_simulated_m_s"].parse().unwrap();
+            assert!(
+                (sim - pred.v_predicted_m_s).abs() <= 1e-4 * pred.v_predicted_m_s.max(1e-3),
+                "{} {}: simulated {sim}, laws {}",
+                law.key(),
+                row["sphere_id"],
+                pred.v_predicted_m_s
+            );
+        }
+    }
+}
+
+/// A Herschel–Bulkley scenario runs under `wilson-2003`; under a Bingham-only law, under
+/// `ideal-stokes`, or with a Newtonian fluid and a yield-stress law it is refused (exit 2,
+/// naming the key).
+#[test]
+fn herschel_bulkley_scenarios_run_under_wilson_and_are_refused_elsewhere() {
+    let dir = crate::common::tmp();
+    let csv = std::env::current_dir().unwrap().join("data/valentik_whitmore_1965_spheres.csv");
+    let scenario = |fluid: &str, law: &str, extra: &str| {
+        format!(
+            "name = \"hb\"\nkind = \"free_settling\"\ndimension = 3\n{extra}\n[fluid]\ndensity_kg_m3 = 1226.0\n{fluid}\n\
+             [drag]\nlaw = \"{law}\"\n[time]\ndt_s = 1e-3\nend_s = 20.0\n[container]\nheight_m = 3.0\n\
+             [release]\ndepth_m = 0.1\nvelocity_m_s = 0.0\n[spheres_csv]\npath = {:?}\nsuspension = 3\n",
+            csv.display().to_string()
+        )
+    };
+    let hb = "rheology = \"herschel-bulkley\"\nyield_stress_pa = 17.5\nconsistency_pa_sn = 0.05\nflow_index = 0.7\n";
+    let newt = "rheology = \"newtonian\"\nviscosity_pa_s = 0.01\n";
+    let run = |text: String| {
+        let f = dir.path().join("hb.toml");
+        std::fs::write(&f, text).unwrap();
+        crate::common::settle()
+            .args(["run", "-q", "--out"])
+            .arg(dir.path().join("out"))
+            .arg(&f)
+            .output()
+            .unwrap()
+    };
+    let o = run(scenario(hb, "wilson-2003", ""));
+    crate::common::assert_exit(&o, 0);
+    let rows = crate::common::read_csv_records(&dir.path().join("out/hb/summary.csv"));
+    assert!(rows.iter().all(|r| r["v_simulated_m_s"].parse::<f64>().unwrap() > 0.0));
+    for (text, key) in [
+        (scenario(hb, "bingham-fedem", ""), "drag.law"),
+        (scenario(hb, "ansley-smith", ""), "drag.law"),
+        (scenario(hb, "wilson-2003", "physics = \"ideal-stokes\""), "physics"),
+        (scenario(newt, "wilson-2003", ""), "drag.law"),
+        (scenario(&hb.replace("flow_index = 0.7", "flow_index = 3"), "wilson-2003", ""), "fluid.flow_index"),
+        (scenario(&format!("{hb}plastic_viscosity_pa_s = 0.01\n"), "wilson-2003", ""), "fluid.plastic_viscosity_pa_s"),
+    ] {
+        let o = run(text);
+        crate::common::assert_exit(&o, 2);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains(key), "{key}: {err}");
+    }
+}
