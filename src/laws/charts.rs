@@ -19,7 +19,14 @@ fn re_cd(data: &DataSet, i: usize, v: f64) -> Option<(f64, f64)> {
     }
     let (ty, eb) = (f.rheogram.yield_stress_pa, f.rheogram.consistency_pa_sn);
     let re = reynolds_bingham(f.density_kg_m3, v, s.diameter_m, ty, eb);
-    let cd = cd_from_terminal_velocity(s.density_kg_m3, f.density_kg_m3, s.diameter_m, ty, v, G_M_S2);
+    let cd = cd_from_terminal_velocity(
+        s.density_kg_m3,
+        f.density_kg_m3,
+        s.diameter_m,
+        ty,
+        v,
+        G_M_S2,
+    );
     (cd > 0.0 && re > 0.0).then_some((re, cd))
 }
 
@@ -42,7 +49,11 @@ pub fn cd_vs_re(path: &Path, data: &DataSet, results: &[LawResult]) -> std::io::
             filled: false,
             line: false,
         });
-    let lo = measured.iter().map(|p| p.0).fold(f64::INFINITY, f64::min).min(0.1);
+    let lo = measured
+        .iter()
+        .map(|p| p.0)
+        .fold(f64::INFINITY, f64::min)
+        .min(0.1);
     let hi = measured.iter().map(|p| p.0).fold(0.0, f64::max).max(1e3);
     let eq19: Vec<(f64, f64)> = (0..=200)
         .map(|k| lo * (hi / lo).powf(k as f64 / 200.0))
@@ -74,7 +85,11 @@ pub fn cd_vs_re(path: &Path, data: &DataSet, results: &[LawResult]) -> std::io::
 /// Predicted against measured terminal velocity, one panel per law, with the parity line and
 /// the ±25 % band; spheres a law holds at rest sit on the x axis.
 pub fn parity(path: &Path, data: &DataSet, results: &[LawResult]) -> std::io::Result<()> {
-    let vmax = data.spheres.iter().map(|s| s.v_measured_m_s).fold(0.0, f64::max);
+    let vmax = data
+        .spheres
+        .iter()
+        .map(|s| s.v_measured_m_s)
+        .fold(0.0, f64::max);
     let top = results
         .iter()
         .flat_map(|r| r.predictions.iter().map(|p| p.v_predicted_m_s))
@@ -116,7 +131,12 @@ pub fn parity(path: &Path, data: &DataSet, results: &[LawResult]) -> std::io::Re
             })
         })
         .collect();
-    grid_svg(path, "Predicted against measured terminal velocity, per law", &charts, 3)
+    grid_svg(
+        path,
+        "Predicted against measured terminal velocity, per law",
+        &charts,
+        3,
+    )
 }
 
 /// Velocity error (%) against the yield number τ_y/(Δρ g d) (log), one series per law (without
@@ -143,7 +163,12 @@ pub fn error_vs_yield_number(
         let pts: Vec<(f64, f64)> = r
             .predictions
             .iter()
-            .map(|p| (yield_number(data, &data.spheres[p.sphere]), 100.0 * p.rel_error))
+            .map(|p| {
+                (
+                    yield_number(data, &data.spheres[p.sphere]),
+                    100.0 * p.rel_error,
+                )
+            })
             .filter(|(y, e)| *y > 0.0 && e.is_finite())
             .collect();
         for &(y, e) in &pts {
@@ -165,8 +190,11 @@ pub fn error_vs_yield_number(
         chart = chart
             .curve(Curve::new("zero error", vec![(lo, 0.0), (hi, 0.0)]))
             .curve(
-                Curve::new("Beris et al. critical Y = 0.0477", vec![(yc, ylo), (yc, yhi)])
-                    .dashed(),
+                Curve::new(
+                    "Beris et al. critical Y = 0.0477",
+                    vec![(yc, ylo), (yc, yhi)],
+                )
+                .dashed(),
             );
     }
     chart.svg(path)

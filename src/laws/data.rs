@@ -96,8 +96,11 @@ impl DataSet {
     }
 }
 
+/// A CSV's header and its rows as maps column → text.
+type Table = (Vec<String>, Vec<HashMap<String, String>>);
+
 /// Rows of a CSV as maps column → text, with the header; a bad row is a bad input.
-fn rows(file: &Path, text: &str) -> Result<(Vec<String>, Vec<HashMap<String, String>>), Error> {
+fn rows(file: &Path, text: &str) -> Result<Table, Error> {
     let bad = |key: Option<&str>, m: String| Error::BadInput(BadInput::new(file, key, m));
     let mut rd = csv::ReaderBuilder::new()
         .comment(Some(b'#'))
@@ -112,7 +115,13 @@ fn rows(file: &Path, text: &str) -> Result<(Vec<String>, Vec<HashMap<String, Str
     let mut out = Vec::new();
     for (i, r) in rd.records().enumerate() {
         let r = r.map_err(|e| bad(Some(&format!("row {}", i + 1)), format!("{e}")))?;
-        out.push(header.iter().cloned().zip(r.iter().map(str::to_string)).collect());
+        out.push(
+            header
+                .iter()
+                .cloned()
+                .zip(r.iter().map(str::to_string))
+                .collect(),
+        );
     }
     Ok((header, out))
 }
@@ -130,7 +139,11 @@ fn number(
     };
     let key = format!("row {i}, column {col}");
     let x: f64 = t.parse().map_err(|_| {
-        Error::BadInput(BadInput::new(file, Some(&key), format!("`{t}` is not a number")))
+        Error::BadInput(BadInput::new(
+            file,
+            Some(&key),
+            format!("`{t}` is not a number"),
+        ))
     })?;
     if !(x.is_finite() && (ok.0)(x)) {
         return Err(Error::BadInput(BadInput::new(
@@ -172,7 +185,11 @@ const FLOW_INDEX: (fn(f64) -> bool, &str) = (|x| (0.1..=2.0).contains(&x), "0.1 
 /// Parses a fluids file.
 pub fn parse_fluids(file: &Path, text: &str) -> Result<Vec<Fluid>, Error> {
     let (header, rows) = rows(file, text)?;
-    need_columns(file, &header, &["suspension", "density_kg_m3", "yield_stress_pa"])?;
+    need_columns(
+        file,
+        &header,
+        &["suspension", "density_kg_m3", "yield_stress_pa"],
+    )?;
     let mut out: Vec<Fluid> = Vec::new();
     for (i, r) in rows.iter().enumerate() {
         let i = i + 1;
@@ -184,8 +201,18 @@ pub fn parse_fluids(file: &Path, text: &str) -> Result<Vec<Fluid>, Error> {
                 format!("`{name}` is empty or repeated: each fluid needs its own name"),
             )));
         }
-        let rho = required(file, number(file, r, i, "density_kg_m3", POSITIVE)?, i, "density_kg_m3")?;
-        let ty = required(file, number(file, r, i, "yield_stress_pa", NON_NEGATIVE)?, i, "yield_stress_pa")?;
+        let rho = required(
+            file,
+            number(file, r, i, "density_kg_m3", POSITIVE)?,
+            i,
+            "density_kg_m3",
+        )?;
+        let ty = required(
+            file,
+            number(file, r, i, "yield_stress_pa", NON_NEGATIVE)?,
+            i,
+            "yield_stress_pa",
+        )?;
         let eb = number(file, r, i, "plastic_viscosity_pa_s", POSITIVE)?;
         let k = number(file, r, i, "consistency_pa_sn", POSITIVE)?;
         let n = number(file, r, i, "flow_index", FLOW_INDEX)?;
@@ -220,10 +247,19 @@ pub fn parse_spheres(file: &Path, text: &str, fluids: &[Fluid]) -> Result<Vec<Sp
     need_columns(
         file,
         &header,
-        &["sphere_id", "suspension", "diameter_m", "density_kg_m3", "v_terminal_measured_m_s"],
+        &[
+            "sphere_id",
+            "suspension",
+            "diameter_m",
+            "density_kg_m3",
+            "v_terminal_measured_m_s",
+        ],
     )?;
-    let index: BTreeMap<&str, usize> =
-        fluids.iter().enumerate().map(|(i, f)| (f.name.as_str(), i)).collect();
+    let index: BTreeMap<&str, usize> = fluids
+        .iter()
+        .enumerate()
+        .map(|(i, f)| (f.name.as_str(), i))
+        .collect();
     let mut out: Vec<Sphere> = Vec::new();
     for (i, r) in rows.iter().enumerate() {
         let i = i + 1;
@@ -243,13 +279,25 @@ pub fn parse_spheres(file: &Path, text: &str, fluids: &[Fluid]) -> Result<Vec<Sp
                 format!("`{susp}` is not a fluid of the fluids file"),
             ))
         })?;
-        let d = required(file, number(file, r, i, "diameter_m", POSITIVE)?, i, "diameter_m")?;
-        let rho = required(file, number(file, r, i, "density_kg_m3", POSITIVE)?, i, "density_kg_m3")?;
+        let d = required(
+            file,
+            number(file, r, i, "diameter_m", POSITIVE)?,
+            i,
+            "diameter_m",
+        )?;
+        let rho = required(
+            file,
+            number(file, r, i, "density_kg_m3", POSITIVE)?,
+            i,
+            "density_kg_m3",
+        )?;
         if rho <= fluids[fluid].density_kg_m3 {
             return Err(Error::BadInput(BadInput::new(
                 file,
                 Some(&format!("row {i}, column density_kg_m3")),
-                format!("{rho} kg/m³ does not exceed its fluid's density: the sphere would not sink"),
+                format!(
+                    "{rho} kg/m³ does not exceed its fluid's density: the sphere would not sink"
+                ),
             )));
         }
         let v = required(

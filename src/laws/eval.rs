@@ -200,6 +200,8 @@ impl LawResult {
 
     /// The prediction for the sphere with id `id`, if the law took it.
     pub fn for_sphere(&self, data: &DataSet, id: &str) -> Option<&Prediction> {
-        self.predictions.iter().find(|p| data.spheres[p.sphere].id == id)
+        self.predictions
+            .iter()
+            .find(|p| data.spheres[p.sphere].id == id)
     }
 }

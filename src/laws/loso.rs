@@ -22,7 +22,14 @@ pub fn point(data: &DataSet, s: &Sphere) -> Option<(f64, f64)> {
     let (ty, eb) = (f.rheogram.yield_stress_pa, f.rheogram.consistency_pa_sn);
     let v = s.v_measured_m_s;
     let re = reynolds_bingham(f.density_kg_m3, v, s.diameter_m, ty, eb);
-    let cd = cd_from_terminal_velocity(s.density_kg_m3, f.density_kg_m3, s.diameter_m, ty, v, G_M_S2);
+    let cd = cd_from_terminal_velocity(
+        s.density_kg_m3,
+        f.density_kg_m3,
+        s.diameter_m,
+        ty,
+        v,
+        G_M_S2,
+    );
     Some((re, cd))
 }
 
@@ -62,13 +69,23 @@ pub fn fedem_speed(a: f64, b: f64, rho_f: f64, d: f64, ty: f64, eb: f64, w_n: f6
     // (c0, c1, c2, lo, hi) of F = c0 + c1 v + c2 v² on [lo, hi].
     let branches = [
         (fy + 12.0 * area * ty, 12.0 * area * eb / d, 0.0, 0.0, v1),
-        (fy + 0.5 * a * area * ty, 0.5 * a * area * eb / d, 0.5 * b * rho_f * area, v1, v150),
+        (
+            fy + 0.5 * a * area * ty,
+            0.5 * a * area * eb / d,
+            0.5 * b * rho_f * area,
+            v1,
+            v150,
+        ),
         (fy, 0.0, 0.2 * rho_f * area, v150, f64::INFINITY),
     ];
     for (k, &(c0, c1, c2, lo, hi)) in branches.iter().enumerate() {
         let f_lo = c0 + c1 * lo + c2 * lo * lo;
         if f_lo >= w_n {
-            return if k == 0 { (0.0, State::Static) } else { (lo, State::Jump) };
+            return if k == 0 {
+                (0.0, State::Static)
+            } else {
+                (lo, State::Jump)
+            };
         }
         let r = if c2 == 0.0 {
             (w_n - c0) / c1
@@ -82,9 +99,14 @@ pub fn fedem_speed(a: f64, b: f64, rho_f: f64, d: f64, ty: f64, eb: f64, w_n: f6
     (f64::INFINITY, State::Moving)
 }
 
+/// A held-out sphere's prediction: (sphere index, predicted velocity m/s, state).
+pub type HeldOut = (usize, f64, State);
+/// Eq. 19 refitted without one fluid: (held-out fluid index, a, b).
+pub type Refit = (usize, f64, f64);
+
 /// Leave-one-suspension-out predictions of f-EDEM's law: (sphere index, predicted velocity m/s,
 /// state) for every sphere of a Bingham fluid, and the refitted (a, b) per held-out fluid index.
-pub fn loso_fedem(data: &DataSet) -> (Vec<(usize, f64, State)>, Vec<(usize, f64, f64)>) {
+pub fn loso_fedem(data: &DataSet) -> (Vec<HeldOut>, Vec<Refit>) {
     let mut preds = Vec::new();
     let mut fits = Vec::new();
     for (fi, f) in data.fluids.iter().enumerate() {
@@ -97,9 +119,16 @@ pub fn loso_fedem(data: &DataSet) -> (Vec<(usize, f64, State)>, Vec<(usize, f64,
             .filter(|s| s.fluid != fi)
             .filter_map(|s| point(data, s))
             .collect();
-        let Some((a, b)) = fit_eq19(&pts) else { continue };
+        let Some((a, b)) = fit_eq19(&pts) else {
+            continue;
+        };
         fits.push((fi, a, b));
-        for (i, s) in data.spheres.iter().enumerate().filter(|(_, s)| s.fluid == fi) {
+        for (i, s) in data
+            .spheres
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| s.fluid == fi)
+        {
             let (v, st) = fedem_speed(
                 a,
                 b,

@@ -67,7 +67,11 @@ pub fn run(req: &Request) -> Result<Report, Error> {
         ));
     }
     let results = evaluate(&data);
-    let pts: Vec<(f64, f64)> = data.spheres.iter().filter_map(|s| loso::point(&data, s)).collect();
+    let pts: Vec<(f64, f64)> = data
+        .spheres
+        .iter()
+        .filter_map(|s| loso::point(&data, s))
+        .collect();
     let refit_all = loso::fit_eq19(&pts);
     let ioe = |e: std::io::Error| Error::Io(dest.clone(), e);
     let stage = StagedDir::new(&req.out_dir, "laws").map_err(ioe)?;
@@ -134,7 +138,11 @@ pub const LAWS_HEADER: [&str; 20] = [
     "watched_sphere_state",
 ];
 
-fn write_laws_csv(path: &std::path::Path, data: &DataSet, results: &[LawResult]) -> std::io::Result<()> {
+fn write_laws_csv(
+    path: &std::path::Path,
+    data: &DataSet,
+    results: &[LawResult],
+) -> std::io::Result<()> {
     let rows: Vec<Vec<String>> = results
         .iter()
         .map(|r| {
@@ -213,14 +221,19 @@ fn console(
     refit_all: Option<(f64, f64)>,
     out: &std::path::Path,
 ) -> Vec<String> {
-    let mut lines = vec![
-        format!("settle laws: {} spheres, {}", data.spheres.len(), data.source),
-        format!(
+    let mut lines =
+        vec![
+            format!(
+                "settle laws: {} spheres, {}",
+                data.spheres.len(),
+                data.source
+            ),
+            format!(
             "  {:<22} {:>3} {:>9} {:>9} {:>9} {:>9} {:>7} {:>7} {:>10} {:>4} {:>4} {:>9} {:>10}",
             "law", "n", "mean|err|", "median", "max", "bias", "≤10%", "≤25%", "F mean|err|",
             "stat", "jump", "LOSO mean", WATCHED_SPHERE
         ),
-    ];
+        ];
     let p = |x: f64| pct(x, 3);
     let u = |x: f64| format!("{}%", sig(100.0 * x, 3));
     for r in results {
@@ -245,7 +258,10 @@ fn console(
             u(r.force.mean_abs),
             r.n_static,
             r.n_jump,
-            r.loso.as_ref().map(|l| u(l.mean_abs)).unwrap_or_else(|| "-".into()),
+            r.loso
+                .as_ref()
+                .map(|l| u(l.mean_abs))
+                .unwrap_or_else(|| "-".into()),
             w
         ));
     }

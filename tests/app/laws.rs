@@ -23,7 +23,10 @@ fn default_run_writes_the_table_and_readable_charts() {
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(stdout.contains("121 spheres"), "{stdout}");
     assert!(stdout.contains("aim (mean |error| ≤ 15 %"), "{stdout}");
-    assert!(!stdout.contains("-0%") && !stdout.contains("e-"), "{stdout}");
+    assert!(
+        !stdout.contains("-0%") && !stdout.contains("e-"),
+        "{stdout}"
+    );
     let dir = out.path().join("laws");
     let rows = read_csv_records(&dir.join("laws.csv"));
     let keys: Vec<&str> = rows.iter().map(|r| r["law"].as_str()).collect();
@@ -49,9 +52,21 @@ fn default_run_writes_the_table_and_readable_charts() {
     assert!(rows[1]["loso_mean_abs_rel_error"].is_empty());
     let preds = read_csv_records(&dir.join("predictions.csv"));
     assert_eq!(preds.len(), 6 * 121);
-    assert_readable_chart(&dir.join("cd_vs_re.svg"), "Drag coefficient", &["Re′", "C_d"]);
-    assert_readable_chart(&dir.join("parity.svg"), "bingham-additive", &["measured velocity", "predicted velocity"]);
-    assert_readable_chart(&dir.join("error_vs_yield_number.svg"), "yield number", &["τ_y/(Δρ g d)", "velocity error"]);
+    assert_readable_chart(
+        &dir.join("cd_vs_re.svg"),
+        "Drag coefficient",
+        &["Re′", "C_d"],
+    );
+    assert_readable_chart(
+        &dir.join("parity.svg"),
+        "bingham-additive",
+        &["measured velocity", "predicted velocity"],
+    );
+    assert_readable_chart(
+        &dir.join("error_vs_yield_number.svg"),
+        "yield number",
+        &["τ_y/(Δρ g d)", "velocity error"],
+    );
 }
 
 #[test]
@@ -75,13 +90,21 @@ fn a_herschel_bulkley_fluid_is_evaluated_by_the_laws_that_take_it() {
     .unwrap();
     let out = dir.path().join("out");
     let o = laws(
-        &[spheres.to_str().unwrap(), "--fluids", fluids.to_str().unwrap()],
+        &[
+            spheres.to_str().unwrap(),
+            "--fluids",
+            fluids.to_str().unwrap(),
+        ],
         &out,
     );
     assert_exit(&o, 0);
     let rows = read_csv_records(&out.join("laws/laws.csv"));
     for r in &rows {
-        let want = if r["law"].starts_with("wilson-2003") { "2" } else { "1" };
+        let want = if r["law"].starts_with("wilson-2003") {
+            "2"
+        } else {
+            "1"
+        };
         assert_eq!(r["n"], want, "{}", r["law"]);
     }
 }
@@ -91,7 +114,11 @@ fn bad_input_exits_2_and_writes_nothing() {
     let dir = tmp();
     let spheres = dir.path().join("spheres.csv");
     let fluids = dir.path().join("fluids.csv");
-    std::fs::write(&fluids, "suspension,density_kg_m3,yield_stress_pa,plastic_viscosity_pa_s\n1,1250,20,0.01\n").unwrap();
+    std::fs::write(
+        &fluids,
+        "suspension,density_kg_m3,yield_stress_pa,plastic_viscosity_pa_s\n1,1250,20,0.01\n",
+    )
+    .unwrap();
     for (text, needle) in [
         ("sphere_id,suspension,diameter_m,density_kg_m3,v_terminal_measured_m_s\na,9,0.02,7800,0.8\n", "not a fluid"),
         ("sphere_id,suspension,diameter_m,density_kg_m3,v_terminal_measured_m_s\na,1,x,7800,0.8\n", "not a number"),

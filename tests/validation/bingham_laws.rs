@@ -37,7 +37,11 @@ fn fedem_row_matches_the_simulated_reference_metrics() {
 #[test]
 fn eq19_refit_on_table3_gives_fedem_constants() {
     let data = DataSet::valentik();
-    let pts: Vec<(f64, f64)> = data.spheres.iter().filter_map(|s| loso::point(&data, s)).collect();
+    let pts: Vec<(f64, f64)> = data
+        .spheres
+        .iter()
+        .filter_map(|s| loso::point(&data, s))
+        .collect();
     let (a, b) = loso::fit_eq19(&pts).unwrap();
     assert!((a / 29.12 - 1.0).abs() < 0.01, "a = {a}");
     assert!((b / 0.195 - 1.0).abs() < 0.03, "b = {b}");
@@ -62,12 +66,21 @@ fn loso_solver_with_fedem_constants_is_the_fedem_law() {
             net_weight(&data, s),
         );
         assert_eq!(st, p.state, "{}", s.id);
-        assert!((v - p.v_predicted_m_s).abs() <= 1e-9 * v.max(1.0), "{}: {v} vs {}", s.id, p.v_predicted_m_s);
+        assert!(
+            (v - p.v_predicted_m_s).abs() <= 1e-9 * v.max(1.0),
+            "{}: {v} vs {}",
+            s.id,
+            p.v_predicted_m_s
+        );
     }
     // Leave-one-suspension-out is worse than in-sample, but not wildly (19.0 % in sample).
     let loso = r.loso.as_ref().unwrap();
     assert_eq!(loso.n, 121);
-    assert!(loso.mean_abs >= 0.15 && loso.mean_abs < 0.30, "{}", loso.mean_abs);
+    assert!(
+        loso.mean_abs >= 0.15 && loso.mean_abs < 0.30,
+        "{}",
+        loso.mean_abs
+    );
 }
 
 /// Beris et al.: every Valentik–Whitmore sphere has Y below the critical 0.143/3 (all moved in
@@ -76,11 +89,18 @@ fn loso_solver_with_fedem_constants_is_the_fedem_law() {
 #[test]
 fn beris_criterion_lets_every_measured_sphere_move() {
     let data = DataSet::valentik();
-    let ymax = data.spheres.iter().map(|s| yield_number(&data, s)).fold(0.0, f64::max);
+    let ymax = data
+        .spheres
+        .iter()
+        .map(|s| yield_number(&data, s))
+        .fold(0.0, f64::max);
     assert!(ymax < BERIS_CRITICAL_YIELD_NUMBER, "max Y = {ymax}");
     let s304 = data.spheres.iter().find(|s| s.id == "S3-04").unwrap();
     let y = yield_number(&data, s304);
-    assert!(y > 0.0440 && y < BERIS_CRITICAL_YIELD_NUMBER, "Y(S3-04) = {y}");
+    assert!(
+        y > 0.0440 && y < BERIS_CRITICAL_YIELD_NUMBER,
+        "Y(S3-04) = {y}"
+    );
 }
 
 /// Ansley & Smith's law lets S3-04 move and predicts it within 10 % of the measured 0.22 m/s.
@@ -88,10 +108,17 @@ fn beris_criterion_lets_every_measured_sphere_move() {
 fn ansley_smith_moves_s3_04() {
     let data = DataSet::valentik();
     let rs = evaluate(&data);
-    let r = rs.iter().find(|r| r.law == Law::Plastic(PlasticLaw::AnsleySmith, false)).unwrap();
+    let r = rs
+        .iter()
+        .find(|r| r.law == Law::Plastic(PlasticLaw::AnsleySmith, false))
+        .unwrap();
     let p = r.for_sphere(&data, "S3-04").unwrap();
     assert_eq!(p.state, State::Moving);
-    assert!((p.v_predicted_m_s / 0.22 - 1.0).abs() < 0.10, "{}", p.v_predicted_m_s);
+    assert!(
+        (p.v_predicted_m_s / 0.22 - 1.0).abs() < 0.10,
+        "{}",
+        p.v_predicted_m_s
+    );
 }
 
 /// With Beris et al.'s criterion a sphere just above the critical yield number stays at rest
@@ -101,15 +128,16 @@ fn beris_option_holds_a_sphere_above_the_critical_yield_number() {
     let (rho_f, ty, eb, d, g) = (1226.0, 17.5, 0.0081, 0.0254, 9.81);
     let fluid = YieldFluid::bingham(ty, eb);
     for law in [PlasticLaw::AnsleySmith, PlasticLaw::Wilson] {
-        let drag = |beris| {
-            SphereDrag::new(DragLaw::Plastic { law, fluid, beris }, d, rho_f)
-        };
+        let drag = |beris| SphereDrag::new(DragLaw::Plastic { law, fluid, beris }, d, rho_f);
         for (factor, held) in [(1.01, true), (0.99, false)] {
             let drho = ty / (factor * BERIS_CRITICAL_YIELD_NUMBER * g * d);
             let w = net_weight_n(d, rho_f + drho, rho_f, g);
             let with = drag(true).balance_speed(w).speed_m_s;
             assert_eq!(with == 0.0, held, "{law:?} at Y = {factor} Y_c");
-            assert!(drag(false).balance_speed(w).speed_m_s > 0.0, "{law:?} alone moves");
+            assert!(
+                drag(false).balance_speed(w).speed_m_s > 0.0,
+                "{law:?} alone moves"
+            );
         }
         assert_eq!(
             drag(true).static_resistance_n(),
@@ -129,7 +157,13 @@ fn every_law_balances_the_net_weight_at_its_predicted_speed() {
             let drag = r.law.drag(&data, s).unwrap();
             let w = net_weight(&data, s);
             let f = drag.force_n(p.v_predicted_m_s);
-            assert!((f / w - 1.0).abs() < 1e-9, "{} {}: F/W = {}", r.law.key(), s.id, f / w);
+            assert!(
+                (f / w - 1.0).abs() < 1e-9,
+                "{} {}: F/W = {}",
+                r.law.key(),
+                s.id,
+                f / w
+            );
         }
     }
 }
@@ -145,13 +179,21 @@ fn simulated_terminal_velocities_are_the_laws_predictions() {
         Law::Plastic(PlasticLaw::AnsleySmith, false),
         Law::Plastic(PlasticLaw::Wilson, true),
     ] {
-        let Law::Plastic(p, beris) = law else { unreachable!() };
+        let Law::Plastic(p, beris) = law else {
+            unreachable!()
+        };
         let out = crate::common::tmp();
         let o = crate::common::settle()
             .args(["run", "scenarios/valentik_susp3.toml", "-q", "--out"])
             .arg(out.path())
             .args(["--set", &format!("drag.law={}", p.key())])
-            .args(["--set", &format!("drag.static_criterion={}", if beris { "beris" } else { "law" })])
+            .args([
+                "--set",
+                &format!(
+                    "drag.static_criterion={}",
+                    if beris { "beris" } else { "law" }
+                ),
+            ])
             .output()
             .unwrap();
         crate::common::assert_exit(&o, 0);
@@ -178,7 +220,9 @@ fn simulated_terminal_velocities_are_the_laws_predictions() {
 #[test]
 fn herschel_bulkley_scenarios_run_under_wilson_and_are_refused_elsewhere() {
     let dir = crate::common::tmp();
-    let csv = std::env::current_dir().unwrap().join("data/valentik_whitmore_1965_spheres.csv");
+    let csv = std::env::current_dir()
+        .unwrap()
+        .join("data/valentik_whitmore_1965_spheres.csv");
     let scenario = |fluid: &str, law: &str, extra: &str| {
         format!(
             "name = \"hb\"\nkind = \"free_settling\"\ndimension = 3\n{extra}\n[fluid]\ndensity_kg_m3 = 1226.0\n{fluid}\n\
@@ -202,14 +246,33 @@ fn herschel_bulkley_scenarios_run_under_wilson_and_are_refused_elsewhere() {
     let o = run(scenario(hb, "wilson-2003", ""));
     crate::common::assert_exit(&o, 0);
     let rows = crate::common::read_csv_records(&dir.path().join("out/hb/summary.csv"));
-    assert!(rows.iter().all(|r| r["v_simulated_m_s"].parse::<f64>().unwrap() > 0.0));
+    assert!(rows
+        .iter()
+        .all(|r| r["v_simulated_m_s"].parse::<f64>().unwrap() > 0.0));
     for (text, key) in [
         (scenario(hb, "bingham-fedem", ""), "drag.law"),
         (scenario(hb, "ansley-smith", ""), "drag.law"),
-        (scenario(hb, "wilson-2003", "physics = \"ideal-stokes\""), "physics"),
+        (
+            scenario(hb, "wilson-2003", "physics = \"ideal-stokes\""),
+            "physics",
+        ),
         (scenario(newt, "wilson-2003", ""), "drag.law"),
-        (scenario(&hb.replace("flow_index = 0.7", "flow_index = 3"), "wilson-2003", ""), "fluid.flow_index"),
-        (scenario(&format!("{hb}plastic_viscosity_pa_s = 0.01\n"), "wilson-2003", ""), "fluid.plastic_viscosity_pa_s"),
+        (
+            scenario(
+                &hb.replace("flow_index = 0.7", "flow_index = 3"),
+                "wilson-2003",
+                "",
+            ),
+            "fluid.flow_index",
+        ),
+        (
+            scenario(
+                &format!("{hb}plastic_viscosity_pa_s = 0.01\n"),
+                "wilson-2003",
+                "",
+            ),
+            "fluid.plastic_viscosity_pa_s",
+        ),
     ] {
         let o = run(text);
         crate::common::assert_exit(&o, 2);

@@ -1,8 +1,8 @@
 //! Validation cases (MercuryDPM style): each is a scenario in `scenarios/`, reference data
 //! (a table in `data/` or an independent solution) and a test stating its tolerance.
 
+mod bingham_laws;
 mod paste_drop;
 mod sphere_drag;
 mod stokes_single;
-mod bingham_laws;
 mod valentik;

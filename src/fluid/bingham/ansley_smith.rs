@@ -74,7 +74,8 @@ mod tests {
         let (rho, d, ty, eb) = (1254.0, 0.019, 22.5, 0.0095);
         for v in [0.01, 0.1, 0.5, 2.0] {
             let re = reynolds_ansley_smith(rho, v, d, ty, eb);
-            let cd = ansley_smith_drag_n(rho, d, ty, eb, v) / (0.5 * rho * sphere_area_m2(d) * v * v);
+            let cd =
+                ansley_smith_drag_n(rho, d, ty, eb, v) / (0.5 * rho * sphere_area_m2(d) * v * v);
             let want = crate::fluid::newtonian::cd_clift_gauvin(re);
             assert!((cd / want - 1.0).abs() < 1e-12, "v = {v}");
         }

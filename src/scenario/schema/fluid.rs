@@ -263,11 +263,24 @@ impl Fluid {
     /// τ_y, K and n of a Herschel–Bulkley fluid, and no Newtonian or Bingham viscosity.
     fn check_herschel_bulkley(&self, c: &Check) -> Result<RheologyModel, ScenarioError> {
         let need = |key: &str, x: Option<f64>, what: &str| {
-            x.ok_or_else(|| c.err(key, format!("missing: a herschel-bulkley fluid needs {what}")))
+            x.ok_or_else(|| {
+                c.err(
+                    key,
+                    format!("missing: a herschel-bulkley fluid needs {what}"),
+                )
+            })
         };
-        let ty = need("fluid.yield_stress_pa", self.yield_stress_pa, "0 ≤ yield_stress_pa ≤ 1e6 Pa")?;
+        let ty = need(
+            "fluid.yield_stress_pa",
+            self.yield_stress_pa,
+            "0 ≤ yield_stress_pa ≤ 1e6 Pa",
+        )?;
         c.range("fluid.yield_stress_pa", ty, cc(0.0, 1e6, "Pa"))?;
-        let k = need("fluid.consistency_pa_sn", self.consistency_pa_sn, "0 < consistency_pa_sn ≤ 1e6 Pa sⁿ")?;
+        let k = need(
+            "fluid.consistency_pa_sn",
+            self.consistency_pa_sn,
+            "0 < consistency_pa_sn ≤ 1e6 Pa sⁿ",
+        )?;
         c.range("fluid.consistency_pa_sn", k, oc(0.0, 1e6, "Pa sⁿ"))?;
         let n = need("fluid.flow_index", self.flow_index, "0.1 ≤ flow_index ≤ 2")?;
         c.range("fluid.flow_index", n, cc(0.1, 2.0, ""))?;
@@ -361,7 +374,8 @@ impl Drag {
         physics: Physics,
     ) -> Result<(), ScenarioError> {
         c.range("drag.voidage", self.voidage, oc(0.0, 1.0, ""))?;
-        const YIELD_LAWS: &str = "`bingham-fedem`, `bingham-additive`, `ansley-smith`, `wilson-2003`";
+        const YIELD_LAWS: &str =
+            "`bingham-fedem`, `bingham-additive`, `ansley-smith`, `wilson-2003`";
         match fluid.rheology {
             Rheology::Newtonian if self.law.is_yield_stress() => Err(c.err(
                 "drag.law",

@@ -11,9 +11,7 @@ mod time;
 
 pub use bodies::{Container, Release, SphereSpec, SpheresCsv};
 pub use contacts::Contacts;
-pub use fluid::{
-    Drag, DragLawName, Fluid, Rheology, RheologyModel, StaticCriterion, Submergence,
-};
+pub use fluid::{Drag, DragLawName, Fluid, Rheology, RheologyModel, StaticCriterion, Submergence};
 pub use kinds::funnel::{FunnelSpec, Repeats};
 pub use kinds::restitution_drop::RestitutionDropSpec;
 pub(crate) use kinds::sedimentation::trim_default_times;
