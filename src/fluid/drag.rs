@@ -242,7 +242,17 @@ impl SphereDrag {
         let v = speed_m_s.max(0.0);
         match self.law {
             DragLaw::Stokes { viscosity_pa_s } => 3.0 * PI * viscosity_pa_s * d,
-            DragLaw::Dallavalle { .. } | DragLaw::Correlation { .. } | DragLaw::Plastic { .. } => {
+            DragLaw::Plastic { .. } => {
+                // The drag is finite at rest: a step of 1e-9 m/s at least keeps the difference
+                // above the rounding of F(0⁺) (a smaller one returns 0 at v = 0).
+                let h = (v * 1e-6).max(1e-9);
+                if v > h {
+                    (self.unscaled_force_n(v + h) - self.unscaled_force_n(v - h)) / (2.0 * h)
+                } else {
+                    (self.unscaled_force_n(v + h) - self.unscaled_force_n(v)) / h
+                }
+            }
+            DragLaw::Dallavalle { .. } | DragLaw::Correlation { .. } => {
                 // Central difference on the smooth law, one-sided near zero.
                 let h = (v * 1e-6).max(1e-15);
                 if v > h {

@@ -280,3 +280,28 @@ fn herschel_bulkley_scenarios_run_under_wilson_and_are_refused_elsewhere() {
         assert!(err.contains(key), "{key}: {err}");
     }
 }
+
+/// The slope dF/dv of the new laws at rest is the creeping-flow value (3π η_B d for the additive
+/// and Ansley & Smith's laws, whose viscous part is Stokes' there), not the 0 a too small
+/// difference step gives; it sets the explicit integrator's stable time step. (Within 5 %:
+/// Ansley & Smith's inertial term grows as v^1.374 from rest, so its slope at the 1e-9 m/s
+/// difference step still adds 3.6 %.)
+#[test]
+fn slope_at_rest_is_the_creeping_flow_value() {
+    let (rho, d, ty, eb) = (1280.0, 0.019, 30.5, 0.0131);
+    let fluid = YieldFluid::bingham(ty, eb);
+    for law in [PlasticLaw::Additive, PlasticLaw::AnsleySmith] {
+        let drag = SphereDrag::new(
+            DragLaw::Plastic {
+                law,
+                fluid,
+                beris: false,
+            },
+            d,
+            rho,
+        );
+        let k = drag.slope_n_s_m(0.0);
+        let stokes = 3.0 * std::f64::consts::PI * eb * d;
+        assert!((k / stokes - 1.0).abs() < 0.05, "{law:?}: {k} vs {stokes}");
+    }
+}
