@@ -144,6 +144,12 @@ pub struct SampleSpec {
     /// (0, lubrication_outer_cutoff).
     #[serde(default = "default_lub_inner")]
     pub lubrication_inner_cutoff: f64,
+    /// Hindered-settling factor of full physics ([`crate::fluid::hindered`]): `"di-felice"`
+    /// (seed 000 eq. 7, the default; settles at ≈ U₀ ε^3.7 in this one-way model) or
+    /// `"richardson-zaki"` (single-grain drag × ε^(−4.65): settles at U₀ ε^4.65, Richardson &
+    /// Zaki 1954, return flow included).
+    #[serde(default)]
+    pub hindered: crate::fluid::HinderedLaw,
 }
 
 fn default_true() -> bool {
