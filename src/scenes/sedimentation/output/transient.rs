@@ -339,7 +339,7 @@ pub fn write_all(stage: &StagedDir, name: &str, k: Grains, diameters_m: &[f64]) 
     ))
     .x("diameter, log scale (µm)", Scale::Log)
     .y(
-        "time to 95 % of the terminal velocity, log scale (ms)",
+        "time to 95 or 99 % of the terminal velocity, log scale (ms)",
         Scale::Log,
     )
     .series(Series {
