@@ -326,7 +326,11 @@ case!(
 fn the_suggested_hydrometer_bulb_fits() {
     let o = settle_run(
         &[bad("bulb_wider_than_cylinder.toml")],
-        &["--quiet", "--set", "instruments.hydrometer_bulb_length_m=0.04"],
+        &[
+            "--quiet",
+            "--set",
+            "instruments.hydrometer_bulb_length_m=0.04",
+        ],
     );
     assert_eq!(o.code, Some(0), "stderr: {}", o.stderr);
 }

@@ -70,7 +70,12 @@ fn run(dir: &Path, sample: u32, phi: f64, law: &str) -> PathBuf {
 fn lone_speeds(run: &Path) -> Vec<(f64, f64)> {
     let (h, rows) = read_csv(&run.join("terminal_time.csv"));
     rows.iter()
-        .map(|r| (col(&h, r, "diameter_m"), col(&h, r, "terminal_velocity_m_s")))
+        .map(|r| {
+            (
+                col(&h, r, "diameter_m"),
+                col(&h, r, "terminal_velocity_m_s"),
+            )
+        })
         .collect()
 }
 
@@ -113,7 +118,11 @@ fn class_speeds(run: &Path) -> Vec<(f64, f64, f64)> {
     let ((h, a), (_, b)) = (snap("060"), snap("300"));
     let mut out: Vec<(f64, f64, f64)> = Vec::new(); // diameter, Σ velocity, count
     for (r1, r2) in a.iter().zip(&b) {
-        let (y1, y2, d) = (col(&h, r1, "y_m"), col(&h, r2, "y_m"), col(&h, r1, "diameter_m"));
+        let (y1, y2, d) = (
+            col(&h, r1, "y_m"),
+            col(&h, r2, "y_m"),
+            col(&h, r1, "diameter_m"),
+        );
         if r2[4] == "true" || !(0.05 < y2 && y2 < H_M - 0.12) {
             continue;
         }

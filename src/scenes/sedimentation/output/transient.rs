@@ -359,13 +359,15 @@ pub fn write_all(stage: &StagedDir, name: &str, k: Grains, diameters_m: &[f64]) 
             .map(|t| (t.diameter_m * 1e6, t.response_time_s * 20f64.ln() * 1e3))
             .collect(),
     ))
-    .curve(Curve::new(
-        "Stokes: t_99 = τ ln 100 (seed 000's stated t_tr)",
-        all.iter()
-            .map(|t| (t.diameter_m * 1e6, t.response_time_s * 100f64.ln() * 1e3))
-            .collect(),
+    .curve(
+        Curve::new(
+            "Stokes: t_99 = τ ln 100 (seed 000's stated t_tr)",
+            all.iter()
+                .map(|t| (t.diameter_m * 1e6, t.response_time_s * 100f64.ln() * 1e3))
+                .collect(),
+        )
+        .dashed(),
     )
-    .dashed())
     .series(Series {
         label: "seed 000 Table 1 t_tr (70 µm: 99 %; the others: 95 %)".into(),
         points: SEED_TABLE1
@@ -415,11 +417,22 @@ mod tests {
             (-1e-12..u * 1e-5).contains(&d)
         };
         for (r, (uu, ut)) in table1_rows(&k).iter().zip(unit) {
-            let t = if r.seed_level == 0.99 { r.t99_s } else { r.t95_s };
-            assert!(truncates_to(r.terminal_m_s, r.seed_terminal_m_s, uu), "{r:?}");
+            let t = if r.seed_level == 0.99 {
+                r.t99_s
+            } else {
+                r.t95_s
+            };
+            assert!(
+                truncates_to(r.terminal_m_s, r.seed_terminal_m_s, uu),
+                "{r:?}"
+            );
             assert!(truncates_to(t, r.seed_t_tr_s, ut), "{r:?}");
             // The other level misses the printed value.
-            let other = if r.seed_level == 0.99 { r.t95_s } else { r.t99_s };
+            let other = if r.seed_level == 0.99 {
+                r.t95_s
+            } else {
+                r.t99_s
+            };
             assert!((other / r.seed_t_tr_s - 1.0).abs() > 0.3, "{r:?}");
         }
         // The run's own Stokes transient gives the same t_99 as eq. 13.
