@@ -333,6 +333,27 @@ fn the_suggested_hydrometer_bulb_fits() {
         ],
     );
     assert_eq!(o.code, Some(0), "stderr: {}", o.stderr);
+    use settle::instruments::hydrometer::{Hydrometer, HydrometerSpec};
+    let bulb_mm = |len: f64, taper: f64| {
+        let spec = HydrometerSpec {
+            bulb_length_m: len,
+            taper_m: taper,
+            ..HydrometerSpec::default()
+        };
+        2e3 * Hydrometer::new(spec, 1000.0).bulb_radius_m
+    };
+    // The 152H, the impossible 2 cm bulb and the suggested 4 cm one (docs/validation/instruments.md).
+    for (len, taper, mm) in [
+        (0.14, 0.025, 27.75),
+        (0.02, 0.005, 79.22),
+        (0.04, 0.005, 50.27),
+    ] {
+        assert!(
+            (bulb_mm(len, taper) - mm).abs() < 0.01,
+            "{len} m: {}",
+            bulb_mm(len, taper)
+        );
+    }
 }
 
 case!(
