@@ -10,6 +10,7 @@
 pub mod bingham;
 pub mod buoyancy;
 pub mod drag;
+pub mod hindered;
 pub mod immersion;
 pub mod lubrication;
 pub mod newtonian;
@@ -18,4 +19,5 @@ pub mod validity;
 pub use bingham::BinghamRegime;
 pub use buoyancy::{buoyancy_n, sphere_area_m2, sphere_mass_kg, sphere_volume_m3, weight_n};
 pub use drag::{DragLaw, DragRegime, Solved, SphereDrag};
+pub use hindered::HinderedLaw;
 pub use immersion::{immersion, Submergence};

@@ -121,8 +121,8 @@ fn valentik_accuracy_at_large_steps() {
     assert!(v01 < 0.01, "v(0.01 s) at dt = 1e-3 s: {v01}");
 }
 
-/// The 68-ball pour in a sweep (f-EDEM Fig. 20: balls counted at t = 0.5 s; f-EDEM lost balls
-/// for dt > 1.04e-5 s). A reduced pour (10 balls) at two large steps: every case stable, no
+/// The 68-ball pour in a sweep (f-EDEM Fig. 20: balls counted at t = 0.5 s; f-EDEM's count is of
+/// balls generated, all 68 only for dt ≤ 1.04e-5 s). A reduced pour (10 balls) at two large steps: every case stable, no
 /// ball lost, all balls in the domain.
 #[test]
 fn funnel_pour_sweep_counts_balls_and_loses_none() {

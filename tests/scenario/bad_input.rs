@@ -151,6 +151,7 @@ const CASES: &[&str] = &[
     "sphere_wider_than_cylinder.toml",
     "drop_10km.toml",
     "csv_unknown_column.toml",
+    "bulb_wider_than_cylinder.toml",
 ];
 
 #[test]
@@ -308,6 +309,53 @@ case!(
     Some("spheres[0].diameter_m"),
     ["0.003", "allowed", "< container.diameter_m = 0.002 m"]
 );
+case!(
+    hydrometer_bulb_wider_than_cylinder,
+    "bulb_wider_than_cylinder.toml",
+    Some("instruments.hydrometer_bulb_length_m"),
+    [
+        "0.02 m",
+        "79.22 mm",
+        "container.width_m = 0.0635 m",
+        "allowed bulb diameter ≤ 53.5 mm",
+        "hydrometer_bulb_length_m ≥ 0.0361 m"
+    ]
+);
+/// The bulb the refusal suggests (4 cm long, Ø 50.3 mm: 6.6 mm from the wall) is accepted and runs.
+#[test]
+fn the_suggested_hydrometer_bulb_fits() {
+    let o = settle_run(
+        &[bad("bulb_wider_than_cylinder.toml")],
+        &[
+            "--quiet",
+            "--set",
+            "instruments.hydrometer_bulb_length_m=0.04",
+        ],
+    );
+    assert_eq!(o.code, Some(0), "stderr: {}", o.stderr);
+    use settle::instruments::hydrometer::{Hydrometer, HydrometerSpec};
+    let bulb_mm = |len: f64, taper: f64| {
+        let spec = HydrometerSpec {
+            bulb_length_m: len,
+            taper_m: taper,
+            ..HydrometerSpec::default()
+        };
+        2e3 * Hydrometer::new(spec, 1000.0).bulb_radius_m
+    };
+    // The 152H, the impossible 2 cm bulb and the suggested 4 cm one (docs/validation/instruments.md).
+    for (len, taper, mm) in [
+        (0.14, 0.025, 27.75),
+        (0.02, 0.005, 79.22),
+        (0.04, 0.005, 50.27),
+    ] {
+        assert!(
+            (bulb_mm(len, taper) - mm).abs() < 0.01,
+            "{len} m: {}",
+            bulb_mm(len, taper)
+        );
+    }
+}
+
 case!(
     drop_not_reaching_the_surface,
     "drop_10km.toml",

@@ -250,13 +250,20 @@ fn the_transient_reaches_the_terminal_velocity_in_about_tau_ln_20() {
         "time to reach the terminal velocity",
         &[
             "diameter, log scale (µm)",
-            "time to 95 % of the terminal velocity, log scale (ms)",
+            "time to 95 or 99 % of the terminal velocity, log scale (ms)",
         ],
     );
+    assert!(svg_texts(&out().join("terminal_time.svg"))
+        .iter()
+        .any(|t| t.starts_with("seed 000 Table 1 t_tr")));
+    let table1 = read_csv_records(&out().join("terminal_time_table1.csv"));
+    assert_eq!(table1.len(), 6, "the six diameters of seed 000 Table 1");
     let rows = read_csv_records(&out().join("terminal_time.csv"));
     assert!(rows.len() > 100, "every class: {}", rows.len());
     for r in &rows {
         let ratio = num(r, "t95_s") / num(r, "t95_stokes_s");
+        assert!((0.85..1.15).contains(&ratio), "{r:?}");
+        let ratio = num(r, "t99_s") / num(r, "t99_stokes_s");
         assert!((0.85..1.15).contains(&ratio), "{r:?}");
         assert!(num(r, "reynolds") < 0.3, "{r:?}");
     }

@@ -2,6 +2,7 @@
 //! (a table in `data/` or an independent solution) and a test stating its tolerance.
 
 mod bingham_laws;
+mod hindered;
 mod paste_drop;
 mod sphere_drag;
 mod stokes_single;

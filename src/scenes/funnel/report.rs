@@ -59,7 +59,7 @@ fn at_count_time(n: usize, count_time_s: f64, results: &[RepeatResult]) -> Optio
         }
     };
     Some(format!(
-        "at t = {} s: {} of {n} balls in the paste, {} in the domain (f-EDEM Fig. 20: N = 68 for dt ≤ 1.04e-5 s)",
+        "at t = {} s: {} of {n} balls in the paste, {} in the domain (f-EDEM Fig. 20: all 68 balls generated only for dt ≤ 1.04e-5 s)",
         short(count_time_s),
         rng(&|c| c.paste),
         rng(&|c| c.in_domain())

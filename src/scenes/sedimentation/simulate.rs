@@ -37,7 +37,8 @@ pub fn simulate(
         sm.voidage_cell_m,
         stepper.ideal,
         stepper.fluid_density_kg_m3,
-    );
+    )
+    .with_hindered(sm.hindered);
     let with_contacts = !stepper.ideal && sm.contacts;
     let mut contacts = ContactStage::new(sm, setup, &stepper);
     let mut start = StepStart::default();

@@ -5,7 +5,8 @@
 
 use super::setup::Setup;
 use super::state::State;
-use crate::fluid::{sphere_volume_m3, DragLaw, SphereDrag};
+use crate::fluid::hindered::richardson_zaki_drag_factor;
+use crate::fluid::{sphere_volume_m3, DragLaw, HinderedLaw, SphereDrag};
 
 /// The grid of solid volume per cell (real units, m³) and the drag it gives.
 #[derive(Clone, Debug)]
@@ -23,6 +24,8 @@ pub struct VoidageGrid {
     ideal: bool,
     viscosity_pa_s: f64,
     fluid_density_kg_m3: f64,
+    /// The hindered-settling factor (`sample.hindered`).
+    hindered: HinderedLaw,
 }
 
 impl VoidageGrid {
@@ -45,6 +48,15 @@ impl VoidageGrid {
             ideal,
             viscosity_pa_s: setup.viscosity_pa_s,
             fluid_density_kg_m3,
+            hindered: HinderedLaw::DiFelice,
+        }
+    }
+
+    /// The same grid with hindered-settling law `law` (default Di Felice).
+    pub fn with_hindered(self, law: HinderedLaw) -> Self {
+        Self {
+            hindered: law,
+            ..self
         }
     }
 
@@ -67,13 +79,22 @@ impl VoidageGrid {
     }
 
     /// The drag of a grain of diameter `d_m` in cell `cell`: Stokes (ideal) or Dallavalle with
-    /// the cell's voidage ε = 1 − solid/cell volume, clamped to [0.3, 1].
+    /// the cell's voidage ε = 1 − solid/cell volume, clamped to [0.3, 1] (Di Felice factor), or
+    /// the lone grain's Dallavalle drag × ε^(−4.65) (`richardson-zaki`).
     pub fn drag(&self, d_m: f64, cell: usize) -> SphereDrag {
         let mu = self.viscosity_pa_s;
         let law = if self.ideal {
             DragLaw::Stokes { viscosity_pa_s: mu }
         } else {
             let eps = (1.0 - self.solid_m3[cell] / self.cell_volume_m3).clamp(0.3, 1.0);
+            if self.hindered == HinderedLaw::RichardsonZaki {
+                let lone = DragLaw::Dallavalle {
+                    viscosity_pa_s: mu,
+                    voidage: 1.0,
+                };
+                return SphereDrag::new(lone, d_m, self.fluid_density_kg_m3)
+                    .scaled(richardson_zaki_drag_factor(eps));
+            }
             DragLaw::Dallavalle {
                 viscosity_pa_s: mu,
                 voidage: eps,

@@ -144,6 +144,12 @@ pub struct SampleSpec {
     /// (0, lubrication_outer_cutoff).
     #[serde(default = "default_lub_inner")]
     pub lubrication_inner_cutoff: f64,
+    /// Hindered-settling factor of full physics ([`crate::fluid::hindered`]): `"di-felice"`
+    /// (seed 000 eq. 7, the default; settles at ≈ U₀ ε^3.7 in this one-way model) or
+    /// `"richardson-zaki"` (single-grain drag × ε^(−4.65): settles at U₀ ε^4.65, Richardson &
+    /// Zaki 1954, return flow included).
+    #[serde(default)]
+    pub hindered: crate::fluid::HinderedLaw,
 }
 
 fn default_true() -> bool {
@@ -268,6 +274,13 @@ impl SampleSpec {
     }
 }
 
+/// Radial clearance a hydrometer bulb needs between itself and the cylinder wall, m (5 mm a
+/// side). A hydrometer floats within about 1° of vertical; over the 28 cm of a 152H that moves
+/// its lower end 4.9 mm off the axis, and a bulb that touches the wall is held by it (and by the
+/// meniscus between them) and reads wrong. The 152H (Ø 27.75 mm) in the 63.5 mm cylinder of
+/// ASTM D422 has 17.9 mm.
+pub const BULB_WALL_CLEARANCE_M: f64 = 5e-3;
+
 /// Keeps, of the record, snapshot and reading times a sedimentation scenario `s` did not give
 /// (their defaults: snapshots at 60, 300, 900 s, the ASTM reading times up to 1440 min), those
 /// within `time.end_s`, so that `--set time.end_s=600` shortens a run without touching them.
@@ -315,6 +328,57 @@ impl InstrumentsSpec {
             astm_cylinder_area_m2: self.hydrometer_astm_cylinder_area_m2,
             calibration_specific_gravity: self.hydrometer_calibration_specific_gravity,
         }
+    }
+
+    /// The hydrometer bulb fits the cylinder: its diameter 2 R_b (from the bulb volume, length
+    /// and taper, [`Hydrometer::new`]) at most the cylinder's inside diameter `b`
+    /// (`container.width_m`, the 2D projection's width) less [`BULB_WALL_CLEARANCE_M`] on each
+    /// side. The error names the bulb length that would fit with the same volume and taper.
+    fn check_bulb_fits(&self, c: &Check, s: &Scenario, b: f64) -> Result<(), ScenarioError> {
+        let allowed = b - 2.0 * BULB_WALL_CLEARANCE_M;
+        let diameter = |len: f64| {
+            let spec = HydrometerSpec {
+                bulb_length_m: len,
+                ..self.hydrometer()
+            };
+            2.0 * Hydrometer::new(spec, s.fluid.density_kg_m3).bulb_radius_m
+        };
+        let d = diameter(self.hydrometer_bulb_length_m);
+        if d <= allowed {
+            return Ok(());
+        }
+        // The bulb narrows as it lengthens (same volume): bisect for the length that fits.
+        let (mut lo, mut hi) = (self.hydrometer_bulb_length_m, 10.0);
+        let hint = if diameter(hi) > allowed || allowed <= 0.0 {
+            "a smaller hydrometer_bulb_volume_m3".to_string()
+        } else {
+            for _ in 0..60 {
+                let mid = 0.5 * (lo + hi);
+                if diameter(mid) > allowed {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            format!(
+                "with this volume and taper, hydrometer_bulb_length_m ≥ {} m, or a smaller \
+                 hydrometer_bulb_volume_m3",
+                crate::io::fmt::sig_trim((hi * 1e4).ceil() / 1e4, 4)
+            )
+        };
+        Err(c.err(
+            "instruments.hydrometer_bulb_length_m",
+            format!(
+                "{} m gives a bulb of {} cm³ a diameter of {} mm, which does not fit the \
+                 cylinder (container.width_m = {b} m) with {} mm of clearance on each side: \
+                 allowed bulb diameter ≤ {} mm ({hint})",
+                self.hydrometer_bulb_length_m,
+                crate::io::fmt::sig_trim(self.hydrometer_bulb_volume_m3 * 1e6, 4),
+                crate::io::fmt::sig_trim(d * 1e3, 4),
+                BULB_WALL_CLEARANCE_M * 1e3,
+                crate::io::fmt::sig_trim(allowed * 1e3, 4),
+            ),
+        ))
     }
 
     /// The instruments (seed 000 §4.5): reading times within the run, hydrometer figures that
@@ -401,6 +465,7 @@ impl InstrumentsSpec {
                 ),
             ],
         )?;
+        self.check_bulb_fits(c, s, b)?;
         let hy = Hydrometer::new(self.hydrometer(), s.fluid.density_kg_m3);
         let full = hy.mark_m(self.hydrometer_full_scale);
         if !(hy.stem_radius_m > 0.0
