@@ -191,3 +191,272 @@ fn hindered_tends_to_isolated_dallavalle_settling_as_c0_vanishes() {
         assert!((a / b - 1.0).abs() < 2e-3, "bin {j}: {a} vs {b}");
     }
 }
+
+#[test]
+fn hindered_mass_is_conserved_bed_included() {
+    let col = column(H, 4000, 60.0);
+    let (bins, w) = sample4();
+    let model = Hindered::new(&col, &bins, &w, 0.6);
+    let h = H / 4000.0;
+    let an = col.analysis;
+    let total = an.c0_kg_m3 * H;
+    let mut last_bed = 0.0;
+    for t in [60.0, 600.0, 3600.0, 20_000.0, 86_400.0] {
+        let u = model.unit_fields_at(t);
+        let suspended: f64 = u
+            .iter()
+            .zip(&w)
+            .map(|(row, wj)| wj * row.iter().sum::<f64>() * h)
+            .sum::<f64>()
+            / (1.0 - 1000.0 / 2500.0);
+        let bed = model.bed_height_m(t);
+        assert!(bed > last_bed, "the bed grows: {bed} at {t} s");
+        last_bed = bed;
+        let m = suspended + bed * 0.6 * 2500.0;
+        assert!((m / total - 1.0).abs() < 1e-9, "t {t}: {m} vs {total}");
+        // Nothing is suspended below the bed's surface.
+        let k = ((H - bed) / h).ceil() as usize;
+        assert!(u.iter().all(|row| row[k..].iter().all(|&x| x == 0.0)));
+    }
+    // After a day every grain of 2.5 µm or more (5 µm/s) has crossed 0.44 m: nearly all is bed.
+    assert!(last_bed * 0.6 * 2500.0 > 0.95 * total);
+}
+
+#[test]
+fn every_bin_leaves_at_its_sub_diameters_bulk_speeds() {
+    // 10 m tall, bed packing so large the bed stays at the bottom, t = 600 s: every front is
+    // above y = H (70 µm: 2.4 m), so each bin (tracers too: w = 0) keeps
+    // excess × Σ share (H − v(d, ε_bulk) t) over its sub-diameters.
+    let col = column(10.0, 10_000, 60.0);
+    let an = col.analysis;
+    let bins = Bins::log_spaced(2e-6, 8e-5, 10);
+    let w = [0.1, 0.0, 0.2, 0.1, 0.0, 0.3, 0.1, 0.1, 0.1, 0.0];
+    let model = Hindered::new(&col, &bins, &w, 1e12);
+    let eps = 1.0 - 60.0 / 2500.0;
+    assert!((model.bulk_voidage() - eps).abs() < 1e-12);
+    let t = 600.0;
+    let u = model.unit_fields_at(t);
+    for (j, row) in u.iter().enumerate() {
+        let (a, b) = (bins.edges_m[j], bins.edges_m[j + 1]);
+        let m = ((b / a).ln() / SUB_DIAMETER_STEP).ceil() as usize;
+        let want: f64 = (0..m)
+            .map(|i| {
+                let d = a * (b / a).powf((i as f64 + 0.5) / m as f64);
+                excess(&an) * (10.0 - terminal_speed_m_s(&an, d, eps) * t) / m as f64
+            })
+            .sum();
+        let got = row.iter().sum::<f64>() * 10.0 / 10_000.0;
+        assert!(
+            (got / want - 1.0).abs() < 1e-9,
+            "bin {j} (w {}): {got} vs {want}",
+            w[j]
+        );
+    }
+}
+
+/// Terminal speed of the scene's drag law by bisection of its force balance (independent of the
+/// forward model's solver), m/s.
+fn scene_speed(d: f64, eps: f64) -> f64 {
+    let drag = SphereDrag::new(
+        DragLaw::Dallavalle {
+            viscosity_pa_s: 1e-3,
+            voidage: eps,
+        },
+        d,
+        1000.0,
+    );
+    let weight = 1500.0 * 9.81 * PI * d.powi(3) / 6.0;
+    let (mut lo, mut hi) = (0.0, 1.0);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if drag.force_n(mid) < weight {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+/// A narrow bin around `d` (one sub-diameter, at `d` within 1e-10).
+fn narrow(d: f64) -> [f64; 2] {
+    [d * (1.0 - 1e-5), d * (1.0 + 1e-5)]
+}
+
+#[test]
+fn one_size_settles_at_the_di_felice_hindered_speed() {
+    let c0 = 60.0;
+    let col = column(H, 4000, c0);
+    let d = 30e-6;
+    let bins = Bins {
+        edges_m: narrow(d).to_vec(),
+    };
+    let model = Hindered::new(&col, &bins, &[1.0], 0.6);
+    let eps0 = 1.0 - c0 / 2500.0;
+    let v = scene_speed(d, eps0);
+    // 9 % slower than alone, 6 % slower than Stokes.
+    assert!((v / scene_speed(d, 1.0) - 0.912).abs() < 0.005, "{v}");
+    assert_eq!(model.front_speeds_m_s().len(), 1);
+    assert!((model.front_speeds_m_s()[0] / v - 1.0).abs() < 1e-9);
+    let t = 120.0;
+    let (front, bed) = (v * t, c0 * v * t / (0.6 * 2500.0 - c0));
+    assert!((model.bed_height_m(t) / bed - 1.0).abs() < 1e-9);
+    let u = &model.unit_fields_at(t)[0];
+    let h = H / 4000.0;
+    let ex = excess(&col.analysis);
+    for (k, x) in u.iter().enumerate() {
+        let (top, bot) = (k as f64 * h, (k + 1) as f64 * h);
+        let want = if bot <= front || top >= H - bed {
+            0.0
+        } else if top >= front && bot <= H - bed {
+            ex
+        } else if top < front {
+            ex * (bot - front) / h
+        } else {
+            ex * (H - bed - top) / h
+        };
+        // (The front's layer to 1e-6: the front itself is within 1e-9 of v t.)
+        assert!((x - want).abs() < 1e-6 * ex, "layer {k}: {x} vs {want}");
+    }
+}
+
+#[test]
+fn the_fine_size_is_denser_above_the_coarse_front() {
+    // Two sizes, 20 and 40 µm, half the mass each, and a tracer bin between them.
+    let c0 = 80.0;
+    let col = column(H, 4000, c0);
+    let (f, c) = (narrow(20e-6), narrow(40e-6));
+    let bins = Bins {
+        edges_m: vec![f[0], f[1], c[0], c[1]],
+    };
+    let w = [0.5, 0.0, 0.5];
+    let model = Hindered::new(&col, &bins, &w, 0.6);
+    let eps_b = 1.0 - c0 / 2500.0;
+    let s = scene_speed(40e-6, eps_b);
+    // Above the coarse front: R = (s − v_f(ε_b))/(s − v_f(ε⁺)), ε⁺ = 1 − R c₀/2 / ρ_p.
+    let (mut lo, mut hi) = (eps_b, 1.0);
+    for _ in 0..100 {
+        let e = 0.5 * (lo + hi);
+        let r = (s - scene_speed(20e-6, eps_b)) / (s - scene_speed(20e-6, e));
+        if 1.0 - r * 0.5 * c0 / 2500.0 > e {
+            lo = e;
+        } else {
+            hi = e;
+        }
+    }
+    let eps_up = 0.5 * (lo + hi);
+    let r = (s - scene_speed(20e-6, eps_b)) / (s - scene_speed(20e-6, eps_up));
+    assert!(r > 1.01, "{r}");
+    let fronts = model.front_speeds_m_s();
+    let coarse = fronts[fronts.len() - 1];
+    let fine = fronts[0];
+    assert!((coarse / s - 1.0).abs() < 1e-9, "{coarse} vs {s}");
+    assert!((fine / scene_speed(20e-6, eps_up) - 1.0).abs() < 1e-6);
+    let t = 100.0;
+    let u = &model.unit_fields_at(t)[0];
+    let k = (0.5 * (fine + coarse) * t / (H / 4000.0)) as usize;
+    assert!((u[k] / (r * excess(&col.analysis)) - 1.0).abs() < 1e-6);
+}
+
+/// Model tolerance of the comparison with the simulation, percent finer points (see the test).
+pub const MODEL_TOL_PERCENT: f64 = 1.0;
+
+/// Bins of a piecewise log-linear cumulative curve: its points are the edges.
+fn bins_of(d: &settle::sample::Distribution) -> (Bins, Vec<f64>) {
+    let edges = d.points.iter().map(|p| p.0).collect();
+    let w = d
+        .points
+        .windows(2)
+        .map(|p| (p[1].1 - p[0].1) / 100.0)
+        .collect();
+    (Bins { edges_m: edges }, w)
+}
+
+/// One reading of a run against the same instrument on the forward field: (instrument, time s,
+/// simulated w_o %, forward w_o %, the run's 1σ %).
+type Row = (String, f64, f64, f64, f64);
+
+/// Every reading of `instruments.csv` in `run_dir` (scenario `scenario` with `overrides`)
+/// against the same instrument on the hindered forward field of the input curve.
+fn against_forward(
+    scenario: &str,
+    overrides: &[String],
+    run_dir: &Path,
+    discrete: bool,
+) -> Vec<Row> {
+    use settle::run::prepare;
+    use settle::scenes::sedimentation::{setup, InstrumentSet};
+    let p = prepare(Path::new(scenario), None, overrides).unwrap();
+    let su = setup(&p.scenario, &p.path).unwrap();
+    let set = InstrumentSet::new(&p.scenario, &su);
+    let an = set.analysis;
+    let col = Column {
+        height_m: su.height_m,
+        layers: set.layers,
+        analysis: an,
+    };
+    let (bins, w) = if discrete {
+        // The discretised sample the simulation carries: a narrow bin around each class.
+        let mut edges = Vec::new();
+        let mut w = Vec::new();
+        for c in su.classes.iter().filter(|c| c.mass_fraction > 0.0) {
+            if !edges.is_empty() {
+                w.push(0.0);
+            }
+            edges.push(c.diameter_m * (1.0 - 1e-4));
+            edges.push(c.diameter_m * (1.0 + 1e-4));
+            w.push(c.mass_fraction);
+        }
+        (Bins { edges_m: edges }, w)
+    } else {
+        bins_of(&su.distribution)
+    };
+    let rows = read_csv_records(&run_dir.join("instruments.csv"));
+    let times: Vec<f64> = rows.iter().map(|r| r["time_s"].parse().unwrap()).collect();
+    let fields = fields_for(&col, HINDERED, &bins, &w, &times);
+    rows.iter()
+        .zip(&times)
+        .zip(&fields)
+        .map(|((r, &t), f)| {
+            let g = |k: &str| r[k].parse::<f64>().unwrap();
+            let kind = r["instrument"].clone();
+            let fwd = match kind.as_str() {
+                "hydrometer" => {
+                    let re = set.hydrometer.read(f).unwrap();
+                    set.hydrometer.point(&an, &re, t).percent_finer
+                }
+                "buoyancy" => set.sphere.point(&an, &set.sphere.read(f), t).percent_finer,
+                "pipette" => {
+                    an.percent_finer_from_concentration(set.pipette.field_concentration(&an, f))
+                }
+                x => panic!("instrument {x}"),
+            };
+            (kind, t, g("percent_finer"), fwd, g("sd_percent"))
+        })
+        .collect()
+}
+
+#[test]
+#[ignore]
+fn explore_against_runs() {
+    for (n, dir) in [(20000, "/tmp/fw/n20000"), (100000, "/tmp/fw/n100000")] {
+        for s in [4, 2] {
+            let sc = format!("scenarios/sedimentation_sample{s}.toml");
+            let ov: Vec<String> = vec![
+                "sample.contacts=false".into(),
+                "sample.lubrication=false".into(),
+                format!("sample.particles={n}"),
+            ];
+            let run = Path::new(dir).join(format!("sedimentation_sample{s}"));
+            for discrete in [false, true] {
+                let rows = against_forward(&sc, &ov, &run, discrete);
+                let mut worst: f64 = 0.0;
+                for (k, t, sim, fwd, sd) in &rows {
+                    println!("N {n} s{s} disc {discrete} {k:10} t {t:7} sim {sim:7.2} fwd {fwd:7.2} d {:6.2} sd {sd:5.2} z {:5.2}", sim - fwd, (sim - fwd) / sd);
+                    worst = worst.max(((sim - fwd).abs() - 3.0 * sd).max(0.0));
+                }
+                println!("N {n} s{s} disc {discrete}: worst excess over 3σ {worst:.2}");
+            }
+        }
+    }
+}
