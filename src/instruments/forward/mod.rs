@@ -19,6 +19,7 @@ pub mod hindered;
 pub mod speed;
 
 use super::{Analysis, LayeredField};
+use rayon::prelude::*;
 
 /// The column of suspension the instruments read: its height, the layers of the field and the
 /// conversions of the test (μ, ρ_p, ρ_f, g, c₀).
@@ -125,7 +126,10 @@ pub fn unit_fields(
         Settling::IdealStokes => ideal_unit_fields(col, bins, times_s),
         Settling::Hindered { .. } => {
             let model = hindered::Hindered::new(col, bins, w_ref, hindered::BED_PACKING);
-            times_s.iter().map(|&t| model.unit_fields_at(t)).collect()
+            times_s
+                .par_iter()
+                .map(|&t| model.unit_fields_at(t))
+                .collect()
         }
     }
 }

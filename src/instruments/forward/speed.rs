@@ -46,41 +46,41 @@ pub fn terminal_speed_m_s(an: &Analysis, d_m: f64, voidage: f64) -> f64 {
     re * mu / (eps * rho_f * d_m)
 }
 
-/// One grain size's terminal speed over the voidages [ε_lo, 1]: ln v tabulated on a uniform grid
-/// of ε and interpolated linearly (ln v is nearly linear in ε: v ∝ ε^χ at small Re), so that the
-/// forward model's many evaluations cost a multiplication. The interpolation error is below
-/// 1e-6 relative for the grids of [`SpeedTable::new`].
+/// One grain size's terminal speed over the voidages [ε_lo, 1]: v tabulated on a uniform grid
+/// of ε (steps of at most 5e-4) and interpolated linearly, so that the forward model's many
+/// evaluations cost a multiplication. v ∝ ε^χ at small Re (χ ≈ 3.7): the interpolation error is
+/// below h² χ(χ − 1)/(8 ε²) ≈ 3e-7 relative for ε ≥ 0.9, 3e-6 at ε = 0.3.
 #[derive(Clone, Debug)]
 pub struct SpeedTable {
     lo: f64,
     step: f64,
-    ln_v: Vec<f64>,
+    v: Vec<f64>,
 }
 
 impl SpeedTable {
-    /// The table of diameter `d_m` over [`eps_lo`, 1] (ε_lo raised to [`VOIDAGE_MIN`]), with
+    /// The table of diameter `d_m` over ε from `eps_lo` (raised to [`VOIDAGE_MIN`]) to 1, with
     /// grid steps of at most 5e-4 in ε (at least 2 nodes, at most 1401).
     pub fn new(an: &Analysis, d_m: f64, eps_lo: f64) -> Self {
         let lo = eps_lo.clamp(VOIDAGE_MIN, 1.0);
         let n = (((1.0 - lo) / 5e-4).ceil() as usize).clamp(1, 1400) + 1;
         let step = (1.0 - lo) / (n - 1) as f64;
-        let ln_v = (0..n)
+        let v = (0..n)
             .map(|i| {
                 let e = if i + 1 == n {
                     1.0
                 } else {
                     lo + step * i as f64
                 };
-                terminal_speed_m_s(an, d_m, e).ln()
+                terminal_speed_m_s(an, d_m, e)
             })
             .collect();
-        Self { lo, step, ln_v }
+        Self { lo, step, v }
     }
 
     /// Position of ε on the grid: (node index, fraction towards the next node), ε clamped to the
     /// table's range.
     fn locate(&self, eps: f64) -> (usize, f64) {
-        let n = self.ln_v.len();
+        let n = self.v.len();
         if n == 1 || self.step <= 0.0 {
             return (0, 0.0);
         }
@@ -89,44 +89,38 @@ impl SpeedTable {
         (i, x - i as f64)
     }
 
-    /// ln v at voidage `eps` (clamped to the table).
-    pub fn ln_speed(&self, eps: f64) -> f64 {
-        let (i, f) = self.locate(eps);
-        if self.ln_v.len() == 1 {
-            return self.ln_v[0];
-        }
-        self.ln_v[i] + f * (self.ln_v[i + 1] - self.ln_v[i])
-    }
-
-    /// Terminal speed at voidage `eps`, m/s.
+    /// Terminal speed at voidage `eps` (clamped to the table), m/s.
     pub fn speed(&self, eps: f64) -> f64 {
-        self.ln_speed(eps).exp()
+        if self.v.len() == 1 {
+            return self.v[0];
+        }
+        let (i, f) = self.locate(eps);
+        self.v[i] + f * (self.v[i + 1] - self.v[i])
     }
 
     /// dv/dε at voidage `eps` (of the interpolant), m/s.
     pub fn slope(&self, eps: f64) -> f64 {
-        if self.ln_v.len() == 1 || self.step <= 0.0 {
+        if self.v.len() == 1 || self.step <= 0.0 {
             return 0.0;
         }
         let (i, _) = self.locate(eps);
-        self.speed(eps) * (self.ln_v[i + 1] - self.ln_v[i]) / self.step
+        (self.v[i + 1] - self.v[i]) / self.step
     }
 
     /// The voidage at which the speed reaches `v_m_s`, if it does within the table (the speed
     /// does not decrease with ε); None if it stays below `v_m_s` up to ε = 1.
     pub fn voidage_at(&self, v_m_s: f64) -> Option<f64> {
-        let target = v_m_s.ln();
-        let n = self.ln_v.len();
-        if self.ln_v[n - 1] < target {
+        let n = self.v.len();
+        if self.v[n - 1] < v_m_s {
             return None;
         }
-        if n == 1 || self.ln_v[0] >= target {
+        if n == 1 || self.v[0] >= v_m_s {
             return Some(self.lo);
         }
         // First node at or above the target.
-        let i = self.ln_v.partition_point(|&x| x < target);
-        let (a, b) = (self.ln_v[i - 1], self.ln_v[i]);
-        let f = if b > a { (target - a) / (b - a) } else { 1.0 };
+        let i = self.v.partition_point(|&x| x < v_m_s);
+        let (a, b) = (self.v[i - 1], self.v[i]);
+        let f = if b > a { (v_m_s - a) / (b - a) } else { 1.0 };
         Some(self.lo + self.step * ((i - 1) as f64 + f))
     }
 }
