@@ -296,8 +296,8 @@ impl Hindered {
         for k in 0..nl {
             let y = ((k + 1) as f64 * h).min(cut);
             self.unit_integral(y / t_s, &mut r, &mut next);
-            for j in 0..nb {
-                out[j][k] = t_s * (next[j] - prev[j]) / h;
+            for ((o, a), b) in out.iter_mut().zip(&next).zip(&prev) {
+                o[k] = t_s * (a - b) / h;
             }
             std::mem::swap(&mut prev, &mut next);
         }
