@@ -14,10 +14,13 @@
 //!   b = c₀ v t/(P ρ_p − c₀);
 //! - two sizes: the fine size above the coarse front is denser by the jump condition
 //!   c⁺ (s − v⁺) = c⁻ (s − v⁻);
-//! - against the simulation (`settle run`, contacts and lubrication off, samples 4 and 2): every
-//!   reading of the hydrometer, the sphere and the pipette in `instruments.csv` is the same
-//!   instrument on the forward field of the input curve within 3σ (the run's own 1σ) plus the
-//!   model tolerance stated at [`MODEL_TOL_PERCENT`].
+//! - against the simulation (`settle run`, contacts and lubrication off, 20 000 grains, samples 4
+//!   to 320 s and 2 to 130 s): every reading of the hydrometer, the sphere and the pipette in
+//!   `instruments.csv` is the same instrument on the forward field of the input curve within 3σ
+//!   (the run's own 1σ) plus the model tolerance stated at [`MODEL_TOL_PERCENT`] (1 point), and
+//!   the ideal Stokes field of the same curve is not (sample 2 at 60 s: 37 % simulated, 35 %
+//!   forward, 21 % ideal). At 100 000 grains over the whole day (run by hand) every reading is
+//!   within 2.3σ of the forward one with no model tolerance.
 
 use crate::common::{read_csv_records, settle, tmp};
 use settle::fluid::{DragLaw, SphereDrag};
@@ -153,29 +156,23 @@ fn hindered_tends_to_isolated_dallavalle_settling_as_c0_vanishes() {
     let times = [120.0, 900.0];
     let units = unit_fields(&col, HINDERED, &bins, &w, &times);
     let h = H / 4000.0;
+    let mut worst: f64 = 0.0;
     for (u, &t) in units.iter().zip(&times) {
         for (j, row) in u.iter().enumerate() {
-            // Cumulative excess above each depth, against the analytic one (a bin present below
-            // the depth where its coarsest grains have gone), in 1 cm windows: the sub-diameters
-            // (1 % apart) make a staircase of the analytic ramp, whose window means agree to a
-            // fraction of a step.
-            let mut cum = 0.0;
-            let mut exact = 0.0;
+            // The mass above each depth, ∫₀ʸ unit dy, against the analytic one (the bin present
+            // at depth y in the fraction finer than the diameter whose isolated speed is y/t).
+            let (mut cum, mut exact) = (0.0, 0.0);
             for (k, x) in row.iter().enumerate() {
                 cum += x * h;
                 let y = (k as f64 + 0.5) * h;
-                let d = diameter_of_speed(&an, y / t);
-                exact += excess(&an) * bins.fraction_finer(j, d) * h;
-                if (k + 1) % 87 == 0 {
-                    let tol = 0.005 * 0.0087 * excess(&an) + 1e-3 * exact;
-                    assert!(
-                        (cum - exact).abs() <= tol * (k + 1) as f64 / 87.0,
-                        "bin {j} t {t} y {y}: {cum} vs {exact}"
-                    );
-                }
+                exact += excess(&an) * bins.fraction_finer(j, diameter_of_speed(&an, y / t)) * h;
+                worst = worst.max((cum - exact).abs() / (excess(&an) * H));
             }
         }
     }
+    // The sub-diameters (1 % apart, fronts 2 % apart in speed) make a staircase of the analytic
+    // ramp: the mass above any depth agrees to 1e-4 of the column's (0.05 mm of suspension).
+    assert!(worst < 1e-4, "{worst}");
     // Dallavalle's 0.96: at small Re the isolated speed is Stokes' / 0.96, so a fine bin's field
     // at t is the ideal one at t / 0.96.
     let fine = Bins {
@@ -358,7 +355,15 @@ fn the_fine_size_is_denser_above_the_coarse_front() {
     assert!((u[k] / (r * excess(&col.analysis)) - 1.0).abs() < 1e-6);
 }
 
-/// Model tolerance of the comparison with the simulation, percent finer points (see the test).
+/// Model tolerance of the comparison with the simulation, percent finer points: what the scene
+/// does that the continuum does not. Mainly the representative grains' self-weight: each grain
+/// counts its whole weight in its own voidage cell, so it sees φ larger than the mean by about
+/// φ₀ × cells / grains (16 × 115 cells of 4 mm, 20 000 grains: 9 % of φ₀ = 0.002), i.e. speeds
+/// 0.8 % slower (ε^3.7), diameters 0.4 % finer, up to 1 point on sample 4's steep 25–35 µm part
+/// (dF/d ln d ≈ 270 %). The cell averaging of φ, the 220 discrete diameters (against the
+/// continuous curve here) and the forward model's sub-diameter staircase change the readings
+/// by under 0.05 point (the discrete classes as narrow bins give the same forward readings
+/// within 0.01 point).
 pub const MODEL_TOL_PERCENT: f64 = 1.0;
 
 /// Bins of a piecewise log-linear cumulative curve: its points are the edges.
