@@ -13,7 +13,9 @@
 //! unit fields do not depend on the distribution (seed 000 eq. 16: a grain of diameter d has
 //! left every depth y < v_St(d) t); under hindered settling the speeds depend on the local
 //! solid fraction, i.e. on the distribution itself, so the unit fields are computed for a
-//! reference distribution `w_ref` and the caller iterates.
+//! reference distribution `w_ref` and the caller iterates ([`fields_for`] is the exact nonlinear
+//! forward of one distribution). The hindered fields are the exact self-similar solution of the
+//! 1D polydisperse settling problem ([`hindered`]), with the speeds of [`speed`].
 
 pub mod hindered;
 pub mod speed;
@@ -34,7 +36,7 @@ pub struct Column {
     pub analysis: Analysis,
 }
 
-/// Diameter bins, m: bin j holds the grains of diameter in [edges[j], edges[j+1]], spread
+/// Diameter bins, m: bin j holds the grains of diameter in `[edges[j], edges[j+1]]`, spread
 /// uniformly in ln d. Strictly increasing and positive.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Bins {
