@@ -4,13 +4,14 @@
 //! else than its author thought.
 
 use super::input::{bad, figure, kinds, required, Parsed};
-use super::{sig, Request};
+use super::Request;
 use crate::error::Error;
 use crate::instruments::reduction::d7928::MeasuredHydrometer;
 use crate::instruments::reduction::{
     water_density_kg_m3, HydrometerType, Instrument, ModelFigures, PipetteRegion, Standard,
     TestSetup,
 };
+use crate::io::fmt::sig_trim as sig;
 use crate::io::num;
 use std::collections::BTreeMap;
 use std::f64::consts::PI;
