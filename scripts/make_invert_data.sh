@@ -6,7 +6,7 @@
 # Each folder gets the run's four readings files (readings.csv, readings_d7928.csv,
 # readings_pipette.csv, readings_sphere.csv), its granulometry.csv and a README.md naming the
 # command, the settle commit and N.
-# Usage: scripts/make_invert_data.sh [off|on|all]   (default all; `on` runs under nice -n 19)
+# Usage: scripts/make_invert_data.sh [off|on|all]   (default all; `on` runs under nice -n 10)
 set -euo pipefail
 which=${1:-all}
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -25,7 +25,7 @@ run() { # sample, suffix, extra --set arguments...
   shift 2
   local dest=data/invert/sample${sample}_full${suffix}
   local nice=()
-  if [ -z "$suffix" ]; then :; else nice=(nice -n 19); fi
+  if [ -z "$suffix" ]; then :; else nice=(nice -n 10); fi
   local args=(run "scenarios/sedimentation_sample${sample}.toml" --set "sample.particles=$n" "$@"
     --quiet --out "$tmp/$sample$suffix")
   local t0=$SECONDS

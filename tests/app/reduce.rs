@@ -606,3 +606,25 @@ fn bad_pipette_and_sphere_files_are_refused() {
         &["temperature_c", "given both"],
     );
 }
+
+/// A published worked example of D422's percent finer (data/lab/README.md: the Atech Center's
+/// hydrometer procedure, Step II): R = 38.0 − 7.5 = 30.5, a = 1.00, w = 81.09 g: P = 37.6 %,
+/// checked within its printed rounding.
+#[test]
+fn the_atech_d422_example_gives_its_printed_percent_finer() {
+    let out = tmp();
+    let o = reduce(
+        Path::new("data/lab/atech_d422_percent_finer.csv"),
+        out.path(),
+        &[],
+    );
+    assert_exit(&o, 0);
+    let rows = read_csv_records(
+        &out.path()
+            .join("atech_d422_percent_finer_reduced/percent_finer.csv"),
+    );
+    assert_eq!(rows.len(), 1);
+    assert_eq!(num(&rows[0], "net_reading"), 30.5);
+    let p = num(&rows[0], "percent_finer");
+    assert!((p - 37.6).abs() <= 0.05, "{p}");
+}
