@@ -1,6 +1,9 @@
 //! `settle reduce READINGS.csv`: the standard data reduction of laboratory hydrometer readings
-//! (ASTM D422 or D7928, [`crate::instruments::reduction`]) into `OUT/<stem>_reduced/`:
-//! `percent_finer.csv`, `percent_finer.svg` and `reduce.toml`.
+//! (ASTM D422 or D7928), pipette draws and buoyancy-sphere weighings (seed 000 eqs. 16–18, 22;
+//! `# instrument = pipette | buoyancy-sphere`, [`crate::instruments::reduction`]) into
+//! `OUT/<stem>_reduced/`: `percent_finer.csv`, `percent_finer.svg` and `reduce.toml`.
+//! [`read`] is the one entry point that reads a readings file, for every instrument
+//! (`settle invert` reads through it too).
 //!
 //! # The readings file
 //!

@@ -1,7 +1,8 @@
 //! The standard data reduction of soil-hydrometer readings: from (time, reading, temperature,
 //! blank reading) and the test's figures to (effective depth, Stokes diameter, percent finer),
 //! as a laboratory does it by ASTM D422 ([`d422`], withdrawn 2016, what seed 000 uses) or ASTM
-//! D7928-17/21 ([`d7928`], its replacement).
+//! D7928-17/21 ([`d7928`], its replacement); and of the pipette's draws ([`pipette`]) and the
+//! buoyancy sphere's weighings ([`sphere`]) by seed 000's eqs. 16–18 and 22 ([`Instrument`]).
 //!
 //! Pure functions, SI units inside (the laboratory units of the standards, g, mL, cm, min, are
 //! converted where the standards' equations are quoted).
