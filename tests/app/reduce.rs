@@ -333,6 +333,18 @@ fn reduced(name: &str, text: &str) -> (Vec<std::collections::HashMap<String, Str
     let stem = name.trim_end_matches(".csv");
     let out = dir.path().join(format!("out/{stem}_reduced"));
     let toml = std::fs::read_to_string(out.join("reduce.toml")).unwrap();
+    // The chart and the console name the method: the pipette's eq. 17, the sphere's eq. 22.
+    let method = if text.contains("instrument = pipette") {
+        "pipette, seed 000 eq. 17"
+    } else {
+        "buoyancy sphere, seed 000 eq. 22"
+    };
+    assert!(String::from_utf8_lossy(&o.stdout).contains(method));
+    assert_readable_chart(
+        &out.join("percent_finer.svg"),
+        &format!("percent finer ({method})"),
+        &["particle diameter", "percent finer"],
+    );
     (read_csv_records(&out.join("percent_finer.csv")), toml)
 }
 
