@@ -188,7 +188,7 @@ pub(super) fn setup(
         "100–10000 mL",
     )?
     .unwrap_or(1000.0);
-    let model = model_figures(file, p, &kind)?;
+    let model = model_figures(file, p)?;
     let mut s = TestSetup {
         standard: Standard::D7928,
         instrument: Instrument::Hydrometer(HydrometerType::H152),
@@ -254,12 +254,10 @@ fn refuse_foreign(file: &Path, p: &Parsed, kind: &str) -> Result<(), Error> {
     Ok(())
 }
 
-/// The model figures (`settle invert`'s), for every instrument.
-fn model_figures(file: &Path, p: &Parsed, kind: &str) -> Result<ModelFigures, Error> {
+/// The model figures (`settle invert`'s), for every instrument (`hydrometer_bulb_length_cm`
+/// is a hydrometer figure: [`refuse_foreign`] refuses it for the others).
+fn model_figures(file: &Path, p: &Parsed) -> Result<ModelFigures, Error> {
     let bulb = figure(file, p, "hydrometer_bulb_length_cm", (1.0, 50.0), "1–50 cm")?;
-    if bulb.is_some() && kind != "hydrometer" {
-        refuse_foreign(file, p, kind)?;
-    }
     Ok(ModelFigures {
         fluid_density_kg_m3: figure(
             file,
