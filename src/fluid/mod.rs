@@ -13,6 +13,7 @@ pub mod drag;
 pub mod immersion;
 pub mod lubrication;
 pub mod newtonian;
+pub mod transient;
 pub mod validity;
 
 pub use bingham::BinghamRegime;
