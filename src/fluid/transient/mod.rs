@@ -7,3 +7,6 @@ pub mod closed_form;
 pub mod faddeeva;
 
 pub use closed_form::BassetProblem;
+pub mod kernel;
+
+pub use kernel::ExpSum;
