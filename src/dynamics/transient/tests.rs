@@ -14,7 +14,11 @@ fn model(history: bool, run_s: f64) -> (TransientModel, f64, f64) {
 }
 
 /// (model, net weight N, Stokes slope N s/m) of a sphere [d, ρ_p, ρ_f, μ].
-fn sphere_model([d, rho_p, rho_f, mu]: [f64; 4], history: bool, run_s: f64) -> (TransientModel, f64, f64) {
+fn sphere_model(
+    [d, rho_p, rho_f, mu]: [f64; 4],
+    history: bool,
+    run_s: f64,
+) -> (TransientModel, f64, f64) {
     let vol = PI * d.powi(3) / 6.0;
     let (m, mf) = (rho_p * vol, rho_f * vol);
     let k = 3.0 * PI * mu * d;

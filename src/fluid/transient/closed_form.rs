@@ -67,7 +67,10 @@ impl BassetProblem {
     pub fn roots(&self) -> (C64, C64) {
         let p = self.c_per_sqrt_s * PI.sqrt();
         let disc = C64::new(p * p - 4.0 * self.b_per_s, 0.0).sqrt();
-        ((C64::new(p, 0.0) + disc) * 0.5, (C64::new(p, 0.0) - disc) * 0.5)
+        (
+            (C64::new(p, 0.0) + disc) * 0.5,
+            (C64::new(p, 0.0) - disc) * 0.5,
+        )
     }
 
     /// Velocity at time `t_s` ≥ 0 after release from rest, m/s.

@@ -10,3 +10,4 @@ pub use closed_form::BassetProblem;
 pub mod kernel;
 
 pub use kernel::ExpSum;
+pub mod wall;
