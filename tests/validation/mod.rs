@@ -4,4 +4,5 @@
 mod paste_drop;
 mod sphere_drag;
 mod stokes_single;
+mod transient;
 mod valentik;
