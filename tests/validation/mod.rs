@@ -4,5 +4,6 @@
 mod paste_drop;
 mod sphere_drag;
 mod stokes_single;
+mod ten_cate;
 mod transient;
 mod valentik;
