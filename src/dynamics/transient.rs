@@ -109,6 +109,8 @@ pub struct TransientBody {
     inertia_kg: f64,
     /// (v, x, q₁ … q_m); x is the displacement within the current step.
     y: DVector<f64>,
+    /// Room for the next state (no allocation per step).
+    scratch: DVector<f64>,
     prop: Option<Propagator>,
     /// Velocity, drag, constant force and step at the start of the previous step (for ETD2).
     prev: Option<(f64, f64, f64, f64)>,
@@ -123,6 +125,7 @@ impl TransientBody {
         Self {
             inertia_kg: model.inertia_kg(),
             model,
+            scratch: y.clone(),
             y,
             prop: None,
             prev: None,
@@ -155,26 +158,45 @@ impl TransientBody {
     /// `drag(v) = (F_d, dF_d/dv)` (N, N s/m; F_d opposes v, so F_d(v) has the sign of v).
     /// Returns (velocity at the end, displacement), (m/s, m).
     pub fn step(&mut self, dt_s: f64, w_n: f64, drag: impl Fn(f64) -> (f64, f64)) -> (f64, f64) {
-        let (y1, v0, f0) = self.look_ahead(dt_s, w_n, &drag, true);
+        let (g0, g_prev, v0, f0, _) = self.forcing(dt_s, w_n, &drag, true);
+        let p = self.prop.as_ref().expect("propagator built by forcing");
+        // In place: scratch = Φ y₀ + u₁ g₀ + u₂ (g₀ − g₋₁), no allocation per step.
+        self.y[1] = 0.0;
+        self.scratch.gemv(1.0, &p.phi, &self.y, 0.0);
+        self.scratch.axpy(g0, &p.u1, 1.0);
+        self.scratch.axpy(g0 - g_prev, &p.u2, 1.0);
+        std::mem::swap(&mut self.y, &mut self.scratch);
         self.prev = Some((v0, f0, w_n, dt_s));
-        self.y = y1;
         (self.y[0], self.y[1])
     }
 
     /// The state `dt_s` ahead without advancing (dense output inside a step): (velocity,
     /// displacement).
     pub fn peek(&mut self, dt_s: f64, w_n: f64, drag: impl Fn(f64) -> (f64, f64)) -> (f64, f64) {
-        let (y1, _, _) = self.look_ahead(dt_s, w_n, &drag, false);
+        let (g0, g_prev, _, _, k) = self.forcing(dt_s, w_n, &drag, false);
+        let own;
+        let p = match &self.prop {
+            Some(p) if p.dt_s == dt_s && p.slope_n_s_m == k => p,
+            _ => {
+                own = self.propagator(dt_s, k);
+                &own
+            }
+        };
+        let mut y0 = self.y.clone();
+        y0[1] = 0.0;
+        let y1 = &p.phi * &y0 + &p.u1 * g0 + &p.u2 * (g0 - g_prev);
         (y1[0], y1[1])
     }
 
-    fn look_ahead(
+    /// (g₀, g₋₁, v₀, F₀, slope in J) of a step of `dt` from the current state, rebuilding the kept
+    /// propagator (`keep`) when dt or the drag slope changed.
+    fn forcing(
         &mut self,
         dt: f64,
         w: f64,
         drag: &impl Fn(f64) -> (f64, f64),
         keep: bool,
-    ) -> (DVector<f64>, f64, f64) {
+    ) -> (f64, f64, f64, f64, f64) {
         let v0 = self.y[0];
         let (f0, k0) = drag(v0);
         let fresh = match &self.prop {
@@ -183,17 +205,14 @@ impl TransientBody {
             }
             None => true,
         };
-        let built;
-        let p = if fresh {
-            built = self.propagator(dt, k0);
+        let k = if fresh {
             if keep {
-                self.prop = Some(built.clone());
+                self.prop = Some(self.propagator(dt, k0));
             }
-            &built
+            k0
         } else {
-            self.prop.as_ref().expect("propagator present")
+            self.prop.as_ref().expect("propagator present").slope_n_s_m
         };
-        let k = p.slope_n_s_m;
         let g0 = w - f0 + k * v0;
         // ETD2 needs the previous step's forcing at the same dt; the first step (and a partial
         // step) takes it constant.
@@ -201,10 +220,7 @@ impl TransientBody {
             Some((v, f, wp, dtp)) if keep && dtp == dt => wp - f + k * v,
             _ => g0,
         };
-        let mut y0 = self.y.clone();
-        y0[1] = 0.0;
-        let y1 = &p.phi * &y0 + &p.u1 * g0 + &p.u2 * (g0 - g_prev);
-        (y1, v0, f0)
+        (g0, g_prev, v0, f0, k)
     }
 
     /// The propagator of step `dt` with the drag slope `k` frozen in J.
