@@ -102,8 +102,12 @@ impl BassetProblem {
 /// 1/Γ(n/2 + 1) for n = 0, 1, 2, …: Γ(n/2 + 1) = (n/2)Γ(n/2) by recursion from Γ(1) = 1 and
 /// Γ(3/2) = √π/2.
 fn inv_gamma_half(n: usize) -> f64 {
-    let mut g = if n % 2 == 0 { 1.0 } else { PI.sqrt() / 2.0 };
-    let mut k = if n % 2 == 0 { 2 } else { 3 };
+    let mut g = if n.is_multiple_of(2) {
+        1.0
+    } else {
+        PI.sqrt() / 2.0
+    };
+    let mut k = if n.is_multiple_of(2) { 2 } else { 3 };
     while k <= n {
         g *= k as f64 / 2.0;
         k += 2;
@@ -240,6 +244,7 @@ mod tests {
     /// numerically by Talbot's contour method (`mpmath.invertlaplace`, 30 digits), for complex
     /// roots (f-EDEM's sphere, ten Cate's E1) and real roots (a light sphere rising).
     #[test]
+    #[allow(clippy::excessive_precision)] // reference values as printed by mpmath
     fn matches_a_numerical_laplace_inversion() {
         let cases = [
             (
