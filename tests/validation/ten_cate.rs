@@ -48,6 +48,27 @@ fn terminal_velocities_against_the_measured_ones() {
     assert!(err_qs[0] > 0.05 && err_qs[3].abs() < 0.02, "{err_qs:?}");
 }
 
+/// The time series gives the gap to the bottom, like the paper's figures: 120 mm at release
+/// (centre 127.5 mm up, radius 7.5 mm), shrinking to under a millimetre by the end.
+#[test]
+fn the_gap_to_the_bottom_is_written() {
+    let out = tmp();
+    let o = settle()
+        .args(["run", "-q", "--out"])
+        .arg(out.path())
+        .arg("scenarios/ten_cate_e4.toml")
+        .output()
+        .expect("settle runs");
+    assert!(o.status.success());
+    let rows = read_csv_records(&out.path().join("ten_cate_e4/timeseries.csv"));
+    let gap = |r: &std::collections::HashMap<String, String>| {
+        r["gap_to_bottom_m"].parse::<f64>().unwrap()
+    };
+    assert!((gap(&rows[0]) - 0.12).abs() < 1e-12);
+    let last = gap(rows.last().unwrap());
+    assert!(last > 0.0 && last < 1e-3, "{last}");
+}
+
 /// With the Basset kernel the memory is overstated at these Re: at E4 (Re 32) the sphere is
 /// still well short of u_inf when the bottom stops it.
 #[test]
