@@ -115,3 +115,47 @@ fn the_history_force_is_refused_in_a_bingham_fluid() {
     let set = vec!["transient.added_mass=true".to_string()];
     prepare(Path::new("scenarios/valentik_susp1.toml"), None, &set).expect("added mass loads");
 }
+
+/// Where a transient force is not available, the scenario is refused with the key and the
+/// reason: the wall without a container, any transient force on the Rapier engine, the history
+/// force in the paste (Bingham) or with another integrator, a coefficient out of range.
+#[test]
+fn unsupported_combinations_are_refused() {
+    let refuse = |file: &str, set: &[&str], key: &str, words: &str| {
+        let set: Vec<String> = set.iter().map(|s| s.to_string()).collect();
+        let msg = prepare(Path::new(file), None, &set)
+            .unwrap_err()
+            .to_string();
+        assert!(msg.contains(key) && msg.contains(words), "{msg}");
+    };
+    refuse(
+        SCENARIO,
+        &["transient.wall=brenner"],
+        "transient.wall",
+        "[container]",
+    );
+    refuse(
+        SCENARIO,
+        &["transient.added_mass=true", "engine=rapier"],
+        "transient",
+        "free engine",
+    );
+    refuse(
+        "scenarios/paste_single_ball.toml",
+        &["transient.history=basset"],
+        "transient.history",
+        "Bingham",
+    );
+    refuse(
+        SCENARIO,
+        &["transient.history=basset", "time.integrator=implicit"],
+        "transient.history",
+        "exponential",
+    );
+    refuse(
+        SCENARIO,
+        &["transient.added_mass_coefficient=3"],
+        "transient.added_mass_coefficient",
+        "2",
+    );
+}
