@@ -88,7 +88,14 @@ pub fn write_all(
         write_timeseries(&stage.path("timeseries.csv"), results, height).map_err(io)?;
         let title = format!("{}: settling velocity against time", s.name);
         let v0 = s.release.velocity_m_s;
-        charts::write_velocity_chart(&stage.path("velocity.svg"), &title, results, v0)
+        let exact = s.transient.as_ref().filter(|t| t.any()).map(|t| {
+            if t.history == crate::scenario::History::Basset {
+                "exact with added mass and the Basset force (Boussinesq–Basset closed form)"
+            } else {
+                "exact Stokes solution with the added mass"
+            }
+        });
+        charts::write_velocity_chart(&stage.path("velocity.svg"), &title, results, v0, exact)
             .map_err(io)?;
     }
     if results.iter().any(|r| !r.probes.is_empty()) {
