@@ -16,6 +16,7 @@
 //!   (the Bingham law below Re' = 1), exact steady states, unconditionally stable.
 
 pub mod stability;
+pub mod transient;
 
 use crate::fluid::SphereDrag;
 use nalgebra::SVector;

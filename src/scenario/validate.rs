@@ -42,6 +42,7 @@ const TABLE_KINDS: &[(&str, &[Kind])] = {
         ("repeats", &[FunnelPour]),
         ("sample", &[Sedimentation]),
         ("instruments", &[Sedimentation]),
+        ("transient", &[FreeSettling, Drop]),
     ]
 };
 
@@ -124,6 +125,9 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(SceneSpec, RheologyModel),
         m.check(&c, h, s.time.end_s)?;
     }
     s.record.check(&c, s.time.end_s)?;
+    if let Some(t) = &s.transient {
+        t.check(&c, s)?;
+    }
     if let Some(sw) = &s.sweep {
         sw.check(&c, s.time.end_s)?;
     }

@@ -6,4 +6,6 @@ mod hindered;
 mod paste_drop;
 mod sphere_drag;
 mod stokes_single;
+mod ten_cate;
+mod transient;
 mod valentik;

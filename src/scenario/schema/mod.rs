@@ -8,6 +8,7 @@ mod fluid;
 mod kinds;
 mod measure;
 mod time;
+mod transient;
 
 pub use bodies::{Container, Release, SphereSpec, SpheresCsv};
 pub use contacts::Contacts;
@@ -19,6 +20,7 @@ pub use kinds::sedimentation::{InstrumentsSpec, SampleSpec};
 pub use kinds::tilt::TiltSpec;
 pub use measure::Measure;
 pub use time::Time;
+pub use transient::{History, Transient, Wall};
 
 use super::check::{oc, Check, Range};
 use super::load::ScenarioError;
@@ -101,6 +103,10 @@ pub struct Scenario {
     /// `sedimentation`; absent: every default of [`InstrumentsSpec`]).
     #[serde(default)]
     pub instruments: Option<InstrumentsSpec>,
+    /// Transient forces: added mass, history force, wall correction (kinds `free_settling`,
+    /// `drop`; absent: all off, the quasi-steady forces).
+    #[serde(default)]
+    pub transient: Option<Transient>,
 }
 
 fn default_dimension() -> Dim {

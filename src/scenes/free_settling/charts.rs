@@ -29,13 +29,16 @@ const LINE_POINTS: usize = 2000;
 const MARKERS_PER_LINE: usize = 12;
 
 /// Writes `velocity.svg`: velocity against time of every sphere with recorded samples, and the
-/// analytic Stokes curve of each sphere that has one (released at `v0_m_s`). Writes nothing and
-/// returns false when no sphere has samples.
+/// analytic Stokes curve of each sphere that has one (released at `v0_m_s`). With transient forces
+/// (`exact` = Some(name of the solution)), the analytic curve is the recorded exact column
+/// (`velocity_analytic_m_s`: the Boussinesq–Basset closed form, or the exponential approach with
+/// added mass) instead. Writes nothing and returns false when no sphere has samples.
 pub fn write_velocity_chart(
     path: &Path,
     title: &str,
     results: &[SphereResult],
     v0_m_s: f64,
+    exact: Option<&str>,
 ) -> io::Result<bool> {
     let mut chart = Chart::new(title)
         .x("time t (s)", Scale::Linear)
@@ -68,7 +71,17 @@ pub fn write_velocity_chart(
             },
             MARKERS_PER_LINE,
         );
-        if let Some(vt) = r.v_analytic_m_s {
+        if let Some(name) = exact {
+            let curve: Vec<(f64, f64)> = r
+                .samples
+                .iter()
+                .filter_map(|s| Some((s.time_s, s.velocity_analytic_m_s?)))
+                .collect();
+            if !curve.is_empty() {
+                let label = format!("{}, {name}", r.case.id);
+                chart = chart.curve(Curve::new(label, curve).dashed());
+            }
+        } else if let Some(vt) = r.v_analytic_m_s {
             let tau = r.response_time_s;
             let curve = (0..=200)
                 .map(|k| {

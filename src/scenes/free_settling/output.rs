@@ -84,10 +84,18 @@ pub fn write_all(
         }
     }
     if s.record.timeseries {
-        write_timeseries(&stage.path("timeseries.csv"), results).map_err(io)?;
+        let height = p.scenario.container.as_ref().map(|c| c.height_m);
+        write_timeseries(&stage.path("timeseries.csv"), results, height).map_err(io)?;
         let title = format!("{}: settling velocity against time", s.name);
         let v0 = s.release.velocity_m_s;
-        charts::write_velocity_chart(&stage.path("velocity.svg"), &title, results, v0)
+        let exact = s.transient.as_ref().filter(|t| t.any()).map(|t| {
+            if t.history == crate::scenario::History::Basset {
+                "exact with added mass and the Basset force (Boussinesq–Basset closed form)"
+            } else {
+                "exact Stokes solution with the added mass"
+            }
+        });
+        charts::write_velocity_chart(&stage.path("velocity.svg"), &title, results, v0, exact)
             .map_err(io)?;
     }
     if results.iter().any(|r| !r.probes.is_empty()) {
@@ -228,8 +236,14 @@ pub fn write_summary(path: &Path, rows: &[Vec<String>]) -> io::Result<()> {
 }
 
 /// Writes `timeseries.csv`; stops with an [`io::ErrorKind::Interrupted`] error when an
-/// interruption is requested (checked before each sphere's rows).
-pub fn write_timeseries(path: &Path, results: &[SphereResult]) -> io::Result<()> {
+/// interruption is requested (checked before each sphere's rows). `height_m`: the container's
+/// fluid height, for the gap between the sphere and the bottom (`gap_to_bottom_m`, empty
+/// without a container).
+pub fn write_timeseries(
+    path: &Path,
+    results: &[SphereResult],
+    height_m: Option<f64>,
+) -> io::Result<()> {
     let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
     w.write_record([
         "sphere_id",
@@ -238,6 +252,7 @@ pub fn write_timeseries(path: &Path, results: &[SphereResult]) -> io::Result<()>
         "velocity_m_s",
         "velocity_analytic_m_s",
         "depth_analytic_m",
+        "gap_to_bottom_m",
     ])
     .map_err(csv_err)?;
     for r in results {
@@ -255,6 +270,7 @@ pub fn write_timeseries(path: &Path, results: &[SphereResult]) -> io::Result<()>
                 num(s.velocity_m_s),
                 opt(s.velocity_analytic_m_s),
                 opt(s.depth_analytic_m),
+                opt(height_m.map(|h| h - s.depth_m - 0.5 * r.case.spec.diameter_m)),
             ])
             .map_err(csv_err)?;
         }

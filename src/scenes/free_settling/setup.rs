@@ -105,6 +105,8 @@ pub(super) struct SphereSetup<const D: usize> {
     pub section: Option<(f64, f64, f64)>,
     /// Rolling terminal window (length m, tolerance).
     pub window: Option<(f64, f64)>,
+    /// Transient forces (`[transient]`), None when absent or all off.
+    pub transient: Option<super::transient::TransientSetup>,
 }
 
 impl<const D: usize> SphereSetup<D> {
@@ -127,8 +129,19 @@ impl<const D: usize> SphereSetup<D> {
         let dt = opts.dt_s;
         let fb = drag.balance_speed(net_weight.abs());
         let response_time_s = m / drag.slope_n_s_m(0.0);
+        let transient =
+            super::transient::TransientSetup::new(scenario, d, m, sphere_mass_kg(d, rho_f), &drag);
+        // With added mass alone the Stokes solution keeps its form, with τ = (m + C_m m_f)/k;
+        // with the history force or the wall it is replaced ([`super::transient::analytic_at`]).
+        let added = transient.as_ref().map_or(0.0, |t| t.added_mass_kg);
+        let plain = transient.as_ref().is_none_or(|t| {
+            t.basset.is_some() || (t.history.is_none() && t.wall == crate::scenario::Wall::Off)
+        });
         let analytic = match drag.law {
-            DragLaw::Stokes { .. } => Some((fb.speed_m_s * net_weight.signum(), response_time_s)),
+            DragLaw::Stokes { .. } if plain => Some((
+                fb.speed_m_s * net_weight.signum(),
+                (m + added) / drag.slope_n_s_m(0.0),
+            )),
             _ => None,
         };
         let n_steps = (scenario.time.end_s / dt).round().max(1.0) as u64;
@@ -183,6 +196,7 @@ impl<const D: usize> SphereSetup<D> {
                 ))
             }),
             window: measure.and_then(|m| Some((m.terminal_window_m?, m.terminal_tolerance))),
+            transient,
         }
     }
 }

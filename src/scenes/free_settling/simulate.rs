@@ -4,6 +4,7 @@
 //! with one dispatch on the dimension and the engine.
 
 use super::setup::{uses_rapier, RunOptions, SphereSetup};
+use super::transient::{added_mass_kg, submerged_step};
 use crate::contact::rayleigh_time_s;
 use crate::dynamics::{advance, explicit_stable_dt_s, Monitor, Motion, Step, Unstable};
 use crate::engine::{dim2, dim3, EngineSettings, SphereWorld};
@@ -127,7 +128,7 @@ impl From<Unstable> for Halt {
 }
 
 /// Stokes solution for a sphere started at speed v₀ (downward): returns (v(t), distance(t)).
-fn stokes_analytic(vt: f64, tau: f64, v0: f64, t: f64) -> (f64, f64) {
+pub(super) fn stokes_analytic(vt: f64, tau: f64, v0: f64, t: f64) -> (f64, f64) {
     let e = (-t / tau).exp();
     let em1 = -(-t / tau).exp_m1();
     (vt + (v0 - vt) * e, vt * t + (v0 - vt) * tau * em1)
@@ -227,6 +228,11 @@ struct State<const D: usize> {
     cross_top: Option<(f64, f64)>, // (time, velocity)
     cross_bottom: Option<(f64, f64)>,
     max_err: f64,
+    /// The history-force state ([`super::transient`]).
+    body: Option<crate::dynamics::transient::TransientBody>,
+    /// Downward speeds at the probe times inside the current step, taken from the history
+    /// state before the step: (time, speed).
+    peeked: Vec<(f64, f64)>,
 }
 
 /// The loop of one sphere, with the steps taken by `external` (a Rapier world) when given.
@@ -255,6 +261,8 @@ fn run_sphere_with<const D: usize>(
         cross_top: None,
         cross_bottom: None,
         max_err: 0.0,
+        body: su.transient.as_ref().and_then(|t| t.body(su.v0_m_s)),
+        peeked: Vec::new(),
     };
     if opts.timeseries {
         st.samples.push(sample(&su, 0.0, st.depth, su.v0_m_s));
@@ -297,9 +305,7 @@ fn run_sphere_with<const D: usize>(
 
 /// A time-series row, with the Stokes solution beside it when the law is Stokes.
 fn sample<const D: usize>(su: &SphereSetup<D>, t: f64, depth: f64, vel: f64) -> Sample {
-    let an = su
-        .analytic
-        .map(|(vt, tau)| stokes_analytic(vt, tau, su.v0_m_s, t));
+    let an = super::transient::analytic_at(su, t);
     Sample {
         time_s: t,
         depth_m: depth,
@@ -316,8 +322,23 @@ fn sample<const D: usize>(su: &SphereSetup<D>, t: f64, depth: f64, vel: f64) -> 
 fn free_step<const D: usize>(su: &SphereSetup<D>, st: &mut State<D>, opts: RunOptions) -> Step<D> {
     let (d, g, dt, m) = (su.d_m, su.g_m_s2, su.dt_s, su.m_kg);
     if !su.crossing {
-        return advance(opts.integrator, &su.drag, m, &su.w_n, &st.v, dt);
+        let (v, depth, t) = (st.v, st.depth, st.t);
+        if let Some(body) = st.body.as_mut() {
+            st.peeked.clear();
+            for &tp in su
+                .probe_times_s
+                .iter()
+                .filter(|&&tp| tp > t && tp <= t + dt * (1.0 + 1e-12))
+            {
+                let part =
+                    submerged_step(su, Some(body), opts.integrator, &v, depth, tp - t, false);
+                st.peeked.push((tp, -part.velocity_m_s[D - 1]));
+            }
+        }
+        return submerged_step(su, st.body.as_mut(), opts.integrator, &v, depth, dt, true);
     }
+    let am = added_mass_kg(su); // C_m m_f of the immersed volume: m + fv·am
+    let m_in = m + am;
     let gap = -(st.depth + 0.5 * d); // lowest point above the surface, m
     let s_down = -st.v[D - 1];
     let free_fall = s_down * dt + 0.5 * g * dt * dt;
@@ -325,7 +346,7 @@ fn free_step<const D: usize>(su: &SphereSetup<D>, st: &mut State<D>, opts: RunOp
         let t_c = 2.0 * gap / (s_down + (s_down * s_down + 2.0 * g * gap).sqrt());
         let v_c = st.v + su.down * (g * t_c);
         st.entry = Some(s_down + g * t_c);
-        let rest = advance(opts.integrator, &su.drag, m, &su.w_n, &v_c, dt - t_c);
+        let rest = advance(opts.integrator, &su.drag, m_in, &su.w_n, &v_c, dt - t_c);
         Step {
             displacement_m: su.down * gap + rest.displacement_m,
             ..rest
@@ -333,7 +354,15 @@ fn free_step<const D: usize>(su: &SphereSetup<D>, st: &mut State<D>, opts: RunOp
     } else {
         let (fv, fa) = immersion(st.depth, d, su.submergence);
         let w_now = su.down * (m * g - fv * su.m_fluid_kg * g);
-        advance(opts.integrator, &su.drag.scaled(fa), m, &w_now, &st.v, dt)
+        let m_now = m + fv * am;
+        advance(
+            opts.integrator,
+            &su.drag.scaled(fa),
+            m_now,
+            &w_now,
+            &st.v,
+            dt,
+        )
     }
 }
 
@@ -411,15 +440,22 @@ fn locate_events<const D: usize>(
     }
     for &tp in &su.probe_times_s {
         if tp > t && tp <= t_new + 1e-12 * dt {
-            let part = advance(opts.integrator, &su.drag, su.m_kg, &su.w_n, &st.v, tp - t);
-            let an = su
-                .analytic
-                .map(|(vt, tau)| stokes_analytic(vt, tau, su.v0_m_s, tp).0);
-            st.probes.push((tp, -part.velocity_m_s[D - 1], an));
+            let speed = if let Some(&(_, s)) = st.peeked.iter().find(|p| p.0 == tp) {
+                s
+            } else if su.transient.is_some() && !su.crossing {
+                let (v, depth) = (st.v, st.depth);
+                let part = submerged_step(su, None, opts.integrator, &v, depth, tp - t, false);
+                -part.velocity_m_s[D - 1]
+            } else {
+                let part = advance(opts.integrator, &su.drag, su.m_kg, &su.w_n, &st.v, tp - t);
+                -part.velocity_m_s[D - 1]
+            };
+            let an = super::transient::analytic_at(su, tp).map(|a| a.0);
+            st.probes.push((tp, speed, an));
         }
     }
-    if let Some((vt, tau)) = su.analytic {
-        let va = stokes_analytic(vt, tau, su.v0_m_s, t_new).0;
+    if let (Some((vt, _)), Some((va, _))) = (su.analytic, super::transient::analytic_at(su, t_new))
+    {
         st.max_err = st.max_err.max((speed1 - va).abs() / vt.abs());
     }
 }

@@ -1,0 +1,111 @@
+//! Transient forces: `[transient]` (kinds `free_settling` and `drop`). Every key defaults to off,
+//! so a scenario without the table keeps the quasi-steady forces of f-EDEM and seed 000.
+
+use super::super::check::{cc, Check};
+use super::super::load::ScenarioError;
+use super::{EngineChoice, Kind, Physics, Rheology, Scenario};
+use crate::dynamics::Integrator;
+use serde::{Deserialize, Serialize};
+
+/// The transient forces on a sphere.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Transient {
+    /// Added mass C_m m_f on the sphere's acceleration. Default false.
+    #[serde(default)]
+    pub added_mass: bool,
+    /// C_m, the added-mass coefficient (½ for a sphere in an unbounded fluid), in [0, 2].
+    /// Default 0.5.
+    #[serde(default = "half")]
+    pub added_mass_coefficient: f64,
+    /// The history force. Default `off`.
+    #[serde(default)]
+    pub history: History,
+    /// The wall correction of the drag. Default `off`.
+    #[serde(default)]
+    pub wall: Wall,
+}
+
+fn half() -> f64 {
+    0.5
+}
+
+impl Default for Transient {
+    fn default() -> Self {
+        Self {
+            added_mass: false,
+            added_mass_coefficient: 0.5,
+            history: History::Off,
+            wall: Wall::Off,
+        }
+    }
+}
+
+/// Which history force.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum History {
+    /// None (quasi-steady).
+    #[default]
+    Off,
+    /// Basset–Boussinesq, kernel t^{−1/2} (Maxey & Riley 1983), as a sum of exponentials.
+    Basset,
+}
+
+/// Which wall correction.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Wall {
+    /// None.
+    #[default]
+    Off,
+    /// Brenner (1961): the drag of a sphere approaching the container bottom.
+    Brenner,
+}
+
+impl Transient {
+    /// Whether any transient force is on.
+    pub fn any(&self) -> bool {
+        self.added_mass || self.history != History::Off || self.wall != Wall::Off
+    }
+
+    /// `added_mass_coefficient` in [0, 2]; the history force only in a Newtonian fluid, for kind
+    /// `free_settling`, on the free engine, with the exponential integrator; the wall only with a
+    /// `[container]`, for kind `free_settling`.
+    pub(crate) fn check(&self, c: &Check, s: &Scenario) -> Result<(), ScenarioError> {
+        c.range(
+            "transient.added_mass_coefficient",
+            self.added_mass_coefficient,
+            cc(0.0, 2.0, ""),
+        )?;
+        if self.any() && s.engine == EngineChoice::Rapier {
+            return Err(c.err(
+                "transient",
+                "the transient forces run on the free engine only: use engine = \"auto\" or \"free\"",
+            ));
+        }
+        if self.history != History::Off {
+            if s.fluid.rheology == Rheology::Bingham && s.physics == Physics::Full {
+                return Err(c.err("transient.history", "no history force is established for a yield-stress (Bingham) fluid: use history = \"off\" there (added mass applies)"));
+            }
+            if s.kind != Kind::FreeSettling {
+                return Err(c.err("transient.history", format!("the history force is implemented for kind = \"free_settling\" only, not \"{}\": use history = \"off\"", s.kind.name())));
+            }
+            if s.time.integrator != Integrator::Exponential {
+                return Err(c.err("transient.history", "the history force is integrated by the exponential scheme only: set time.integrator = \"exponential\""));
+            }
+        }
+        if self.wall != Wall::Off {
+            if s.kind != Kind::FreeSettling {
+                return Err(c.err("transient.wall", format!("the wall correction is implemented for kind = \"free_settling\" only, not \"{}\"", s.kind.name())));
+            }
+            if s.container.is_none() {
+                return Err(c.err(
+                    "transient.wall",
+                    "the wall correction needs a [container] (its bottom is the wall)",
+                ));
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,146 @@
+//! The transient forces of a free-settling sphere (`[transient]`, issue 16): added mass, the
+//! Basset history force and Brenner's wall correction of the approach to the container bottom.
+//!
+//! - Added mass alone changes only the inertia: the step is [`crate::dynamics::advance`] with the
+//!   mass m_p + C_m m_f (any drag law and integrator, drops included: C_m times the immersed
+//!   fluid mass while a drop crosses the surface).
+//! - The history force is carried as state by [`crate::dynamics::transient::TransientBody`] (20
+//!   states per body for the scenarios here), kernel fitted over 10 × `time.end_s`.
+//! - The wall multiplies the drag by Brenner's λ(gap) ([`crate::fluid::transient::wall`]), frozen
+//!   over a step.
+//!
+//! The analytic columns: with Stokes drag and no wall, the exponential approach with the larger
+//! inertia (added mass alone) or the Basset closed form ([`BassetProblem`], history on, released
+//! from rest); none with the wall.
+
+use super::setup::SphereSetup;
+use crate::dynamics::transient::{
+    basset_coefficient, basset_kernel, TransientBody, TransientModel,
+};
+use crate::dynamics::{advance, Integrator, Motion, Step};
+use crate::fluid::transient::wall::brenner_factor;
+use crate::fluid::transient::BassetProblem;
+use crate::fluid::{DragLaw, SphereDrag};
+use crate::scenario::{History, Scenario, Wall};
+use nalgebra::SVector;
+
+/// The transient forces of one sphere, fixed at release.
+#[derive(Clone, Debug)]
+pub(super) struct TransientSetup {
+    /// C_m m_f (fully immersed), kg; 0 without added mass.
+    pub added_mass_kg: f64,
+    /// The history model, when the history force is on.
+    pub history: Option<TransientModel>,
+    /// The wall correction.
+    pub wall: Wall,
+    /// The closed form (Stokes drag, history on, from rest, no wall).
+    pub basset: Option<BassetProblem>,
+}
+
+impl TransientSetup {
+    /// The setup of a sphere of diameter `d_m`, mass `m_kg`, displaced fluid mass `m_f_kg`
+    /// and drag `drag` in `scenario`; None when `[transient]` is absent or all off.
+    pub fn new(s: &Scenario, d_m: f64, m_kg: f64, m_f_kg: f64, drag: &SphereDrag) -> Option<Self> {
+        let t = s.transient.as_ref().filter(|t| t.any())?;
+        let cm = if t.added_mass {
+            t.added_mass_coefficient
+        } else {
+            0.0
+        };
+        let added = cm * m_f_kg;
+        let mu = drag.law.viscosity_pa_s();
+        let history = (t.history == History::Basset).then(|| {
+            let c_h = basset_coefficient(d_m, s.fluid.density_kg_m3, mu);
+            let k = 3.0 * std::f64::consts::PI * mu * d_m;
+            TransientModel {
+                mass_kg: m_kg,
+                added_mass_kg: added,
+                history: Some((c_h, basset_kernel(m_kg + added, k, c_h, s.time.end_s))),
+            }
+        });
+        let stokes = matches!(drag.law, DragLaw::Stokes { .. });
+        let basset =
+            (stokes && history.is_some() && t.wall == Wall::Off && s.release.velocity_m_s == 0.0)
+                .then(|| {
+                    let rho_p = m_kg / (std::f64::consts::PI * d_m.powi(3) / 6.0);
+                    BassetProblem::sphere(d_m, rho_p, s.fluid.density_kg_m3, mu, cm, s.gravity_m_s2)
+                });
+        Some(Self {
+            added_mass_kg: added,
+            history,
+            wall: t.wall,
+            basset,
+        })
+    }
+
+    /// The state of the history force at release, if on.
+    pub fn body(&self, v0_m_s: f64) -> Option<TransientBody> {
+        self.history
+            .as_ref()
+            .map(|m| TransientBody::new(m.clone(), v0_m_s))
+    }
+}
+
+/// Added mass C_m m_f of `su`, kg (0 without `[transient]`).
+pub(super) fn added_mass_kg<const D: usize>(su: &SphereSetup<D>) -> f64 {
+    su.transient.as_ref().map_or(0.0, |t| t.added_mass_kg)
+}
+
+/// The drag of `su` with the wall factor at centre depth `depth_m`.
+fn walled_drag<const D: usize>(su: &SphereSetup<D>, depth_m: f64) -> SphereDrag {
+    match su.transient.as_ref().map(|t| t.wall) {
+        Some(Wall::Brenner) => su
+            .drag
+            .scaled(brenner_factor(su.bottom_m - depth_m, 0.5 * su.d_m).min(1e12)),
+        _ => su.drag,
+    }
+}
+
+/// One step (or the part `dt` of one, `commit = false`) of a submerged sphere with transient
+/// forces from velocity `v` at depth `depth_m`.
+pub(super) fn submerged_step<const D: usize>(
+    su: &SphereSetup<D>,
+    body: Option<&mut TransientBody>,
+    integrator: Integrator,
+    v: &SVector<f64, D>,
+    depth_m: f64,
+    dt: f64,
+    commit: bool,
+) -> Step<D> {
+    let drag = walled_drag(su, depth_m);
+    let Some(body) = body else {
+        let m = su.m_kg + added_mass_kg(su);
+        return advance(integrator, &drag, m, &su.w_n, v, dt);
+    };
+    // Along the vertical: downward speed s, drag F(s) opposing it.
+    let f = |s: f64| {
+        let a = s.abs();
+        (drag.force_n(a).copysign(s), drag.slope_n_s_m(a))
+    };
+    let w = su.net_weight_n;
+    let (s1, dx) = if commit {
+        body.step(dt, w, f)
+    } else {
+        body.peek(dt, w, f)
+    };
+    Step {
+        velocity_m_s: su.down * s1,
+        displacement_m: su.down * dx,
+        motion: Motion::Moving,
+        drag_slope_n_s_m: drag.slope_n_s_m(s1.abs()),
+    }
+}
+
+/// The analytic (velocity, distance) at `t` of `su`, when there is one (module docs).
+pub(super) fn analytic_at<const D: usize>(su: &SphereSetup<D>, t: f64) -> Option<(f64, f64)> {
+    if let Some(tr) = &su.transient {
+        if let Some(p) = &tr.basset {
+            return Some((p.velocity_m_s(t), p.displacement_m(t)));
+        }
+        if tr.history.is_some() || tr.wall != Wall::Off {
+            return None;
+        }
+    }
+    su.analytic
+        .map(|(vt, tau)| super::simulate::stokes_analytic(vt, tau, su.v0_m_s, t))
+}
