@@ -13,6 +13,7 @@ pub mod drag;
 pub mod immersion;
 pub mod lubrication;
 pub mod newtonian;
+pub mod slump;
 pub mod validity;
 
 pub use bingham::BinghamRegime;

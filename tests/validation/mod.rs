@@ -3,6 +3,7 @@
 
 mod bingham_laws;
 mod paste_drop;
+mod slump;
 mod sphere_drag;
 mod stokes_single;
 mod valentik;
