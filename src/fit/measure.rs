@@ -85,9 +85,17 @@ pub fn read(path: &Path) -> Result<Vec<Measurement>, Error> {
             })?;
         let s = match sigma.map(cell).filter(|t| !t.is_empty()) {
             None => None,
-            Some(t) => Some(t.parse().ok().filter(|x: &f64| *x > 0.0 && x.is_finite()).ok_or_else(
-                || bad(format!("row {n}, column sigma"), format!("`{t}` is not a number > 0")),
-            )?),
+            Some(t) => Some(
+                t.parse()
+                    .ok()
+                    .filter(|x: &f64| *x > 0.0 && x.is_finite())
+                    .ok_or_else(|| {
+                        bad(
+                            format!("row {n}, column sigma"),
+                            format!("`{t}` is not a number > 0"),
+                        )
+                    })?,
+            ),
         };
         let m = Measurement {
             file: cell(file),
@@ -105,7 +113,11 @@ pub fn read(path: &Path) -> Result<Vec<Measurement>, Error> {
         out.push(m);
     }
     if out.is_empty() {
-        return Err(Error::bad_input(path, None, "no measurements: add at least one row"));
+        return Err(Error::bad_input(
+            path,
+            None,
+            "no measurements: add at least one row",
+        ));
     }
     Ok(out)
 }
@@ -187,7 +199,10 @@ fn select(m: &Measurement, header: &[String], rows: &[Vec<String>]) -> Result<us
         .collect();
     match hits[..] {
         [i] => Ok(i),
-        [] => Err(format!("{} has no row with {} = {want}", m.file, header[col])),
+        [] => Err(format!(
+            "{} has no row with {} = {want}",
+            m.file, header[col]
+        )),
         _ => Err(format!(
             "{} has {} rows with {} = {want}: the selector must pick one",
             m.file,
@@ -226,7 +241,10 @@ mod tests {
     fn selectors() {
         let t = table();
         assert_eq!(extract(&m("settling_distance_m", "id=b"), &t), Ok(0.02));
-        assert_eq!(extract(&m("settling_distance_m", "sphere_id=a"), &t), Ok(0.01));
+        assert_eq!(
+            extract(&m("settling_distance_m", "sphere_id=a"), &t),
+            Ok(0.01)
+        );
         assert_eq!(extract(&m("settling_distance_m", "1"), &t), Ok(0.02));
         assert!(extract(&m("settling_distance_m", "3"), &t).is_err());
         assert!(extract(&m("settling_distance_m", "id=z"), &t).is_err());

@@ -141,7 +141,12 @@ pub fn main(args: &Args) -> Result<Vec<String>, Error> {
 }
 
 /// The slump calculator's lines: τ_y of each slump and the mean.
-fn slump_lines(height_mm: f64, slumps_mm: &[f64], density: f64, g: f64) -> Result<Vec<String>, Error> {
+fn slump_lines(
+    height_mm: f64,
+    slumps_mm: &[f64],
+    density: f64,
+    g: f64,
+) -> Result<Vec<String>, Error> {
     use crate::io::fmt::{g as fmt, short};
     let mut lines = Vec::new();
     let mut sum = 0.0;
@@ -282,5 +287,15 @@ pub fn run(
         }
     }
     let fit = pb.finish(&min, method, CHART_POINTS)?;
+    for (j, b) in bounds.iter().enumerate() {
+        if fit.jacobian.iter().all(|row| row[j] == 0.0) {
+            return Err(Error::bad_argument(
+                "--fit",
+                Path::new(&format!("{}={}:{}", b.key, b.lo, b.hi)),
+                "no measurement depends on this key (every sensitivity is 0): fit another key \
+                 or measure another quantity",
+            ));
+        }
+    }
     output::write(out, &folder, file, measured, set, fit)
 }

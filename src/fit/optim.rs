@@ -164,17 +164,21 @@ pub fn nelder_mead<E>(
         } else if fr < simplex[n - 1].1 {
             simplex[n] = (r, fr);
         } else {
-            let k = if fr < worst.1 { along(-0.5) } else { along(0.5) };
+            let k = if fr < worst.1 {
+                along(-0.5)
+            } else {
+                along(0.5)
+            };
             let fk = eval(&k, &mut evals)?;
             if fk < worst.1.min(fr) {
                 simplex[n] = (k, fk);
             } else {
-                for j in 1..=n {
+                for vertex in simplex.iter_mut().skip(1) {
                     let u: Vec<f64> = (0..n)
-                        .map(|i| best[i] + 0.5 * (simplex[j].0[i] - best[i]))
+                        .map(|i| best[i] + 0.5 * (vertex.0[i] - best[i]))
                         .collect();
                     let fu = eval(&u, &mut evals)?;
-                    simplex[j] = (u, fu);
+                    *vertex = (u, fu);
                 }
             }
         }
@@ -211,7 +215,7 @@ pub fn covariance(jac: &[Vec<f64>], sigma: &[f64]) -> Option<Vec<Vec<f64>>> {
         .fold(0.0_f64, |m, x| m.max(x.abs()));
     for col in 0..p {
         let piv = (col..p).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))?;
-        if !(a[piv][col].abs() > 1e-12 * scale) {
+        if a[piv][col].abs() <= 1e-12 * scale || a[piv][col].is_nan() {
             return None;
         }
         a.swap(col, piv);
@@ -221,7 +225,9 @@ pub fn covariance(jac: &[Vec<f64>], sigma: &[f64]) -> Option<Vec<Vec<f64>>> {
             if r != col {
                 let k = a[r][col];
                 let pivot_row = a[col].clone();
-                a[r].iter_mut().zip(&pivot_row).for_each(|(x, y)| *x -= k * y);
+                a[r].iter_mut()
+                    .zip(&pivot_row)
+                    .for_each(|(x, y)| *x -= k * y);
             }
         }
     }

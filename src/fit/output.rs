@@ -99,7 +99,14 @@ pub fn write(
     write_csv(&stage.path("fitted.csv"), &header, &rows).map_err(io)?;
     // residuals.csv
     let mut header: Vec<String> = [
-        "file", "column", "row", "measured", "sigma", "model", "residual", "normalised_residual",
+        "file",
+        "column",
+        "row",
+        "measured",
+        "sigma",
+        "model",
+        "residual",
+        "normalised_residual",
     ]
     .map(String::from)
     .to_vec();
@@ -135,8 +142,11 @@ pub fn write(
             .map(|(x, c)| vec![num(*x), num(*c)])
             .collect();
         write_csv(&stage.path("objective.csv"), &[key, "chi2"], &rows).map_err(io)?;
-        objective_chart(&stage.path(&format!("objective_vs_{}.svg", short_key(key))), &fit)
-            .map_err(io)?;
+        objective_chart(
+            &stage.path(&format!("objective_vs_{}.svg", short_key(key))),
+            &fit,
+        )
+        .map_err(io)?;
     }
     let sigma_given = fit.measured.iter().all(|m| m.sigma.is_some());
     let toml_doc = FitToml {
@@ -179,7 +189,7 @@ fn objective_chart(path: &Path, fit: &Fit) -> std::io::Result<()> {
     let unit = crate::sweep::vary::unit_of(key);
     let x = fit.values[0];
     let top = fit.objective.iter().map(|p| p.1).fold(0.0_f64, f64::max);
-    Chart::new(format!("Fit of {key}: objective against the key"))
+    Chart::new("settle fit: objective against the fitted key")
         .x(format!("{} [{unit}]", short_key(key)), Scale::Linear)
         .y("χ² = Σ ((model − measured)/σ)² [-]", Scale::Linear)
         .y_from_zero(true)
@@ -207,11 +217,7 @@ fn lines(fit: &Fit) -> Vec<String> {
             g_opt(fit.sigma[j])
         );
         if let (0, Some((lo, hi))) = (j, fit.profile) {
-            l.push_str(&format!(
-                "; chi2 + 1 at {} .. {}",
-                g_opt(lo),
-                g_opt(hi)
-            ));
+            l.push_str(&format!("; chi2 + 1 at {} .. {}", g_opt(lo), g_opt(hi)));
         }
         l.push(')');
         out.push(l);

@@ -108,7 +108,8 @@ impl Problem {
                 .map(|(b, v)| format!("{}={}", b.key, text(*v))),
         );
         let p = prepare(&self.file, None, &ov)?;
-        std::fs::create_dir_all(&self.scratch.0).map_err(|e| Error::Io(self.scratch.0.clone(), e))?;
+        std::fs::create_dir_all(&self.scratch.0)
+            .map_err(|e| Error::Io(self.scratch.0.clone(), e))?;
         let r = run_one(&p, &self.scratch.0)?;
         let mut tables: HashMap<&str, measure::Table> = HashMap::new();
         let mut values = Vec::with_capacity(self.measured.len());
@@ -200,7 +201,11 @@ impl Problem {
         let (n, p) = (self.measured.len(), x.len());
         let all_sigma = self.measured.iter().all(|m| m.sigma.is_some());
         let none_sigma = self.measured.iter().all(|m| m.sigma.is_none());
-        let sig: Vec<f64> = self.measured.iter().map(Measurement::sigma_or_one).collect();
+        let sig: Vec<f64> = self
+            .measured
+            .iter()
+            .map(Measurement::sigma_or_one)
+            .collect();
         let scale = if all_sigma {
             Some(1.0)
         } else if none_sigma && n > p {

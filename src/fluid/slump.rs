@@ -54,7 +54,12 @@ pub fn dimensionless_yield_stress(slump_dimensionless: f64) -> Option<f64> {
 /// Eqs. A1–A3: the yield stress τ_y, Pa, of a paste of density `density_kg_m3` that slumps by
 /// `slump_m` from a cylinder of height `height_m`, under gravity `g_m_s2`:
 /// τ_y = τ′_y(S/H) ρ g H. None unless 0 < S < H and ρ, g, H > 0 (all finite).
-pub fn yield_stress_pa(height_m: f64, slump_m: f64, density_kg_m3: f64, g_m_s2: f64) -> Option<f64> {
+pub fn yield_stress_pa(
+    height_m: f64,
+    slump_m: f64,
+    density_kg_m3: f64,
+    g_m_s2: f64,
+) -> Option<f64> {
     let ok = |x: f64| x.is_finite() && x > 0.0;
     if !(ok(height_m) && ok(density_kg_m3) && ok(g_m_s2) && slump_m.is_finite()) {
         return None;
@@ -71,7 +76,10 @@ mod tests {
         for t in [1e-4, 0.01, 0.1, 0.2, 0.37, 0.49] {
             let s = dimensionless_slump(t);
             let back = dimensionless_yield_stress(s).unwrap();
-            assert!((back - t).abs() < 1e-12 * t.max(1e-3), "{t} -> {s} -> {back}");
+            assert!(
+                (back - t).abs() < 1e-12 * t.max(1e-3),
+                "{t} -> {s} -> {back}"
+            );
         }
     }
 

@@ -14,8 +14,14 @@ fn table_a1_yield_stresses() {
     let mut sum = 0.0;
     for ((s_mm, printed), w) in TABLE_A1.iter().zip(want) {
         let t = yield_stress_pa(0.152, s_mm * 1e-3, 1843.0, G_M_S2).unwrap();
-        assert!((t - w).abs() < 0.1, "S = {s_mm} mm: {t} Pa vs recomputed {w}");
-        assert!((t / printed - 1.0).abs() < 0.02, "S = {s_mm} mm: {t} Pa vs printed {printed}");
+        assert!(
+            (t - w).abs() < 0.1,
+            "S = {s_mm} mm: {t} Pa vs recomputed {w}"
+        );
+        assert!(
+            (t / printed - 1.0).abs() < 0.02,
+            "S = {s_mm} mm: {t} Pa vs printed {printed}"
+        );
         sum += t;
     }
     let mean = sum / 3.0;
