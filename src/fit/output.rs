@@ -209,9 +209,12 @@ fn lines(fit: &Fit) -> Vec<String> {
         fit.out.display()
     )];
     for (j, b) in fit.bounds.iter().enumerate() {
-        let unit = crate::sweep::vary::unit_of(&b.key);
+        let unit = match crate::sweep::vary::unit_of(&b.key) {
+            "-" => String::new(),
+            u => format!(" {u}"),
+        };
         let mut l = format!(
-            "  {} = {} {unit} (+/- {} from the curvature",
+            "  {} = {}{unit} (+/- {} from the curvature",
             b.key,
             g(fit.values[j]),
             g_opt(fit.sigma[j])
