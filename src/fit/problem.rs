@@ -228,8 +228,18 @@ impl Problem {
                 let level = min.f + 1.0;
                 let xtol = 1e-5 * (b.hi - b.lo);
                 let mut f = |v: f64| self.chi2(&[v]);
-                let below = optim::crossing(&mut f, level, x[0], b.lo, xtol, 40)?;
-                let above = optim::crossing(&mut f, level, x[0], b.hi, xtol, 40)?;
+                // Bracket each crossing at 2σ of the curvature when χ² is above the level
+                // there (one run), else search up to the bound.
+                let mut side = |bound: f64| -> Result<Option<f64>, Error> {
+                    let guess = sigma[0].map(|s| x[0] + 2.0 * s * (bound - x[0]).signum());
+                    let outside = match guess.filter(|g| (g - x[0]).abs() < (bound - x[0]).abs()) {
+                        Some(g) if f(g)? >= level => g,
+                        _ => bound,
+                    };
+                    optim::crossing(&mut f, level, x[0], outside, xtol, 40)
+                };
+                let below = side(b.lo)?;
+                let above = side(b.hi)?;
                 profile = Some((below, above));
             }
             for k in 0..grid {
