@@ -141,6 +141,19 @@ enum Command {
         #[arg(long, default_value = "out")]
         out: PathBuf,
     },
+    /// Calibration: fit scenario keys to measurements, or compute a yield stress from slumps.
+    ///
+    /// `settle fit SCENARIO --fit KEY=LO:HI [--fit ...] --measured M.csv [--set K=V] [--out DIR]`
+    /// runs the scenario inside a bounded minimiser (Brent for one key, Nelder-Mead for several)
+    /// of chi2 = sum ((model - measured)/sigma)^2. M.csv: file (an output CSV, e.g. summary.csv),
+    /// column, row (NAME=VALUE, id=VALUE or a 0-based index), value [, sigma]. Writes
+    /// OUT/<name>_fit/: fitted.csv (values, 1-sigma uncertainty, chi2 + 1 interval),
+    /// residuals.csv (with d model/d key), objective.csv and objective_vs_<key>.svg (one key),
+    /// fit.toml. Bad input (a key that is not a real number, reversed bounds, a measurement the
+    /// run does not write, no convergence, a best value on a bound) exits 2 with nothing written.
+    /// `settle fit slump --height-mm H --slump-mm S1,S2 --density RHO` prints the yield stress
+    /// of slump tests (f-EDEM Appendix I). See docs/commands/fit.md.
+    Fit(crate::fit::Args),
 }
 
 /// Parses the arguments, runs, and returns the process exit code.
@@ -221,6 +234,18 @@ pub fn main() -> i32 {
             println!("-> {}", path.display());
             0
         }
+        Command::Fit(args) => match crate::fit::main(&args) {
+            Ok(lines) => {
+                for l in &lines {
+                    println!("{l}");
+                }
+                0
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                e.exit_code()
+            }
+        },
         Command::Sweep(args) => match crate::sweep::main(&args) {
             Ok(()) => 0,
             Err(e) => {

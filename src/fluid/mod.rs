@@ -14,6 +14,7 @@ pub mod hindered;
 pub mod immersion;
 pub mod lubrication;
 pub mod newtonian;
+pub mod slump;
 pub mod transient;
 pub mod validity;
 

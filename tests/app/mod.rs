@@ -4,6 +4,7 @@
 #[cfg(unix)]
 mod checkpoint;
 pub(crate) mod console;
+mod fit;
 mod interrupt;
 mod laws;
 mod readings;

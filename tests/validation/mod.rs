@@ -4,6 +4,7 @@
 mod bingham_laws;
 mod hindered;
 mod paste_drop;
+mod slump;
 mod sphere_drag;
 mod stokes_single;
 mod ten_cate;

@@ -1,0 +1,269 @@
+//! The objective of a fit: each evaluation runs the scenario with the fitted keys set, into a
+//! scratch folder outside `--out` (removed afterwards), and reads the measured quantities back.
+
+use super::measure::{self, Measurement};
+use super::optim::{self, Minimum};
+use super::{Bound, Fit};
+use crate::error::{BadInput, Error};
+use crate::run::{prepare, run_one, Prepared};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+/// A scratch folder removed when dropped.
+struct Scratch(PathBuf);
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+/// The runs of a fit: the scenario, the keys, the measurements and every point evaluated.
+pub struct Problem {
+    file: PathBuf,
+    set: Vec<String>,
+    bounds: Vec<Bound>,
+    measured_file: PathBuf,
+    measured: Vec<Measurement>,
+    base: Prepared,
+    scratch: Scratch,
+    /// Every evaluation: the point, its model values and χ².
+    history: Vec<(Vec<f64>, Vec<f64>, f64)>,
+}
+
+/// A value as `--set` writes it for a real key: exponent notation (TOML reads `7e-1` as a
+/// float, and refuses it for an integer or text key).
+fn text(x: f64) -> String {
+    format!("{x:e}")
+}
+
+impl Problem {
+    /// Loads the scenario with `set`, and with each key at its lower and at its upper bound:
+    /// a key that does not exist, that is not a real number, or a bound outside its allowed
+    /// range is bad input naming the key, before anything runs.
+    pub fn new(
+        file: &Path,
+        set: &[String],
+        bounds: &[Bound],
+        measured_file: &Path,
+        measured: Vec<Measurement>,
+    ) -> Result<Self, Error> {
+        let base = prepare(file, None, set)?;
+        for b in bounds {
+            for v in [b.lo, b.hi] {
+                let mut ov = set.to_vec();
+                ov.push(format!("{}={}", b.key, text(v)));
+                prepare(file, None, &ov).map_err(|e| {
+                    Error::BadInput(BadInput {
+                        message: format!(
+                            "--fit {}={}:{} (the key must be a real number and both bounds \
+                             allowed): {}",
+                            b.key, b.lo, b.hi, e.message
+                        ),
+                        ..e
+                    })
+                })?;
+            }
+        }
+        static NEXT: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+        let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        let dir = std::env::temp_dir().join(format!("settle-fit-{}-{n}", std::process::id()));
+        Ok(Self {
+            file: file.to_path_buf(),
+            set: set.to_vec(),
+            bounds: bounds.to_vec(),
+            measured_file: measured_file.to_path_buf(),
+            measured,
+            base,
+            scratch: Scratch(dir),
+            history: Vec::new(),
+        })
+    }
+
+    /// The scenario's name.
+    pub fn name(&self) -> &str {
+        &self.base.scenario.name
+    }
+
+    /// Runs of the scenario made so far.
+    pub fn runs(&self) -> usize {
+        self.history.len()
+    }
+
+    /// The measured quantities of one run at `x` (one value per key). A measurement the run
+    /// does not write is bad input naming M.csv and its row; an unstable run is
+    /// [`Error::Unstable`].
+    pub fn model(&mut self, x: &[f64]) -> Result<Vec<f64>, Error> {
+        if let Some((_, m, _)) = self.history.iter().find(|(p, _, _)| p == x) {
+            return Ok(m.clone());
+        }
+        if crate::interrupt::requested() {
+            return Err(Error::InterruptedUnwritten(self.file.clone()));
+        }
+        let mut ov = self.set.clone();
+        ov.extend(
+            self.bounds
+                .iter()
+                .zip(x)
+                .map(|(b, v)| format!("{}={}", b.key, text(*v))),
+        );
+        let p = prepare(&self.file, None, &ov)?;
+        std::fs::create_dir_all(&self.scratch.0)
+            .map_err(|e| Error::Io(self.scratch.0.clone(), e))?;
+        let r = run_one(&p, &self.scratch.0)?;
+        let mut tables: HashMap<&str, measure::Table> = HashMap::new();
+        let mut values = Vec::with_capacity(self.measured.len());
+        for (i, m) in self.measured.iter().enumerate() {
+            let bad = |msg: String| {
+                Error::bad_input(
+                    &self.measured_file,
+                    Some(&format!("row {}", i + 1)),
+                    format!("{}: {msg}", m.label()),
+                )
+            };
+            if !tables.contains_key(m.file.as_str()) {
+                let path = r.out.join(&m.file);
+                let t = if m.file.ends_with(".csv") && path.is_file() {
+                    measure::read_table(&path).map_err(|e| bad(e.to_string()))?
+                } else {
+                    let mut have: Vec<String> = std::fs::read_dir(&r.out)
+                        .into_iter()
+                        .flatten()
+                        .filter_map(|e| e.ok()?.file_name().into_string().ok())
+                        .filter(|n| n.ends_with(".csv"))
+                        .collect();
+                    have.sort();
+                    return Err(bad(format!(
+                        "a {} run writes no such CSV: it writes {}",
+                        self.base.scenario.kind.name(),
+                        have.join(", ")
+                    )));
+                };
+                tables.insert(&m.file, t);
+            }
+            values.push(measure::extract(m, &tables[m.file.as_str()]).map_err(bad)?);
+        }
+        let chi2 = self.chi2_of(&values);
+        self.history.push((x.to_vec(), values.clone(), chi2));
+        Ok(values)
+    }
+
+    /// χ² = Σ ((model_i − measured_i)/σ_i)² of model values.
+    fn chi2_of(&self, model: &[f64]) -> f64 {
+        model
+            .iter()
+            .zip(&self.measured)
+            .map(|(y, m)| ((y - m.value) / m.sigma_or_one()).powi(2))
+            .sum()
+    }
+
+    /// χ² at `x` (one run, or the remembered result of the same point).
+    pub fn chi2(&mut self, x: &[f64]) -> Result<f64, Error> {
+        let m = self.model(x)?;
+        Ok(self.chi2_of(&m))
+    }
+
+    /// ∂model_i/∂key_j at `x` by central differences (step 1e-3 of each key's range, one-sided
+    /// at a bound).
+    fn jacobian(&mut self, x: &[f64]) -> Result<Vec<Vec<f64>>, Error> {
+        let n = self.measured.len();
+        let mut jac = vec![vec![0.0; x.len()]; n];
+        for j in 0..x.len() {
+            let b = self.bounds[j].clone();
+            let h = 1e-3 * (b.hi - b.lo);
+            let up = (x[j] + h).min(b.hi);
+            let down = (x[j] - h).max(b.lo);
+            let at = |v: f64| {
+                let mut p = x.to_vec();
+                p[j] = v;
+                p
+            };
+            let (fu, fd) = (self.model(&at(up))?, self.model(&at(down))?);
+            for i in 0..n {
+                jac[i][j] = (fu[i] - fd[i]) / (up - down);
+            }
+        }
+        Ok(jac)
+    }
+
+    /// Everything reported at the minimum: the model values, the sensitivities, the
+    /// uncertainty (Gauss–Newton; scaled by χ²/(n − p) when no σ is given and n > p), for one
+    /// key the Δχ² = 1 interval (every σ given) and the objective on `grid` points.
+    pub fn finish(
+        &mut self,
+        min: &Minimum,
+        method: &'static str,
+        grid: usize,
+    ) -> Result<Fit, Error> {
+        let x = min.x.clone();
+        let model = self.model(&x)?;
+        let jacobian = self.jacobian(&x)?;
+        let (n, p) = (self.measured.len(), x.len());
+        let all_sigma = self.measured.iter().all(|m| m.sigma.is_some());
+        let none_sigma = self.measured.iter().all(|m| m.sigma.is_none());
+        let sig: Vec<f64> = self
+            .measured
+            .iter()
+            .map(Measurement::sigma_or_one)
+            .collect();
+        let scale = if all_sigma {
+            Some(1.0)
+        } else if none_sigma && n > p {
+            Some(min.f / (n - p) as f64)
+        } else {
+            None
+        };
+        let cov = optim::covariance(&jacobian, &sig);
+        let sigma: Vec<Option<f64>> = (0..p)
+            .map(|j| {
+                let c = cov.as_ref()?;
+                Some((c[j][j] * scale?).sqrt()).filter(|s| s.is_finite())
+            })
+            .collect();
+        let mut profile = None;
+        let mut objective = Vec::new();
+        if p == 1 {
+            let b = self.bounds[0].clone();
+            if all_sigma {
+                let level = min.f + 1.0;
+                let xtol = 1e-5 * (b.hi - b.lo);
+                let mut f = |v: f64| self.chi2(&[v]);
+                // Bracket each crossing at 2σ of the curvature when χ² is above the level
+                // there (one run), else search up to the bound.
+                let mut side = |bound: f64| -> Result<Option<f64>, Error> {
+                    let guess = sigma[0].map(|s| x[0] + 2.0 * s * (bound - x[0]).signum());
+                    let outside = match guess.filter(|g| (g - x[0]).abs() < (bound - x[0]).abs()) {
+                        Some(g) if f(g)? >= level => g,
+                        _ => bound,
+                    };
+                    optim::crossing(&mut f, level, x[0], outside, xtol, 40)
+                };
+                let below = side(b.lo)?;
+                let above = side(b.hi)?;
+                profile = Some((below, above));
+            }
+            for k in 0..grid {
+                let v = b.lo + (b.hi - b.lo) * k as f64 / (grid - 1) as f64;
+                self.chi2(&[v])?;
+            }
+            objective = self.history.iter().map(|(q, _, c)| (q[0], *c)).collect();
+            objective.sort_by(|a, b| a.0.total_cmp(&b.0));
+            objective.dedup_by(|a, b| a.0 == b.0);
+        }
+        Ok(Fit {
+            bounds: self.bounds.clone(),
+            values: x,
+            sigma,
+            profile,
+            chi2: min.f,
+            measured: self.measured.clone(),
+            model,
+            jacobian,
+            objective,
+            runs: self.runs(),
+            method,
+            out: PathBuf::new(),
+            lines: Vec::new(),
+        })
+    }
+}
