@@ -16,7 +16,7 @@
 //! | 2 engine | [`engine`] | the Rapier worlds |
 //! | 3 scenario | [`scenario`] | schema, loading, validation, input files, cost |
 //! | 4 scenes | [`scenes`] | one folder per kind, and the scene API ([`scenes::Prepared`], [`scenes::RunContext`], [`scenes::SceneReport`]) |
-//! | 5 application | [`run`], [`sweep`], [`bench`](mod@bench), [`reduce`], [`cli`] | the commands |
+//! | 5 application | [`run`], [`sweep`], [`bench`](mod@bench), [`reduce`], [`invert`], [`cli`] | the commands |
 
 // Layer 0: infrastructure.
 pub mod checkpoint;
@@ -39,6 +39,7 @@ pub mod scenes;
 // Layer 5: application.
 pub mod bench;
 pub mod cli;
+pub mod invert;
 pub mod reduce;
 pub mod run;
 pub mod sweep;
