@@ -310,21 +310,21 @@ fn test_of(file: &Path, setup: &TestSetup, readings: &[LabReading], resolution: 
 }
 
 /// The bins: `n` even in ln d over the resolved range [lo, hi], a bin [lo/4, lo] finer and a
-/// bin [hi, 4 hi] coarser. The resolved range, unless given: from the Stokes diameter at the
-/// shallowest depth an instrument averages over at its last reading, to the diameter at the
-/// deepest at its first (every grain coarser has left the instrument before its first reading,
-/// every grain finer is still throughout it at its last).
+/// bin [hi, 4 hi] coarser. The resolved range, unless given: from the smallest Stokes diameter
+/// at the shallowest depth an instrument averages over at a reading (the hydrometer floating at
+/// the mark it reads), to the largest at the deepest (every grain coarser has left the
+/// instrument before each reading, every grain finer is still throughout it).
 pub fn bins_for(tests: &[Test], n: usize, range: Option<(f64, f64)>) -> Bins {
     let (lo, hi) = range.unwrap_or_else(|| {
         let mut lo = f64::INFINITY;
         let mut hi: f64 = 0.0;
         for t in tests {
-            let (top, bottom) = t.probe.depth_span_m();
             let an = &t.col.analysis;
-            let first = t.times_s.iter().cloned().fold(f64::INFINITY, f64::min);
-            let last = t.times_s.iter().cloned().fold(0.0, f64::max);
-            lo = lo.min(an.limiting_diameter_m(top.max(1e-3), last));
-            hi = hi.max(an.limiting_diameter_m(bottom, first));
+            for (i, &time) in t.times_s.iter().enumerate() {
+                let (top, bottom) = t.probe.depth_span_m(t.readings[i] - t.offsets[i]);
+                lo = lo.min(an.limiting_diameter_m(top.max(1e-3), time));
+                hi = hi.max(an.limiting_diameter_m(bottom, time));
+            }
         }
         (lo, hi)
     });

@@ -57,14 +57,14 @@ impl Probe {
     }
 
     /// The depths (shallowest, deepest) below the free surface over which the instrument
-    /// averages the suspension, m: the hydrometer's bulb from its top at the full-scale mark to
-    /// its tip in the clear fluid; the sphere's and the draw's extent.
-    pub fn depth_span_m(&self) -> (f64, f64) {
+    /// averages the suspension, m, when it reads `own` (its reading less the offset): the
+    /// hydrometer's bulb floating at the mark `own` (tip L₂ + L₁(own) deep); the sphere's and
+    /// the draw's extent.
+    pub fn depth_span_m(&self, own: f64) -> (f64, f64) {
         match self {
             Self::Hydrometer(h) => {
-                let tip = h.clear_tip_depth_m();
-                let rise = h.zero_mark_m - h.mark_m(h.spec.full_scale);
-                ((tip - h.spec.bulb_length_m - rise).max(0.0), tip)
+                let stem = h.mark_m(own).clamp(0.0, h.spec.stem_length_m);
+                (stem, stem + h.spec.bulb_length_m)
             }
             Self::Pipette {
                 volume_m3,

@@ -11,10 +11,12 @@
 //!
 //! The quadratic programme is solved exactly by a primal active-set method (Nocedal & Wright,
 //! *Numerical Optimization*, 2nd ed., Algorithm 16.3) on its KKT systems, dense: the problems
-//! have at most a few dozen unknowns. λ is chosen by Morozov's discrepancy principle (the
-//! largest λ whose χ² does not exceed the number of readings) or by generalised
-//! cross-validation (Golub, Heath & Wahba 1979: the λ minimising m χ²/(m − tr H)², H the
-//! influence matrix of the free variables).
+//! have at most a few dozen unknowns. λ is chosen by the discrepancy principle (Morozov 1966:
+//! the largest λ whose misfit is what the readings' uncertainty explains; here χ² ≤ m − tr H,
+//! the residual degrees of freedom of the fit (Hastie & Tibshirani 1990, §3.5), rather than
+//! χ² ≤ m, which over-smooths a steep curve with few readings) or by generalised
+//! cross-validation (Golub, Heath & Wahba 1979: the λ minimising m χ²/(m − tr H)²), H the
+//! influence matrix of the free variables ([`Linear::solve`]).
 
 use nalgebra::{DMatrix, DVector};
 
@@ -35,7 +37,8 @@ pub struct Linear {
 pub enum LambdaRule {
     /// A fixed λ.
     Fixed(f64),
-    /// Morozov's discrepancy principle: the largest λ with χ² ≤ m (m readings).
+    /// The discrepancy principle: the largest λ with χ² ≤ m − tr H (m readings, tr H the
+    /// effective number of parameters).
     Discrepancy,
     /// Generalised cross-validation (Golub, Heath & Wahba 1979).
     Gcv,
@@ -141,7 +144,7 @@ impl Linear {
             LambdaRule::Discrepancy => sols
                 .iter()
                 .rev()
-                .find(|s| s.chi2 <= m)
+                .find(|s| s.chi2 <= m - self.influence_trace(s.lambda, &s.w))
                 .unwrap_or(&sols[0])
                 .clone(),
             _ => {
