@@ -373,14 +373,9 @@ pub fn run(req: &Request) -> Result<Report, Error> {
     let mut tests = Vec::new();
     let mut standard = Vec::new();
     for (k, file) in req.files.iter().enumerate() {
-        let rq = crate::reduce::Request {
-            file: file.clone(),
-            out_dir: req.out_dir.clone(),
-            ..Default::default()
-        };
-        let (setup, readings) = crate::reduce::read(file, &rq)?;
-        tests.push(test_of(file, &setup, &readings, req.resolution)?);
-        standard.extend(reduce(&setup, &readings).into_iter().map(|r| (k, r)));
+        let (test, reduced) = read_test(file, req.resolution)?;
+        tests.push(test);
+        standard.extend(reduced.into_iter().map(|r| (k, r)));
     }
     let m: usize = tests.iter().map(|t| t.readings.len()).sum();
     let n = req.bins.unwrap_or((2 * m).clamp(8, 30));
@@ -410,8 +405,7 @@ pub fn run(req: &Request) -> Result<Report, Error> {
         ));
     }
     let bins = bins_for(&tests, n, range);
-    let inv = invert(&tests, &bins, model, rule)?;
-    let curve = band(&inv, &tests, &bins, req.repeats, req.seed);
+    let fit = fit(&tests, &bins, model, rule, req.repeats, req.seed)?;
     let mut misfit = Vec::new();
     let mut row = 0;
     for (k, t) in tests.iter().enumerate() {
@@ -420,7 +414,7 @@ pub fn run(req: &Request) -> Result<Report, Error> {
                 file: k,
                 time_s: t.times_s[i],
                 reading: t.readings[i],
-                predicted: inv.predicted[row],
+                predicted: fit.predicted[row],
                 sigma: t.sigma(),
             });
             row += 1;
@@ -430,14 +424,14 @@ pub fn run(req: &Request) -> Result<Report, Error> {
         out: dest,
         tests,
         bins,
-        w: inv.solution.w.clone(),
-        curve,
+        w: fit.w,
+        curve: fit.curve,
         misfit,
         standard,
-        lambda: inv.solution.lambda,
-        chi2: inv.chi2,
-        iterations: inv.iterations,
-        converged: inv.converged,
+        lambda: fit.lambda,
+        chi2: fit.chi2,
+        iterations: fit.iterations,
+        converged: fit.converged,
         wall_time_s: 0.0,
         lines: Vec::new(),
         warnings: Vec::new(),
@@ -447,6 +441,60 @@ pub fn run(req: &Request) -> Result<Report, Error> {
     report.out = output::write(req, &name, model, rule, &report)?;
     report.lines = output::summary(req, model, &report);
     Ok(report)
+}
+
+/// Reads one readings file: its [`Test`] (readings of resolution `resolution`, else the
+/// instrument's default) and its standard reduction.
+pub fn read_test(file: &Path, resolution: Option<f64>) -> Result<(Test, Vec<Reduced>), Error> {
+    let rq = crate::reduce::Request {
+        file: file.to_path_buf(),
+        ..Default::default()
+    };
+    let (setup, readings) = crate::reduce::read(file, &rq)?;
+    let test = test_of(file, &setup, &readings, resolution)?;
+    Ok((test, reduce(&setup, &readings)))
+}
+
+/// What an inversion of some tests found.
+#[derive(Clone, Debug)]
+pub struct Fit {
+    /// Mass fraction of each bin.
+    pub w: Vec<f64>,
+    /// The curve at the resolved edges, with its band.
+    pub curve: Vec<CurvePoint>,
+    /// Predicted readings, the files' readings in order.
+    pub predicted: Vec<f64>,
+    /// λ of the last linear problem.
+    pub lambda: f64,
+    /// χ² of the predicted readings.
+    pub chi2: f64,
+    /// Gauss–Newton / fixed-point iterations.
+    pub iterations: usize,
+    /// Whether the curve moved less than 0.01 points in the last one.
+    pub converged: bool,
+}
+
+/// Inverts the readings of `tests` over `bins` with `model` and the λ `rule`; the band from
+/// `repeats` Monte Carlo repeats seeded `seed`.
+pub fn fit(
+    tests: &[Test],
+    bins: &Bins,
+    model: Model,
+    rule: LambdaRule,
+    repeats: usize,
+    seed: u64,
+) -> Result<Fit, Error> {
+    let inv = invert(tests, bins, model, rule)?;
+    let curve = band(&inv, tests, bins, repeats, seed);
+    Ok(Fit {
+        w: inv.solution.w.clone(),
+        curve,
+        predicted: inv.predicted,
+        lambda: inv.solution.lambda,
+        chi2: inv.chi2,
+        iterations: inv.iterations,
+        converged: inv.converged,
+    })
 }
 
 /// The result of the iterations.

@@ -171,12 +171,6 @@ impl Test {
                 ),
             ));
         };
-        let unit_field = |u: &Vec<f64>| LayeredField {
-            layer_m: field.layer_m,
-            density_kg_m3: u.clone(),
-            fluid_density_kg_m3: 0.0,
-            grains: None,
-        };
         let jac = match &self.probe {
             Probe::Hydrometer(h) => {
                 let tip = h
@@ -193,9 +187,14 @@ impl Test {
                     1000.0 * (rho / rf - 1.0) / (1.0 - 1.0 / h.spec.calibration_specific_gravity)
                 };
                 let dr_dtip = (r_of(tip + dh) - r_of(tip - dh)) / (2.0 * dh);
+                // ∂D/∂w_j = Σ_k u_jk W_k, W_k = ∫ A(tip − y) dy over layer k (one pass).
+                let weights: Vec<(usize, f64)> = field
+                    .layer_sums(0.0, tip, |y| -h.volume_below(tip - y))
+                    .map(|(k, _, wk)| (k, wk))
+                    .collect();
                 unit.iter()
                     .map(|u| {
-                        let dd = h.displaced_mass_kg(&unit_field(u), tip);
+                        let dd: f64 = weights.iter().map(|&(k, wk)| u[k] * wk).sum();
                         -dr_dtip * dd / d_dtip
                     })
                     .collect()
