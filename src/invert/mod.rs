@@ -379,15 +379,18 @@ pub fn run(req: &Request) -> Result<Report, Error> {
     }
     let m: usize = tests.iter().map(|t| t.readings.len()).sum();
     let n = req.bins.unwrap_or((2 * m).clamp(8, 30));
-    if m < 3 || n > 4 * m {
-        return Err(Error::bad_argument(
-            if req.bins.is_some() { "--bins" } else { "READINGS.csv" },
+    if m < 3 {
+        return Err(Error::bad_input(
             &req.files[0],
-            format!(
-                "{m} readings cannot determine {n} bins: give at least 3 readings and at most 4 \
-                 bins per reading (--bins ≤ {})",
-                4 * m
-            ),
+            None,
+            format!("{m} readings in all: an inversion needs at least 3"),
+        ));
+    }
+    if n > 4 * m {
+        return Err(Error::bad_argument(
+            "--bins",
+            Path::new(&n.to_string()),
+            format!("{m} readings cannot determine {n} bins: allowed at most 4 per reading ({})", 4 * m),
         ));
     }
     let stem = req.files[0]
@@ -446,6 +449,13 @@ pub fn run(req: &Request) -> Result<Report, Error> {
 /// Reads one readings file: its [`Test`] (readings of resolution `resolution`, else the
 /// instrument's default) and its standard reduction.
 pub fn read_test(file: &Path, resolution: Option<f64>) -> Result<(Test, Vec<Reduced>), Error> {
+    if !file.is_file() {
+        return Err(Error::bad_input(
+            file,
+            None,
+            "no such readings file (give the path of a CSV in the format of `settle reduce`)",
+        ));
+    }
     let rq = crate::reduce::Request {
         file: file.to_path_buf(),
         ..Default::default()

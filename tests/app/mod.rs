@@ -1,10 +1,11 @@
 //! The application layer: `src/run.rs`, `src/checkpoint.rs`, `src/interrupt.rs`, `src/sweep/`,
-//! `src/reduce/`.
+//! `src/reduce/`, `src/invert/`.
 
 #[cfg(unix)]
 mod checkpoint;
 pub(crate) mod console;
 mod interrupt;
+mod invert;
 mod readings;
 mod reduce;
 mod report;
