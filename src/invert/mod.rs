@@ -20,8 +20,10 @@
 //! 4. Each linear problem: [`solve`] (Tikhonov, w ≥ 0, Σw = 1, λ by the discrepancy principle
 //!    or GCV).
 //! 5. Band: Monte Carlo over the readings' uncertainty (rounding to the resolution and a
-//!    reading error, [`problem::Test::sigma`]), re-solving the last linear problem at the same
-//!    λ; the 5th and 95th percentiles of the cumulative curve at each diameter.
+//!    reading error, [`problem::Test::sigma`]) and over the smoothing prior (randomise then
+//!    optimise: each repeat also draws the target of the Tikhonov penalty from its Gaussian
+//!    prior, and chooses λ again), re-solving the last linear problem; the 5th and 95th
+//!    percentiles of the cumulative curve at each diameter.
 
 mod output;
 pub mod problem;
@@ -269,7 +271,12 @@ pub const DEFAULT_CYLINDER_AREA_M2: f64 = 27.8e-4;
 pub const HYDROMETER_RESOLUTION: f64 = 0.5;
 
 /// The test of one readings file.
-fn test_of(file: &Path, setup: &TestSetup, readings: &[LabReading], resolution: Option<f64>) -> Result<Test, Error> {
+fn test_of(
+    file: &Path,
+    setup: &TestSetup,
+    readings: &[LabReading],
+    resolution: Option<f64>,
+) -> Result<Test, Error> {
     let an = analysis(setup, readings);
     let area = setup
         .measured
@@ -342,7 +349,11 @@ fn resolved_edges(bins: &Bins) -> &[f64] {
 
 /// The linearised problem of all files at `w`: (design, readings − prediction + J w, σ),
 /// with each file's unit fields `units[f][t]`.
-fn linearise(tests: &[Test], units: &[Vec<Vec<Vec<f64>>>], w: &[f64]) -> Result<(Linear, Vec<f64>), Error> {
+fn linearise(
+    tests: &[Test],
+    units: &[Vec<Vec<Vec<f64>>>],
+    w: &[f64],
+) -> Result<(Linear, Vec<f64>), Error> {
     let m: usize = tests.iter().map(|t| t.readings.len()).sum();
     let n = w.len();
     let mut j = DMatrix::zeros(m, n);
@@ -351,8 +362,8 @@ fn linearise(tests: &[Test], units: &[Vec<Vec<Vec<f64>>>], w: &[f64]) -> Result<
     let mut pred = Vec::with_capacity(m);
     let mut row = 0;
     for (t, u) in tests.iter().zip(units) {
-        for i in 0..t.readings.len() {
-            let (p, d) = t.predict(i, &u[i], w)?;
+        for (i, ui) in u.iter().enumerate().take(t.readings.len()) {
+            let (p, d) = t.predict(i, ui, w)?;
             let jw: f64 = d.iter().zip(w).map(|(a, b)| a * b).sum();
             for (k, x) in d.iter().enumerate() {
                 j[(row, k)] = *x;
@@ -390,7 +401,10 @@ pub fn run(req: &Request) -> Result<Report, Error> {
         return Err(Error::bad_argument(
             "--bins",
             Path::new(&n.to_string()),
-            format!("{m} readings cannot determine {n} bins: allowed at most 4 per reading ({})", 4 * m),
+            format!(
+                "{m} readings cannot determine {n} bins: allowed at most 4 per reading ({})",
+                4 * m
+            ),
         ));
     }
     let stem = req.files[0]
@@ -495,7 +509,7 @@ pub fn fit(
     seed: u64,
 ) -> Result<Fit, Error> {
     let inv = invert(tests, bins, model, rule)?;
-    let curve = band(&inv, tests, bins, repeats, seed);
+    let curve = band(&inv, tests, bins, rule, repeats, seed);
     Ok(Fit {
         w: inv.solution.w.clone(),
         curve,
@@ -593,9 +607,18 @@ fn percentile(sorted: &[f64], p: f64) -> f64 {
 }
 
 /// The recovered curve at the resolved edges with its 5–95 % Monte Carlo band: each repeat adds
-/// to every reading a rounding error U(−Δ/2, Δ/2) and a reading error N(0, Δ/√6) and solves
-/// the last linear problem again at the same λ.
-fn band(inv: &Inversion, tests: &[Test], bins: &Bins, repeats: usize, seed: u64) -> Vec<CurvePoint> {
+/// to every reading a rounding error U(−Δ/2, Δ/2) and a reading error N(0, Δ/√6), draws the
+/// penalty's target η = z/√λ (z standard normal: the Gaussian prior of the Tikhonov term) and
+/// solves the last linear problem again with λ chosen by the same rule: a draw of the
+/// constrained posterior, λ's own uncertainty included.
+fn band(
+    inv: &Inversion,
+    tests: &[Test],
+    bins: &Bins,
+    rule: LambdaRule,
+    repeats: usize,
+    seed: u64,
+) -> Vec<CurvePoint> {
     let edges = resolved_edges(bins);
     let w = &inv.solution.w;
     let mut samples: Vec<Vec<f64>> = vec![Vec::with_capacity(repeats); edges.len()];
@@ -609,7 +632,8 @@ fn band(inv: &Inversion, tests: &[Test], bins: &Bins, repeats: usize, seed: u64)
         for (i, d) in res.iter().enumerate() {
             lin.b[i] += d * (rng.random::<f64>() - 0.5) + d / 6f64.sqrt() * normal(&mut rng);
         }
-        let s = lin.solve_at(inv.solution.lambda, Some(w));
+        let z: Vec<f64> = (0..w.len()).map(|_| normal(&mut rng)).collect();
+        let s = lin.solve_drawn(rule, Some(&z));
         for (k, &d) in edges.iter().enumerate() {
             samples[k].push(100.0 * bins.cumulative(&s.w, d));
         }

@@ -155,7 +155,12 @@ impl Test {
     /// The hydrometer floats where its displaced mass D(tip, w) = ∫₀^tip ρ A(tip − y) dy equals
     /// its mass, so ∂tip/∂w_j = −(∂D/∂w_j)/(∂D/∂tip) (implicit function), and its reading R(tip)
     /// (eq. 19) gives ∂R/∂w_j = R′(tip) ∂tip/∂w_j.
-    pub fn predict(&self, i: usize, unit: &[Vec<f64>], w: &[f64]) -> Result<(f64, Vec<f64>), Error> {
+    pub fn predict(
+        &self,
+        i: usize,
+        unit: &[Vec<f64>],
+        w: &[f64],
+    ) -> Result<(f64, Vec<f64>), Error> {
         let col = &self.col;
         let an = &col.analysis;
         let field = crate::instruments::forward::field_of(col, unit, w);
@@ -173,9 +178,7 @@ impl Test {
         };
         let jac = match &self.probe {
             Probe::Hydrometer(h) => {
-                let tip = h
-                    .float_tip_depth_m(&field)
-                    .expect("floated a moment ago");
+                let tip = h.float_tip_depth_m(&field).expect("floated a moment ago");
                 let dh = 1e-7;
                 let d_dtip = (h.displaced_mass_kg(&field, tip + dh)
                     - h.displaced_mass_kg(&field, tip - dh))

@@ -99,6 +99,19 @@ impl Linear {
 
     /// Solves at a given λ, starting from the free set of `start` (all bins if None).
     pub fn solve_at(&self, lambda: f64, start: Option<&[f64]>) -> Solution {
+        self.solve_towards(lambda, start, None)
+    }
+
+    /// Solves at λ with the penalty λ Σ_k (w_{k+1} − w_k − η_k)² (η = 0 if None): with η drawn
+    /// from the prior N(0, 1/λ) and the readings from their error, the solution is a draw of the
+    /// (constrained) posterior of the Gaussian reading of Tikhonov's problem
+    /// (randomise-then-optimise, Bardsley et al. 2014).
+    pub fn solve_towards(
+        &self,
+        lambda: f64,
+        start: Option<&[f64]>,
+        eta: Option<&[f64]>,
+    ) -> Solution {
         let (a, y) = self.weighted();
         let n = a.ncols();
         let mut q = a.transpose() * &a + Self::penalty(n) * lambda;
@@ -106,7 +119,13 @@ impl Linear {
         for k in 0..n {
             q[(k, k)] += ridge;
         }
-        let c = a.transpose() * &y;
+        let mut c = a.transpose() * &y;
+        if let Some(eta) = eta {
+            for (k, e) in (1..n.saturating_sub(2)).zip(eta) {
+                c[k + 1] += lambda * e;
+                c[k] -= lambda * e;
+            }
+        }
         let w = simplex_qp(&q, &c, start);
         let chi2 = self.chi2(&w);
         Solution { w, lambda, chi2 }
@@ -131,15 +150,28 @@ impl Linear {
 
     /// Solves with λ chosen by `rule` over a grid of λ/scale from 10⁻¹⁰ to 10⁴ (8 per decade).
     pub fn solve(&self, rule: LambdaRule) -> Solution {
+        self.solve_drawn(rule, None)
+    }
+
+    /// [`Linear::solve`] with the prior draw η = z/√λ of [`Linear::solve_towards`] at each λ
+    /// (z standard normal; none if None).
+    pub fn solve_drawn(&self, rule: LambdaRule, z: Option<&[f64]>) -> Solution {
+        let at = |l: f64| match z {
+            Some(z) => {
+                let eta: Vec<f64> = z.iter().map(|x| x / l.max(1e-300).sqrt()).collect();
+                self.solve_towards(l, None, Some(&eta))
+            }
+            None => self.solve_at(l, None),
+        };
         if let LambdaRule::Fixed(l) = rule {
-            return self.solve_at(l, None);
+            return at(l);
         }
         let scale = self.lambda_scale();
         let m = self.b.len() as f64;
         let grid: Vec<f64> = (0..=112)
             .map(|k| scale * 10f64.powf(-10.0 + k as f64 / 8.0))
             .collect();
-        let sols: Vec<Solution> = grid.iter().map(|&l| self.solve_at(l, None)).collect();
+        let sols: Vec<Solution> = grid.iter().map(|&l| at(l)).collect();
         match rule {
             LambdaRule::Discrepancy => sols
                 .iter()

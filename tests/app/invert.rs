@@ -83,7 +83,13 @@ fn the_worked_example_inverts_the_clay_loam() {
         &["diameter", "percent finer"],
     );
     let toml = std::fs::read_to_string(dir.join("invert.toml")).unwrap();
-    for k in ["lambda = ", "chi2 = ", "iterations = ", "wall_time_s = ", "settle_version"] {
+    for k in [
+        "lambda = ",
+        "chi2 = ",
+        "iterations = ",
+        "wall_time_s = ",
+        "settle_version",
+    ] {
         assert!(toml.contains(k), "{k} missing in invert.toml:\n{toml}");
     }
     assert!(text.contains("d_um") && text.contains("finer_%"), "{text}");
@@ -94,7 +100,11 @@ fn the_worked_example_inverts_the_clay_loam() {
 fn the_band_is_reproducible_by_its_seed() {
     let out = tmp();
     let band = |seed: &str, name: &str| {
-        let o = invert(&[CLAY], &out.path().join(name), &["--seed", seed, "--repeats", "30"]);
+        let o = invert(
+            &[CLAY],
+            &out.path().join(name),
+            &["--seed", seed, "--repeats", "30"],
+        );
         assert_exit(&o, 0);
         std::fs::read_to_string(
             out.path()
@@ -126,9 +136,21 @@ fn bad_input_is_one_line_exit_2_and_nothing_written() {
         (vec![CLAY], vec!["--diameters-um", "2-80"], "LO:HI"),
         (vec![CLAY], vec!["--lambda", "-1"], "--lambda"),
         (vec![CLAY], vec!["--bins", "40"], "--bins"),
-        (vec!["data/lab/soiltestr_protocol8_d7928.csv"], vec![], "at least 3"),
-        (vec![bad_file.to_str().unwrap()], vec![], "row 2 (line 9), column 2 `reading`"),
-        (vec![CLAY, missing.to_str().unwrap()], vec![], "none.csv: no such readings file"),
+        (
+            vec!["data/lab/soiltestr_protocol8_d7928.csv"],
+            vec![],
+            "at least 3",
+        ),
+        (
+            vec![bad_file.to_str().unwrap()],
+            vec![],
+            "row 2 (line 9), column 2 `reading`",
+        ),
+        (
+            vec![CLAY, missing.to_str().unwrap()],
+            vec![],
+            "none.csv: no such readings file",
+        ),
     ];
     for (files, args, needle) in cases {
         let out = dir.path().join("out");
@@ -136,8 +158,15 @@ fn bad_input_is_one_line_exit_2_and_nothing_written() {
         assert_exit(&o, 2);
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(err.trim().lines().count(), 1, "{files:?} {args:?}: {err}");
-        assert!(err.contains(needle), "{files:?} {args:?}: `{needle}` not in {err}");
-        assert!(!out.exists() || tree(&out).is_empty(), "{args:?} wrote {:?}", tree(&out));
+        assert!(
+            err.contains(needle),
+            "{files:?} {args:?}: `{needle}` not in {err}"
+        );
+        assert!(
+            !out.exists() || tree(&out).is_empty(),
+            "{args:?} wrote {:?}",
+            tree(&out)
+        );
     }
     // No readings file at all: clap's usage error, exit 2.
     assert_exit(&settle().arg("invert").output().unwrap(), 2);

@@ -12,7 +12,8 @@ use std::path::Path;
 type Row = HashMap<String, String>;
 
 fn num(r: &Row, k: &str) -> f64 {
-    r[k].parse().unwrap_or_else(|e| panic!("{k} = `{}`: {e}", r[k]))
+    r[k].parse()
+        .unwrap_or_else(|e| panic!("{k} = `{}`: {e}", r[k]))
 }
 
 /// F(d) of a curve given at increasing diameters (m, %), linear in log d between them, clamped.
@@ -39,7 +40,13 @@ fn round_trip(k: u32) -> f64 {
     let out = tmp();
     let o = settle()
         .args(["run", &format!("scenarios/sedimentation_sample{k}.toml")])
-        .args(["--set", "physics=ideal-stokes", "--set", "sample.particles=20000", "-q"])
+        .args([
+            "--set",
+            "physics=ideal-stokes",
+            "--set",
+            "sample.particles=20000",
+            "-q",
+        ])
         .arg("--out")
         .arg(out.path())
         .output()
@@ -109,7 +116,7 @@ fn round_trip_ideal_stokes_sample5() {
 /// Noise (issue 14, Validation): the exact readings of sample 1 under ideal Stokes (the 152H in
 /// the field of seed eq. 16 for the input curve, at D422's seven times), each perturbed by a
 /// reading error N(0, Δ/√6) and rounded to the 152H's resolution Δ = 0.5 g/L, 50 times: the
-/// 5–95 % band covers the input curve at ≥ 90 % of the resolved bin edges over all repeats (the
+/// 5–95 % band (40 Monte Carlo repeats each) covers the input curve at ≥ 90 % of the resolved bin edges over all repeats (the
 /// issue's figure). 1000 layers (0.5 mm) keep the test fast; the readings and the model share
 /// them, so the layering is no error here.
 #[test]
@@ -135,7 +142,9 @@ fn the_band_covers_the_input_curve_under_rounded_noisy_readings() {
         .times_s
         .iter()
         .map(|&t| {
-            let f = ideal_field(&an, test.col.height_m, test.col.layers, t, |d| truth(d) / 100.0);
+            let f = ideal_field(&an, test.col.height_m, test.col.layers, t, |d| {
+                truth(d) / 100.0
+            });
             test.probe.read(&an, &f).expect("floats")
         })
         .collect();
@@ -157,7 +166,7 @@ fn the_band_covers_the_input_curve_under_rounded_noisy_readings() {
             &bins,
             Model::IdealStokes,
             LambdaRule::Discrepancy,
-            100,
+            40,
             repeat,
         )
         .expect("inverts");
@@ -170,5 +179,9 @@ fn the_band_covers_the_input_curve_under_rounded_noisy_readings() {
         }
     }
     let share = covered as f64 / total as f64;
-    assert!(share >= 0.9, "the band covers the input at {covered} of {total} edges");
+    eprintln!("the band covers the input at {covered} of {total} edges");
+    assert!(
+        share >= 0.9,
+        "the band covers the input at {covered} of {total} edges"
+    );
 }
