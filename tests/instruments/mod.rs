@@ -14,6 +14,7 @@
 //! exact reading within 4σ + 0.3 %. The hydrometer's error is its finite bulb: its exact reading
 //! is the bulb-weighted mean of F(φ(y)) over 14 cm of depth.
 
+mod forward;
 mod reduction;
 
 use crate::common::{read_csv_records, tmp};

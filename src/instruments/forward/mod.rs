@@ -15,7 +15,11 @@
 //! solid fraction, i.e. on the distribution itself, so the unit fields are computed for a
 //! reference distribution `w_ref` and the caller iterates.
 
+pub mod hindered;
+pub mod speed;
+
 use super::{Analysis, LayeredField};
+use rayon::prelude::*;
 
 /// The column of suspension the instruments read: its height, the layers of the field and the
 /// conversions of the test (μ, ρ_p, ρ_f, g, c₀).
@@ -88,11 +92,13 @@ pub enum Settling {
     /// eq. 16): what the standard reductions assume, and the scenes' `physics = "ideal-stokes"`.
     IdealStokes,
     /// The scenes' `physics = "full"` without contacts: Dallavalle drag with the Di Felice
-    /// voidage factor at the local solid fraction (averaged over horizontal layers of
-    /// `voidage_cell_m`), [`crate::fluid::DragLaw::Dallavalle`].
+    /// voidage factor at the local solid fraction, [`crate::fluid::DragLaw::Dallavalle`], and a
+    /// bed of packing [`hindered::BED_PACKING`]; solved exactly in the continuum
+    /// ([`hindered`]).
     Hindered {
-        /// Height of the layers over which the solid fraction is averaged, m (0.002 in the
-        /// scenes).
+        /// Height of the cells over which the scenes average the solid fraction, m (0.002 in
+        /// the scenes). Not used by the continuum model, whose voidage is the local one: the
+        /// cell average changes the speeds only within a cell of each front.
         voidage_cell_m: f64,
     },
 }
@@ -106,6 +112,9 @@ pub enum Settling {
 /// finer than the limiting diameter φ(y, t) = √(18 μ y/((ρ_p − ρ_f) g t)) (seed eq. 16), and its
 /// excess density c₀ (1 − ρ_f/ρ_p) times that fraction (eq. 18 inverted). A bottomless
 /// cylinder, as [`super::ideal_field`].
+///
+/// Hindered: the exact self-similar solution of [`hindered::Hindered`] for `w_ref` (layer means;
+/// zero below the bed). Mass coarser than the last edge (1 − Σ w_ref) is not in the suspension.
 pub fn unit_fields(
     col: &Column,
     settling: Settling,
@@ -116,9 +125,11 @@ pub fn unit_fields(
     match settling {
         Settling::IdealStokes => ideal_unit_fields(col, bins, times_s),
         Settling::Hindered { .. } => {
-            // Placeholder until the hindered model lands: the ideal fields.
-            let _ = w_ref;
-            ideal_unit_fields(col, bins, times_s)
+            let model = hindered::Hindered::new(col, bins, w_ref, hindered::BED_PACKING);
+            times_s
+                .par_iter()
+                .map(|&t| model.unit_fields_at(t))
+                .collect()
         }
     }
 }
@@ -147,6 +158,23 @@ fn ideal_unit_fields(col: &Column, bins: &Bins, times_s: &[f64]) -> Vec<Vec<Vec<
                 })
                 .collect()
         })
+        .collect()
+}
+
+/// The exact forward fields of the distribution `w` at each of `times_s`: the unit fields with
+/// `w` as the reference ([`unit_fields`]), summed with the weights `w` ([`field_of`]). Under
+/// [`Settling::Hindered`] this is the nonlinear forward model; an inversion iterates it (unit
+/// fields at the current estimate, a linear solve, repeat).
+pub fn fields_for(
+    col: &Column,
+    settling: Settling,
+    bins: &Bins,
+    w: &[f64],
+    times_s: &[f64],
+) -> Vec<LayeredField> {
+    unit_fields(col, settling, bins, w, times_s)
+        .iter()
+        .map(|u| field_of(col, u, w))
         .collect()
 }
 

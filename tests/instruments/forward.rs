@@ -1,0 +1,475 @@
+//! The forward model of `settle invert` (`src/instruments/forward/`).
+//!
+//! Ideal Stokes: the unit fields summed with the weights are `instruments::ideal_field` of the
+//! bins' cumulative curve (1e-9 kg/m³); every unit field starts uniform at c₀ (1 − ρ_f/ρ_p); a
+//! bin's mass is conserved in a tall column while its grains are suspended (1e-6 relative).
+//!
+//! Hindered (Dallavalle + Di Felice, the scene's `physics = "full"` without contacts):
+//! - as c₀ → 0 it is settling at the isolated Dallavalle speed (the analytic limiting diameter of
+//!   each depth), which at small Re is 1/0.96 of Stokes' (0.5 % at 2 µm);
+//! - mass is conserved exactly, bed included, and every bin's (tracers too) follows its
+//!   sub-diameters' bulk speeds;
+//! - one size: a single front at the Di Felice hindered terminal speed at the initial voidage
+//!   (an independent bisection of the scene's drag law), the bulk at c₀ below it and the bed at
+//!   b = c₀ v t/(P ρ_p − c₀);
+//! - two sizes: the fine size above the coarse front is denser by the jump condition
+//!   c⁺ (s − v⁺) = c⁻ (s − v⁻);
+//! - against the simulation (`settle run`, contacts and lubrication off, samples 4 and 2): every
+//!   reading of the hydrometer, the sphere and the pipette in `instruments.csv` is the same
+//!   instrument on the forward field of the input curve within 3σ (the run's own 1σ) plus the
+//!   model tolerance stated at [`MODEL_TOL_PERCENT`].
+
+use crate::common::{read_csv_records, settle, tmp};
+use settle::fluid::{DragLaw, SphereDrag};
+use settle::instruments::forward::hindered::{Hindered, SUB_DIAMETER_STEP};
+use settle::instruments::forward::speed::terminal_speed_m_s;
+use settle::instruments::forward::{field_of, fields_for, unit_fields, Bins, Column, Settling};
+use settle::instruments::{ideal_field, Analysis};
+use std::f64::consts::PI;
+use std::path::Path;
+
+const H: f64 = 0.457;
+const HINDERED: Settling = Settling::Hindered {
+    voidage_cell_m: 0.002,
+};
+
+fn analysis(c0: f64) -> Analysis {
+    Analysis {
+        viscosity_pa_s: 1e-3,
+        grain_density_kg_m3: 2500.0,
+        fluid_density_kg_m3: 1000.0,
+        gravity_m_s2: 9.81,
+        c0_kg_m3: c0,
+    }
+}
+
+fn column(height_m: f64, layers: usize, c0: f64) -> Column {
+    Column {
+        height_m,
+        layers,
+        analysis: analysis(c0),
+    }
+}
+
+/// Sample 4 of data/sedimentation_samples.csv as bins: its curve is log-linear between points.
+fn sample4() -> (Bins, Vec<f64>) {
+    (
+        Bins {
+            edges_m: vec![2.5e-6, 25e-6, 35e-6, 70e-6],
+        },
+        vec![0.05, 0.92, 0.03],
+    )
+}
+
+fn excess(an: &Analysis) -> f64 {
+    an.c0_kg_m3 * (1.0 - an.fluid_density_kg_m3 / an.grain_density_kg_m3)
+}
+
+#[test]
+fn ideal_unit_fields_sum_to_the_ideal_field() {
+    let col = column(H, 4000, 41.5);
+    let bins = Bins::log_spaced(1e-6, 1e-4, 40);
+    // A curve with a gap and mass coarser than the last edge.
+    let w: Vec<f64> = (0..40)
+        .map(|j| {
+            if (10..14).contains(&j) {
+                0.0
+            } else {
+                0.9 / 36.0
+            }
+        })
+        .collect();
+    let times = [1e-3, 60.0, 600.0, 3600.0, 86400.0];
+    let units = unit_fields(&col, Settling::IdealStokes, &bins, &w, &times);
+    for (u, &t) in units.iter().zip(&times) {
+        let got = field_of(&col, u, &w);
+        let want = ideal_field(&col.analysis, H, 4000, t, |d| bins.cumulative(&w, d));
+        let worst = got
+            .density_kg_m3
+            .iter()
+            .zip(&want.density_kg_m3)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        assert!(worst < 1e-9, "t = {t}: {worst}");
+    }
+}
+
+#[test]
+fn every_unit_field_starts_uniform() {
+    let col = column(H, 500, 41.5);
+    let (bins, w) = sample4();
+    for settling in [Settling::IdealStokes, HINDERED] {
+        let u = &unit_fields(&col, settling, &bins, &w, &[0.0])[0];
+        for row in u {
+            for x in row {
+                assert!(
+                    (x - excess(&col.analysis)).abs() < 1e-12,
+                    "{settling:?}: {x}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn ideal_mass_is_conserved_while_suspended() {
+    // A bottomless column 100 m tall: in [0, H] each bin keeps excess × (H − ⟨v⟩ t), its grains
+    // having crossed y = H at their mean Stokes speed ⟨v⟩ = (ρ_p − ρ_f) g ⟨d²⟩/(18 μ), with
+    // ⟨d²⟩ = (b² − a²)/(2 ln(b/a)) for a log-uniform bin [a, b].
+    let col = column(100.0, 20_000, 41.5);
+    let (bins, w) = sample4();
+    let t = 600.0;
+    let u = &unit_fields(&col, Settling::IdealStokes, &bins, &w, &[t])[0];
+    let h = 100.0 / 20_000.0;
+    for (j, row) in u.iter().enumerate() {
+        let (a, b) = (bins.edges_m[j], bins.edges_m[j + 1]);
+        let d2 = (b * b - a * a) / (2.0 * (b / a).ln());
+        let v = 1500.0 * 9.81 * d2 / 18e-3;
+        let m: f64 = row.iter().sum::<f64>() * h;
+        let want = excess(&col.analysis) * (100.0 - v * t);
+        assert!((m / want - 1.0).abs() < 1e-6, "bin {j}: {m} vs {want}");
+    }
+}
+
+/// The diameter whose isolated Dallavalle speed is `v`, m (bisection in ln d).
+fn diameter_of_speed(an: &Analysis, v: f64) -> f64 {
+    let (mut lo, mut hi) = (1e-8f64.ln(), 1e-2f64.ln());
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if terminal_speed_m_s(an, mid.exp(), 1.0) < v {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    (0.5 * (lo + hi)).exp()
+}
+
+#[test]
+fn hindered_tends_to_isolated_dallavalle_settling_as_c0_vanishes() {
+    let col = column(H, 4000, 1e-9);
+    let an = col.analysis;
+    let (bins, w) = sample4();
+    let times = [120.0, 900.0];
+    let units = unit_fields(&col, HINDERED, &bins, &w, &times);
+    let h = H / 4000.0;
+    for (u, &t) in units.iter().zip(&times) {
+        for (j, row) in u.iter().enumerate() {
+            // Cumulative excess above each depth, against the analytic one (a bin present below
+            // the depth where its coarsest grains have gone), in 1 cm windows: the sub-diameters
+            // (1 % apart) make a staircase of the analytic ramp, whose window means agree to a
+            // fraction of a step.
+            let mut cum = 0.0;
+            let mut exact = 0.0;
+            for (k, x) in row.iter().enumerate() {
+                cum += x * h;
+                let y = (k as f64 + 0.5) * h;
+                let d = diameter_of_speed(&an, y / t);
+                exact += excess(&an) * bins.fraction_finer(j, d) * h;
+                if (k + 1) % 87 == 0 {
+                    let tol = 0.005 * 0.0087 * excess(&an) + 1e-3 * exact;
+                    assert!(
+                        (cum - exact).abs() <= tol * (k + 1) as f64 / 87.0,
+                        "bin {j} t {t} y {y}: {cum} vs {exact}"
+                    );
+                }
+            }
+        }
+    }
+    // Dallavalle's 0.96: at small Re the isolated speed is Stokes' / 0.96, so a fine bin's field
+    // at t is the ideal one at t / 0.96.
+    let fine = Bins {
+        edges_m: vec![1e-6, 2e-6, 3e-6],
+    };
+    let st = (2500.0 - 1000.0) * 9.81 * 4e-12 / 18e-3;
+    assert!((terminal_speed_m_s(&an, 2e-6, 1.0) / st * 0.96 - 1.0).abs() < 5e-3);
+    let t = 20_000.0;
+    let hind = &unit_fields(&col, HINDERED, &fine, &[0.5, 0.5], &[t])[0];
+    let ideal = &unit_fields(&col, Settling::IdealStokes, &fine, &[0.5, 0.5], &[t / 0.96])[0];
+    for j in 0..2 {
+        let (a, b): (f64, f64) = (hind[j].iter().sum(), ideal[j].iter().sum());
+        assert!((a / b - 1.0).abs() < 2e-3, "bin {j}: {a} vs {b}");
+    }
+}
+
+#[test]
+fn hindered_mass_is_conserved_bed_included() {
+    let col = column(H, 4000, 60.0);
+    let (bins, w) = sample4();
+    let model = Hindered::new(&col, &bins, &w, 0.6);
+    let h = H / 4000.0;
+    let an = col.analysis;
+    let total = an.c0_kg_m3 * H;
+    let mut last_bed = 0.0;
+    for t in [60.0, 600.0, 3600.0, 20_000.0, 86_400.0] {
+        let u = model.unit_fields_at(t);
+        let suspended: f64 = u
+            .iter()
+            .zip(&w)
+            .map(|(row, wj)| wj * row.iter().sum::<f64>() * h)
+            .sum::<f64>()
+            / (1.0 - 1000.0 / 2500.0);
+        let bed = model.bed_height_m(t);
+        assert!(bed > last_bed, "the bed grows: {bed} at {t} s");
+        last_bed = bed;
+        let m = suspended + bed * 0.6 * 2500.0;
+        assert!((m / total - 1.0).abs() < 1e-9, "t {t}: {m} vs {total}");
+        // Nothing is suspended below the bed's surface.
+        let k = ((H - bed) / h).ceil() as usize;
+        assert!(u.iter().all(|row| row[k..].iter().all(|&x| x == 0.0)));
+    }
+    // After a day every grain of 2.5 µm or more (5 µm/s) has crossed 0.44 m: nearly all is bed.
+    assert!(last_bed * 0.6 * 2500.0 > 0.95 * total);
+}
+
+#[test]
+fn every_bin_leaves_at_its_sub_diameters_bulk_speeds() {
+    // 10 m tall, bed packing so large the bed stays at the bottom, t = 600 s: every front is
+    // above y = H (70 µm: 2.4 m), so each bin (tracers too: w = 0) keeps
+    // excess × Σ share (H − v(d, ε_bulk) t) over its sub-diameters.
+    let col = column(10.0, 10_000, 60.0);
+    let an = col.analysis;
+    let bins = Bins::log_spaced(2e-6, 8e-5, 10);
+    let w = [0.1, 0.0, 0.2, 0.1, 0.0, 0.3, 0.1, 0.1, 0.1, 0.0];
+    let model = Hindered::new(&col, &bins, &w, 1e12);
+    let eps = 1.0 - 60.0 / 2500.0;
+    assert!((model.bulk_voidage() - eps).abs() < 1e-12);
+    let t = 600.0;
+    let u = model.unit_fields_at(t);
+    for (j, row) in u.iter().enumerate() {
+        let (a, b) = (bins.edges_m[j], bins.edges_m[j + 1]);
+        let m = ((b / a).ln() / SUB_DIAMETER_STEP).ceil() as usize;
+        let want: f64 = (0..m)
+            .map(|i| {
+                let d = a * (b / a).powf((i as f64 + 0.5) / m as f64);
+                excess(&an) * (10.0 - terminal_speed_m_s(&an, d, eps) * t) / m as f64
+            })
+            .sum();
+        let got = row.iter().sum::<f64>() * 10.0 / 10_000.0;
+        assert!(
+            (got / want - 1.0).abs() < 1e-9,
+            "bin {j} (w {}): {got} vs {want}",
+            w[j]
+        );
+    }
+}
+
+/// Terminal speed of the scene's drag law by bisection of its force balance (independent of the
+/// forward model's solver), m/s.
+fn scene_speed(d: f64, eps: f64) -> f64 {
+    let drag = SphereDrag::new(
+        DragLaw::Dallavalle {
+            viscosity_pa_s: 1e-3,
+            voidage: eps,
+        },
+        d,
+        1000.0,
+    );
+    let weight = 1500.0 * 9.81 * PI * d.powi(3) / 6.0;
+    let (mut lo, mut hi) = (0.0, 1.0);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if drag.force_n(mid) < weight {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+/// A narrow bin around `d` (one sub-diameter, at `d` within 1e-10).
+fn narrow(d: f64) -> [f64; 2] {
+    [d * (1.0 - 1e-5), d * (1.0 + 1e-5)]
+}
+
+#[test]
+fn one_size_settles_at_the_di_felice_hindered_speed() {
+    let c0 = 60.0;
+    let col = column(H, 4000, c0);
+    let d = 30e-6;
+    let bins = Bins {
+        edges_m: narrow(d).to_vec(),
+    };
+    let model = Hindered::new(&col, &bins, &[1.0], 0.6);
+    let eps0 = 1.0 - c0 / 2500.0;
+    let v = scene_speed(d, eps0);
+    // 9 % slower than alone, 6 % slower than Stokes.
+    assert!((v / scene_speed(d, 1.0) - 0.912).abs() < 0.005, "{v}");
+    assert_eq!(model.front_speeds_m_s().len(), 1);
+    assert!((model.front_speeds_m_s()[0] / v - 1.0).abs() < 1e-9);
+    let t = 120.0;
+    let (front, bed) = (v * t, c0 * v * t / (0.6 * 2500.0 - c0));
+    assert!((model.bed_height_m(t) / bed - 1.0).abs() < 1e-9);
+    let u = &model.unit_fields_at(t)[0];
+    let h = H / 4000.0;
+    let ex = excess(&col.analysis);
+    for (k, x) in u.iter().enumerate() {
+        let (top, bot) = (k as f64 * h, (k + 1) as f64 * h);
+        let want = if bot <= front || top >= H - bed {
+            0.0
+        } else if top >= front && bot <= H - bed {
+            ex
+        } else if top < front {
+            ex * (bot - front) / h
+        } else {
+            ex * (H - bed - top) / h
+        };
+        // (The front's layer to 1e-6: the front itself is within 1e-9 of v t.)
+        assert!((x - want).abs() < 1e-6 * ex, "layer {k}: {x} vs {want}");
+    }
+}
+
+#[test]
+fn the_fine_size_is_denser_above_the_coarse_front() {
+    // Two sizes, 20 and 40 µm, half the mass each, and a tracer bin between them.
+    let c0 = 80.0;
+    let col = column(H, 4000, c0);
+    let (f, c) = (narrow(20e-6), narrow(40e-6));
+    let bins = Bins {
+        edges_m: vec![f[0], f[1], c[0], c[1]],
+    };
+    let w = [0.5, 0.0, 0.5];
+    let model = Hindered::new(&col, &bins, &w, 0.6);
+    let eps_b = 1.0 - c0 / 2500.0;
+    let s = scene_speed(40e-6, eps_b);
+    // Above the coarse front: R = (s − v_f(ε_b))/(s − v_f(ε⁺)), ε⁺ = 1 − R c₀/2 / ρ_p.
+    let (mut lo, mut hi) = (eps_b, 1.0);
+    for _ in 0..100 {
+        let e = 0.5 * (lo + hi);
+        let r = (s - scene_speed(20e-6, eps_b)) / (s - scene_speed(20e-6, e));
+        if 1.0 - r * 0.5 * c0 / 2500.0 > e {
+            lo = e;
+        } else {
+            hi = e;
+        }
+    }
+    let eps_up = 0.5 * (lo + hi);
+    let r = (s - scene_speed(20e-6, eps_b)) / (s - scene_speed(20e-6, eps_up));
+    assert!(r > 1.01, "{r}");
+    let fronts = model.front_speeds_m_s();
+    let coarse = fronts[fronts.len() - 1];
+    let fine = fronts[0];
+    assert!((coarse / s - 1.0).abs() < 1e-9, "{coarse} vs {s}");
+    assert!((fine / scene_speed(20e-6, eps_up) - 1.0).abs() < 1e-6);
+    let t = 100.0;
+    let u = &model.unit_fields_at(t)[0];
+    let k = (0.5 * (fine + coarse) * t / (H / 4000.0)) as usize;
+    assert!((u[k] / (r * excess(&col.analysis)) - 1.0).abs() < 1e-6);
+}
+
+/// Model tolerance of the comparison with the simulation, percent finer points (see the test).
+pub const MODEL_TOL_PERCENT: f64 = 1.0;
+
+/// Bins of a piecewise log-linear cumulative curve: its points are the edges.
+fn bins_of(d: &settle::sample::Distribution) -> (Bins, Vec<f64>) {
+    let edges = d.points.iter().map(|p| p.0).collect();
+    let w = d
+        .points
+        .windows(2)
+        .map(|p| (p[1].1 - p[0].1) / 100.0)
+        .collect();
+    (Bins { edges_m: edges }, w)
+}
+
+/// One reading of a run against the same instrument on the forward field: (instrument, time s,
+/// simulated w_o %, forward w_o %, the run's 1σ %).
+type Row = (String, f64, f64, f64, f64);
+
+/// Every reading of `instruments.csv` in `run_dir` (scenario `scenario` with `overrides`)
+/// against the same instrument on the hindered forward field of the input curve.
+fn against_forward(scenario: &str, overrides: &[String], run_dir: &Path) -> Vec<Row> {
+    use settle::run::prepare;
+    use settle::scenes::sedimentation::{setup, InstrumentSet};
+    let p = prepare(Path::new(scenario), None, overrides).unwrap();
+    let su = setup(&p.scenario, &p.path).unwrap();
+    let set = InstrumentSet::new(&p.scenario, &su);
+    let an = set.analysis;
+    let col = Column {
+        height_m: su.height_m,
+        layers: set.layers,
+        analysis: an,
+    };
+    let (bins, w) = bins_of(&su.distribution);
+    let rows = read_csv_records(&run_dir.join("instruments.csv"));
+    let times: Vec<f64> = rows.iter().map(|r| r["time_s"].parse().unwrap()).collect();
+    let fields = fields_for(&col, HINDERED, &bins, &w, &times);
+    rows.iter()
+        .zip(&times)
+        .zip(&fields)
+        .map(|((r, &t), f)| {
+            let g = |k: &str| r[k].parse::<f64>().unwrap();
+            let kind = r["instrument"].clone();
+            let fwd = match kind.as_str() {
+                "hydrometer" => {
+                    let re = set.hydrometer.read(f).unwrap();
+                    set.hydrometer.point(&an, &re, t).percent_finer
+                }
+                "buoyancy" => set.sphere.point(&an, &set.sphere.read(f), t).percent_finer,
+                "pipette" => {
+                    an.percent_finer_from_concentration(set.pipette.field_concentration(&an, f))
+                }
+                x => panic!("instrument {x}"),
+            };
+            (kind, t, g("percent_finer"), fwd, g("sd_percent"))
+        })
+        .collect()
+}
+
+/// The run's overrides: contacts and lubrication off (the model has neither), 20 000 grains,
+/// 4 mm voidage cells (half the steps of 2 mm, and a quarter of the representative grains'
+/// self-weight bias, see [`MODEL_TOL_PERCENT`]), up to `end_s`.
+fn run_overrides(end_s: f64) -> Vec<String> {
+    vec![
+        "sample.contacts=false".into(),
+        "sample.lubrication=false".into(),
+        "sample.particles=20000".into(),
+        "sample.voidage_cell_m=0.004".into(),
+        format!("time.end_s={end_s}"),
+        format!("sample.record_times_s=[{end_s}]"),
+        "sample.snapshot_times_s=[]".into(),
+    ]
+}
+
+#[test]
+fn the_forward_field_reads_what_the_simulation_reads() {
+    // Sample 4 up to 320 s (its steep part: 25–35 µm leave 0.137 m between 120 and 240 s),
+    // sample 2 up to 130 s (50–70 µm: its 16–22-point error at 60 s).
+    let dir = tmp();
+    for (sample, end_s) in [(4u32, 320.0), (2, 130.0)] {
+        let sc = format!("scenarios/sedimentation_sample{sample}.toml");
+        let ov = run_overrides(end_s);
+        let mut cmd = settle();
+        cmd.args(["run", &sc, "-q", "--out"]).arg(dir.path());
+        for o in &ov {
+            cmd.args(["--set", o]);
+        }
+        let out = cmd.output().unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let run = dir.path().join(format!("sedimentation_sample{sample}"));
+        let rows = against_forward(&sc, &ov, &run);
+        assert!(rows.len() >= 5, "sample {sample}: {} readings", rows.len());
+        let ideal = read_csv_records(&run.join("instruments.csv"));
+        let mut ideal_misses = 0;
+        for ((kind, t, sim, fwd, sd), r) in rows.iter().zip(&ideal) {
+            let tol = 3.0 * sd + MODEL_TOL_PERCENT;
+            assert!(
+                (sim - fwd).abs() <= tol,
+                "sample {sample} {kind} t {t}: simulated {sim:.2} vs forward {fwd:.2} (σ {sd:.2})"
+            );
+            let id: f64 = r["ideal_percent_finer"].parse().unwrap();
+            if (sim - id).abs() > tol {
+                ideal_misses += 1;
+            }
+        }
+        // The ideal Stokes model of the same curve does not pass the same test.
+        assert!(
+            ideal_misses >= 1,
+            "sample {sample}: ideal Stokes within tolerance"
+        );
+    }
+}
