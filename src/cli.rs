@@ -92,12 +92,15 @@ enum Command {
     /// unit, status) and a chart <quantity>_vs_<key>.svg of each result against the first key.
     /// Every case is validated first: a bad key or value exits 2 with nothing written.
     Sweep(crate::sweep::Args),
-    /// Reduce laboratory hydrometer readings by ASTM D422 or D7928 (percent finer vs diameter).
+    /// Reduce laboratory hydrometer readings by ASTM D422 or D7928, or pipette and
+    /// buoyancy-sphere readings by seed 000's eqs. 17 and 22 (percent finer vs diameter).
     ///
     /// READINGS.csv holds the test's figures as `# key = value` lines (standard, hydrometer,
     /// dry_mass_g, specific_gravity, meniscus_correction, blank_reading, and for D7928 the
-    /// hydrometer's measured h_r1_cm, h_r2_cm, bulb_volume_ml, cylinder_area_cm2), then the
-    /// columns time_min (or time_s), reading, temperature_c [, blank_reading]. Writes
+    /// hydrometer's measured h_r1_cm, h_r2_cm, bulb_volume_ml, cylinder_area_cm2; or
+    /// `instrument = pipette | buoyancy-sphere` with its own figures), then the columns
+    /// time_min (or time_s), reading (drawn_mass_g, apparent_mass_g), temperature_c
+    /// [, blank_reading]. Writes
     /// OUT/<stem>_reduced/percent_finer.csv, percent_finer.svg and reduce.toml. Bad input (a
     /// missing figure, a reading off the scale, times out of order, a temperature outside the
     /// standard's range) exits 2 naming the file, row and column; nothing is written.

@@ -1,6 +1,9 @@
 //! `settle reduce READINGS.csv`: the standard data reduction of laboratory hydrometer readings
-//! (ASTM D422 or D7928, [`crate::instruments::reduction`]) into `OUT/<stem>_reduced/`:
-//! `percent_finer.csv`, `percent_finer.svg` and `reduce.toml`.
+//! (ASTM D422 or D7928), pipette draws and buoyancy-sphere weighings (seed 000 eqs. 16–18, 22;
+//! `# instrument = pipette | buoyancy-sphere`, [`crate::instruments::reduction`]) into
+//! `OUT/<stem>_reduced/`: `percent_finer.csv`, `percent_finer.svg` and `reduce.toml`.
+//! [`read`] is the one entry point that reads a readings file, for every instrument
+//! (`settle invert` reads through it too).
 //!
 //! # The readings file
 //!
@@ -27,11 +30,14 @@
 //! exit 2, nothing written.
 
 mod input;
+mod instrument;
 
 pub use input::read;
 
 use crate::error::Error;
-use crate::instruments::reduction::{reduce, LabReading, Reduced, TestSetup};
+use crate::instruments::reduction::{
+    reduce, Instrument, LabReading, PipetteRegion, Reduced, TestSetup,
+};
 use crate::io::chart::{scatter_svg, Scale, Series};
 use crate::io::{self, num, StagedDir};
 use std::path::{Path, PathBuf};
@@ -143,18 +149,34 @@ pub fn sig(x: f64, n: usize) -> String {
     }
 }
 
+/// How the readings were reduced, for the console and the chart: `ASTM D7928, 152H`,
+/// `pipette, seed 000 eq. 17`, `buoyancy sphere, seed 000 eq. 22`.
+pub fn method(s: &TestSetup) -> String {
+    match s.instrument {
+        Instrument::Hydrometer(h) => {
+            format!("ASTM {}, {}", s.standard.name().to_uppercase(), h.name())
+        }
+        Instrument::Pipette { .. } => "pipette, seed 000 eq. 17".into(),
+        Instrument::BuoyancySphere { .. } => "buoyancy sphere, seed 000 eq. 22".into(),
+    }
+}
+
 fn summary(file: &Path, out: &Path, s: &TestSetup, red: &[Reduced]) -> Vec<String> {
     let mut lines = vec![format!(
-        "{} (ASTM {}, {}, {} readings) -> {}",
+        "{} ({}, {} readings) -> {}",
         file.display(),
-        s.standard.name().to_uppercase(),
-        s.hydrometer.name(),
+        method(s),
         red.len(),
         out.display()
     )];
+    let reading = match s.instrument {
+        Instrument::Hydrometer(_) => "reading",
+        Instrument::Pipette { .. } => "drawn_g",
+        Instrument::BuoyancySphere { .. } => "app_g",
+    };
     lines.push(format!(
         "  {:>9} {:>8} {:>6} {:>7} {:>8} {:>8} {:>8}",
-        "t_min", "reading", "blank", "T_C", "depth_cm", "d_um", "finer_%"
+        "t_min", reading, "blank", "T_C", "depth_cm", "d_um", "finer_%"
     ));
     for r in red {
         let x = &r.reading;
@@ -216,17 +238,18 @@ fn write_chart(path: &Path, stem: &str, s: &TestSetup, red: &[Reduced]) -> std::
         .collect();
     scatter_svg(
         path,
-        &format!(
-            "{stem}: percent finer (ASTM {}, {})",
-            s.standard.name().to_uppercase(),
-            s.hydrometer.name()
-        ),
+        &format!("{stem}: percent finer ({})", method(s)),
         "particle diameter [µm]",
         "percent finer [%]",
         Scale::Log,
         Scale::Linear,
         &[Series::sorted_line(
-            format!("{} reduction", s.standard.name().to_uppercase()),
+            match s.instrument {
+                Instrument::Hydrometer(_) => {
+                    format!("{} reduction", s.standard.name().to_uppercase())
+                }
+                _ => format!("{} reduction", s.instrument.name()),
+            },
             points,
             0,
         )],
@@ -237,18 +260,35 @@ fn write_chart(path: &Path, stem: &str, s: &TestSetup, red: &[Reduced]) -> std::
 fn record(file: &Path, s: &TestSetup, readings: &[LabReading]) -> String {
     let mut t = format!(
         "# written by settle reduce\n[reduce]\nsettle_version = \"{}\"\ninput = {:?}\n\
-         standard = \"{}\"\nhydrometer = \"{}\"\nreadings = {}\ndry_mass_g = {}\n\
-         specific_gravity = {}\nmeniscus_correction = {}\nsuspension_volume_ml = {}\n",
+         instrument = \"{}\"\n",
         env!("CARGO_PKG_VERSION"),
         file.display().to_string(),
-        s.standard.name(),
-        s.hydrometer.name(),
+        s.instrument.name(),
+    );
+    if let Instrument::Hydrometer(h) = s.instrument {
+        t.push_str(&format!(
+            "standard = \"{}\"\nhydrometer = \"{}\"\n",
+            s.standard.name(),
+            h.name()
+        ));
+    }
+    t.push_str(&format!(
+        "readings = {}\ndry_mass_g = {}\nspecific_gravity = {}\n",
         readings.len(),
         clean(s.dry_mass_kg * 1e3),
         clean(s.specific_gravity),
-        clean(s.meniscus_correction),
-        clean(s.suspension_volume_m3 * 1e6),
-    );
+    ));
+    if let Instrument::Hydrometer(_) = s.instrument {
+        t.push_str(&format!(
+            "meniscus_correction = {}\n",
+            clean(s.meniscus_correction)
+        ));
+    }
+    t.push_str(&format!(
+        "suspension_volume_ml = {}\n",
+        clean(s.suspension_volume_m3 * 1e6)
+    ));
+    t.push_str(&instrument_record(s));
     if let Some(m) = &s.measured {
         t.push_str(&format!(
             "\n[d7928]\nh_r1_cm = {}\nh_r2_cm = {}\nr1 = {}\nr2 = {}\nbulb_volume_ml = {}\n\
@@ -260,6 +300,57 @@ fn record(file: &Path, s: &TestSetup, readings: &[LabReading]) -> String {
             clean(m.bulb_volume_m3 * 1e6),
             clean(m.cylinder_area_m2 * 1e4)
         ));
+    }
+    t
+}
+
+/// reduce.toml's `[pipette]` or `[sphere]` table and the `[model]` figures given.
+fn instrument_record(s: &TestSetup) -> String {
+    let mut t = String::new();
+    match s.instrument {
+        Instrument::Hydrometer(_) => {}
+        Instrument::Pipette {
+            volume_m3,
+            depth_m,
+            region,
+        } => {
+            t.push_str(&format!(
+                "\n[pipette]\npipette_volume_ml = {}\npipette_depth_cm = {}\n",
+                clean(volume_m3 * 1e6),
+                clean(depth_m * 1e2)
+            ));
+            match region {
+                PipetteRegion::Sphere => t.push_str("pipette_region = \"sphere\"\n"),
+                PipetteRegion::Disc { radius_m } => t.push_str(&format!(
+                    "pipette_region = \"disc\"\npipette_radius_cm = {}\n",
+                    clean(radius_m * 1e2)
+                )),
+            }
+        }
+        Instrument::BuoyancySphere {
+            diameter_m,
+            mass_kg,
+            depth_m,
+        } => t.push_str(&format!(
+            "\n[sphere]\nsphere_diameter_mm = {}\nsphere_mass_g = {}\nsphere_depth_cm = {}\n",
+            clean(diameter_m * 1e3),
+            clean(mass_kg * 1e3),
+            clean(depth_m * 1e2)
+        )),
+    }
+    let m = &s.model;
+    let given: Vec<String> = [
+        ("fluid_density_kg_m3", m.fluid_density_kg_m3, 1.0),
+        ("gravity_m_s2", m.gravity_m_s2, 1.0),
+        ("column_height_cm", m.column_height_m, 1e2),
+        ("hydrometer_bulb_length_cm", m.hydrometer_bulb_length_m, 1e2),
+    ]
+    .iter()
+    .filter_map(|(k, v, f)| v.map(|v| format!("{k} = {}\n", clean(v * f))))
+    .collect();
+    if !given.is_empty() {
+        t.push_str("\n[model]\n");
+        t.push_str(&given.concat());
     }
     t
 }

@@ -15,8 +15,8 @@
 use settle::instruments::hydrometer::Hydrometer;
 use settle::instruments::reduction::d7928::{self, MeasuredHydrometer};
 use settle::instruments::reduction::{
-    d422, reduce, water_density_kg_m3, water_viscosity_pa_s, HydrometerType, LabReading, Standard,
-    TestSetup,
+    d422, reduce, water_density_kg_m3, water_viscosity_pa_s, HydrometerType, Instrument,
+    LabReading, ModelFigures, Standard, TestSetup,
 };
 use settle::instruments::{Analysis, LayeredField};
 
@@ -109,12 +109,13 @@ const CLAYLOAM: [(f64, f64, f64, f64); 7] = [
 fn d422_reduces_the_envalysis_clay_loam_as_published() {
     let setup = TestSetup {
         standard: Standard::D422,
-        hydrometer: HydrometerType::H152,
+        instrument: Instrument::Hydrometer(HydrometerType::H152),
         dry_mass_kg: 0.050,
         specific_gravity: 2.65,
         meniscus_correction: 0.0,
         suspension_volume_m3: 1e-3,
         measured: None,
+        model: ModelFigures::default(),
     };
     let readings: Vec<LabReading> = CLAYLOAM
         .iter()
@@ -254,13 +255,14 @@ fn readings_computed_forward_reduce_back_to_the_input_curve() {
     for standard in [Standard::D7928, Standard::D422] {
         let setup = TestSetup {
             standard,
-            hydrometer: HydrometerType::H152,
+            instrument: Instrument::Hydrometer(HydrometerType::H152),
             dry_mass_kg: c0 * 1e-3,
             specific_gravity: gs,
             meniscus_correction: 0.0,
             suspension_volume_m3: 1e-3,
             measured: (standard == Standard::D7928)
                 .then(|| MeasuredHydrometer::table2(HydrometerType::H152)),
+            model: ModelFigures::default(),
         };
         for (readings, tol, what) in [(&real, 2.5, "152H model"), (&point, 0.3, "point")] {
             let red = reduce(&setup, readings);

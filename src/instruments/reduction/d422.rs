@@ -98,7 +98,7 @@ pub fn diameter_m(temperature_c: f64, specific_gravity: f64, depth_m: f64, time_
 /// Reduces one reading by D422.
 pub fn reduce_one(s: &TestSetup, r: &LabReading) -> Reduced {
     let net = r.reading - r.blank_reading;
-    let depth = effective_depth_m(s.hydrometer, r.reading + s.meniscus_correction);
+    let depth = effective_depth_m(s.hydrometer(), r.reading + s.meniscus_correction);
     Reduced {
         reading: *r,
         net_reading: net,
@@ -106,7 +106,7 @@ pub fn reduce_one(s: &TestSetup, r: &LabReading) -> Reduced {
         viscosity_pa_s: water_viscosity_pa_s(r.temperature_c),
         diameter_m: diameter_m(r.temperature_c, s.specific_gravity, depth, r.time_s),
         percent_finer: percent_finer(
-            s.hydrometer,
+            s.hydrometer(),
             net,
             s.specific_gravity,
             s.dry_mass_kg,

@@ -129,7 +129,7 @@ pub fn diameter_m(temperature_c: f64, specific_gravity: f64, depth_m: f64, time_
 pub fn reduce_one(s: &TestSetup, r: &LabReading) -> Reduced {
     let m = s
         .measured
-        .unwrap_or_else(|| MeasuredHydrometer::table2(s.hydrometer));
+        .unwrap_or_else(|| MeasuredHydrometer::table2(s.hydrometer()));
     let net = r.reading - r.blank_reading;
     let depth = m.effective_depth_m(r.reading + s.meniscus_correction);
     Reduced {
@@ -139,7 +139,7 @@ pub fn reduce_one(s: &TestSetup, r: &LabReading) -> Reduced {
         viscosity_pa_s: water_viscosity_pa_s(r.temperature_c),
         diameter_m: diameter_m(r.temperature_c, s.specific_gravity, depth, r.time_s),
         percent_finer: percent_finer(
-            s.hydrometer,
+            s.hydrometer(),
             net,
             s.specific_gravity,
             s.dry_mass_kg,

@@ -1,7 +1,8 @@
 //! The standard data reduction of soil-hydrometer readings: from (time, reading, temperature,
 //! blank reading) and the test's figures to (effective depth, Stokes diameter, percent finer),
 //! as a laboratory does it by ASTM D422 ([`d422`], withdrawn 2016, what seed 000 uses) or ASTM
-//! D7928-17/21 ([`d7928`], its replacement).
+//! D7928-17/21 ([`d7928`], its replacement); and of the pipette's draws ([`pipette`]) and the
+//! buoyancy sphere's weighings ([`sphere`]) by seed 000's eqs. 16–18 and 22 ([`Instrument`]).
 //!
 //! Pure functions, SI units inside (the laboratory units of the standards, g, mL, cm, min, are
 //! converted where the standards' equations are quoted).
@@ -29,6 +30,8 @@
 
 pub mod d422;
 pub mod d7928;
+pub mod pipette;
+pub mod sphere;
 
 /// The two soil hydrometers of ASTM E100 used by D422 and D7928.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -155,38 +158,144 @@ pub fn stokes_diameter_m(
     (18.0 * viscosity_pa_s * depth_m / (density_excess_kg_m3 * gravity_m_s2 * time_s)).sqrt()
 }
 
-/// One hydrometer reading as a laboratory records it.
+/// One reading as a laboratory records it (hydrometer, pipette or sphere).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LabReading {
     /// Time since the end of the agitation, s.
     pub time_s: f64,
-    /// Reading in the suspension (at the top of the meniscus), in the hydrometer's unit.
+    /// Reading in the suspension, in the instrument's unit ([`Instrument::unit`]): hydrometer
+    /// at the top of the meniscus (g/L or specific gravity), pipette the oven-dry mass of one
+    /// draw (g), sphere its apparent mass (g).
     pub reading: f64,
     /// Temperature of the suspension, °C.
     pub temperature_c: f64,
     /// Reading of the same hydrometer in the companion cylinder (water + dispersant, same
-    /// temperature, same meniscus position).
+    /// temperature, same meniscus position); pipette: the dispersant's dry mass in one draw, g
+    /// (0 unless given); sphere: 0.
     pub blank_reading: f64,
+}
+
+/// The instrument a test was read with, and its figures (SI).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Instrument {
+    /// A soil hydrometer of ASTM E100 (the file's `hydrometer` key), reduced by `standard`.
+    Hydrometer(HydrometerType),
+    /// A pipette drawing `volume_m3` around its tip at `depth_m` below the free surface
+    /// (seed 000 §4.5.3): the reading is the oven-dry mass of solids in one draw.
+    Pipette {
+        /// Volume of one draw V_p, m³.
+        volume_m3: f64,
+        /// Depth of the tip below the free surface, m.
+        depth_m: f64,
+        /// The region the draw comes from (used by the forward model, not by the reduction).
+        region: PipetteRegion,
+    },
+    /// A sphere of `diameter_m` and `mass_kg` (in air) hung with its centre at `depth_m` below
+    /// the free surface from a dynamometer (seed 000 §4.5.2): the reading is its apparent mass.
+    BuoyancySphere {
+        /// Diameter of the sphere, m.
+        diameter_m: f64,
+        /// Mass of the sphere in air m_sp,a, kg.
+        mass_kg: f64,
+        /// Depth of its centre below the free surface, m.
+        depth_m: f64,
+    },
+}
+
+/// Where a pipette's draw comes from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PipetteRegion {
+    /// A sphere of the draw's volume centred on the tip (the laboratory's pipette).
+    Sphere,
+    /// A disc of the 2D plane centred on the tip (settle's 2D model, [`crate::instruments::pipette`]).
+    Disc {
+        /// Radius of the disc, m.
+        radius_m: f64,
+    },
+}
+
+impl Instrument {
+    /// Its name in a readings file: `hydrometer`, `pipette` or `buoyancy-sphere`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Hydrometer(_) => "hydrometer",
+            Self::Pipette { .. } => "pipette",
+            Self::BuoyancySphere { .. } => "buoyancy-sphere",
+        }
+    }
+
+    /// The hydrometer, if it is one.
+    pub fn hydrometer(&self) -> Option<HydrometerType> {
+        match self {
+            Self::Hydrometer(h) => Some(*h),
+            _ => None,
+        }
+    }
+
+    /// The column of its readings in a readings file: `reading` (hydrometer, in its unit),
+    /// `drawn_mass_g` (pipette) or `apparent_mass_g` (sphere).
+    pub fn reading_column(&self) -> &'static str {
+        match self {
+            Self::Hydrometer(_) => "reading",
+            Self::Pipette { .. } => "drawn_mass_g",
+            Self::BuoyancySphere { .. } => "apparent_mass_g",
+        }
+    }
+
+    /// The unit of its readings (`LabReading::reading`).
+    pub fn unit(&self) -> &'static str {
+        match self {
+            Self::Hydrometer(h) => h.unit(),
+            _ => "g",
+        }
+    }
+}
+
+/// Figures of the test that the forward model of `settle invert` uses and the standard
+/// reductions do not (all optional, SI). The pipette and sphere reductions take the Stokes
+/// diameter's ρ_f and g from here when given.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ModelFigures {
+    /// Density of the clear fluid (water + dispersant) ρ_f, kg/m³ (`fluid_density_kg_m3`).
+    pub fluid_density_kg_m3: Option<f64>,
+    /// Gravity g, m/s² (`gravity_m_s2`).
+    pub gravity_m_s2: Option<f64>,
+    /// Height of the suspension in the cylinder H, m (`column_height_cm`).
+    pub column_height_m: Option<f64>,
+    /// Length of the hydrometer's bulb L₂, m (`hydrometer_bulb_length_cm`, hydrometer only).
+    pub hydrometer_bulb_length_m: Option<f64>,
 }
 
 /// The test's figures the reduction needs besides the readings.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TestSetup {
-    /// The standard followed.
+    /// The standard a hydrometer's readings are reduced by. The pipette and the sphere have no
+    /// standard choice (seed 000 eqs. 16–18 and 22, [`pipette`], [`sphere`]): [`Standard::D7928`]
+    /// there, whose water properties at T their Stokes diameter uses.
     pub standard: Standard,
-    /// The hydrometer.
-    pub hydrometer: HydrometerType,
+    /// The instrument and its figures.
+    pub instrument: Instrument,
     /// Oven-dry mass of the specimen in suspension, kg.
     pub dry_mass_kg: f64,
     /// Specific gravity of the soil solids, G_s.
     pub specific_gravity: f64,
     /// Meniscus correction C_m, in the hydrometer's unit (reading at the liquid level minus
-    /// reading at the top of the meniscus, ≥ 0).
+    /// reading at the top of the meniscus, ≥ 0; 0 for the pipette and the sphere).
     pub meniscus_correction: f64,
     /// Volume of the suspension, m³ (1000 mL in both standards).
     pub suspension_volume_m3: f64,
     /// D7928: the hydrometer's measured dimensions (None for D422, which uses its Table 2).
     pub measured: Option<d7928::MeasuredHydrometer>,
+    /// The forward model's figures (`settle invert`).
+    pub model: ModelFigures,
+}
+
+impl TestSetup {
+    /// The hydrometer type (152H when the instrument is not a hydrometer: the standards'
+    /// functions are only called for hydrometers).
+    pub fn hydrometer(&self) -> HydrometerType {
+        self.instrument.hydrometer().unwrap_or(HydrometerType::H152)
+    }
 }
 
 /// One reading reduced.
@@ -194,9 +303,10 @@ pub struct TestSetup {
 pub struct Reduced {
     /// The reading it comes from.
     pub reading: LabReading,
-    /// Reading minus the blank (the soil's contribution), in the hydrometer's unit.
+    /// The soil's contribution: reading minus the blank (hydrometer, pipette), or the clear-fluid
+    /// apparent mass minus the apparent mass (sphere, g).
     pub net_reading: f64,
-    /// Effective depth, m.
+    /// Effective depth (hydrometer), the tip's depth (pipette) or the centre's (sphere), m.
     pub effective_depth_m: f64,
     /// Viscosity of water at the reading's temperature, Pa s.
     pub viscosity_pa_s: f64,
@@ -206,15 +316,17 @@ pub struct Reduced {
     pub percent_finer: f64,
 }
 
-/// Reduces every reading by `setup`'s standard (D422 §§ as in [`d422`], D7928 as in [`d7928`]).
-/// The inputs must have been checked (scale, times, temperatures, figures): see
-/// `settle::reduce` for the checks.
+/// Reduces every reading: a hydrometer's by `setup`'s standard (D422 as in [`d422`], D7928 as
+/// in [`d7928`]), a pipette's as in [`pipette`], a sphere's as in [`sphere`]. The inputs must
+/// have been checked (scale, times, temperatures, figures): see `settle::reduce` for the checks.
 pub fn reduce(setup: &TestSetup, readings: &[LabReading]) -> Vec<Reduced> {
     readings
         .iter()
-        .map(|r| match setup.standard {
-            Standard::D422 => d422::reduce_one(setup, r),
-            Standard::D7928 => d7928::reduce_one(setup, r),
+        .map(|r| match (setup.instrument, setup.standard) {
+            (Instrument::Hydrometer(_), Standard::D422) => d422::reduce_one(setup, r),
+            (Instrument::Hydrometer(_), Standard::D7928) => d7928::reduce_one(setup, r),
+            (Instrument::Pipette { .. }, _) => pipette::reduce_one(setup, r),
+            (Instrument::BuoyancySphere { .. }, _) => sphere::reduce_one(setup, r),
         })
         .collect()
 }

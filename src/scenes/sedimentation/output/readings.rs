@@ -1,6 +1,9 @@
 //! `readings.csv` and `readings_d7928.csv`: the run's virtual 152H hydrometer readings in the
 //! laboratory's format, the one `settle reduce` reads (docs/commands/reduce.md): `# key = value`
-//! figures of the test, then `time_min, reading, temperature_c` rows.
+//! figures of the test, then `time_min, reading, temperature_c` rows; `readings_pipette.csv`
+//! and `readings_sphere.csv`: its pipette's and buoyancy sphere's readings in the same format
+//! ([`direct_text`]). All four carry the model figures `fluid_density_kg_m3`, `gravity_m_s2`
+//! and `column_height_cm` (the run's ρ_f, g and H) for `settle invert`'s forward model.
 //!
 //! What the run knows is written as a laboratory would write it:
 //! - `hydrometer = 152H`, readings R in g/L as the run's hydrometer reads them (`reading_g_per_l`
@@ -74,7 +77,9 @@ pub fn water_temperature_c(mu_pa_s: f64) -> Option<f64> {
 /// Writes `readings.csv` (D422, the hydrometer's times) and `readings_d7928.csv` (D7928's
 /// schedule, read on the states the run kept) into `stage`, when the run had hydrometer
 /// readings, a 152H scale (0–60 g/L for G = 2.65) and a viscosity of water at 16–30 °C (the
-/// range both standards accept); otherwise writes nothing.
+/// range both standards accept); and `readings_pipette.csv` / `readings_sphere.csv` (the
+/// pipette's and the sphere's readings at their times, full precision) when the run had those
+/// and a viscosity of water at 0–40 °C ([`direct_text`]). Otherwise writes nothing.
 pub fn write_all(
     stage: &StagedDir,
     s: &Scenario,
@@ -94,9 +99,6 @@ pub fn write_all(
     let Some(t_c) = water_temperature_c(setup.viscosity_pa_s) else {
         return Ok(());
     };
-    if hyd.is_empty() || !is_152h || !(16.0..=30.0).contains(&t_c) {
-        return Ok(());
-    }
     let head = Head {
         name: &s.name,
         sample: setup.spec.sample.sample,
@@ -104,7 +106,25 @@ pub fn write_all(
         volume_ml: setup.spec.sample.mass_kg / set.analysis.c0_kg_m3 * 1e6,
         gs: set.analysis.grain_density_kg_m3 / set.analysis.fluid_density_kg_m3,
         t_c,
+        fluid_density_kg_m3: set.analysis.fluid_density_kg_m3,
+        gravity_m_s2: set.analysis.gravity_m_s2,
+        column_height_cm: setup.height_m * 1e2,
     };
+    for (kind, file) in [
+        (InstrumentKind::Pipette, "readings_pipette.csv"),
+        (InstrumentKind::Buoyancy, "readings_sphere.csv"),
+    ] {
+        let rows: Vec<&InstrumentReading> = readings.iter().filter(|r| r.kind == kind).collect();
+        if !rows.is_empty() {
+            write_atomic(
+                &stage.path(file),
+                direct_text(&head, &set, kind, &rows).as_bytes(),
+            )?;
+        }
+    }
+    if hyd.is_empty() || !is_152h || !(16.0..=30.0).contains(&t_c) {
+        return Ok(());
+    }
     write_atomic(
         &stage.path("readings.csv"),
         head.text("d422", None, &hyd, &[]).as_bytes(),
@@ -115,6 +135,82 @@ pub fn write_all(
         head.text("d7928", Some(&set.hydrometer), &at, &missing)
             .as_bytes(),
     )
+}
+
+/// `readings_pipette.csv` (`kind` Pipette) or `readings_sphere.csv` (Buoyancy): the run's
+/// readings of that instrument at its times, every figure at full precision ([`num`]), in the
+/// format of `settle reduce` (docs/commands/reduce.md):
+/// - pipette: `pipette_volume_ml` (the real draw's V), `pipette_depth_cm` (the tip's depth),
+///   `pipette_region = disc` with `pipette_radius_cm` the radius of the 2D model's sampling
+///   disc ([`crate::instruments::pipette`]); `drawn_mass_g` the real draw's dry mass (the
+///   simulated mass over the wedge fraction);
+/// - sphere: `sphere_diameter_mm`, `sphere_mass_g` (in air), `sphere_depth_cm` (its centre);
+///   `apparent_mass_g` the dynamometer's reading;
+/// - both: the model figures `fluid_density_kg_m3` (ρ_f of the run: the sphere's clear-fluid
+///   apparent mass and Δρ = ρ_f (G_s − 1) = ρ_p − ρ_f), `gravity_m_s2` and `column_height_cm`
+///   (the run's H), so that the reduction's percent finer and Stokes diameter are the run's own.
+fn direct_text(
+    head: &Head,
+    set: &InstrumentSet,
+    kind: InstrumentKind,
+    rows: &[&InstrumentReading],
+) -> String {
+    let (what, instrument) = match kind {
+        InstrumentKind::Pipette => ("pipette", "pipette"),
+        _ => ("buoyancy sphere", "buoyancy-sphere"),
+    };
+    let mut t = format!(
+        "# settle: the virtual {what} of {} at the run's {what} times; reduce with settle \
+         reduce\n# instrument = {instrument}\n\
+         # sample = {} (sample {})\n# source = settle {} virtual test\n\
+         # dry_mass_g = {}\n# suspension_volume_ml = {}\n# specific_gravity = {}\n",
+        head.name,
+        head.name,
+        head.sample,
+        env!("CARGO_PKG_VERSION"),
+        num(head.dry_mass_g),
+        num(head.volume_ml),
+        num(head.gs),
+    );
+    let column = match kind {
+        InstrumentKind::Pipette => {
+            let p = &set.pipette;
+            t.push_str(&format!(
+                "# pipette_volume_ml = {}\n# pipette_depth_cm = {}\n# pipette_region = disc\n\
+                 # pipette_radius_cm = {}\n",
+                num(p.volume_m3 * 1e6),
+                num(p.depth_m * 1e2),
+                num(p.radius_m() * 1e2)
+            ));
+            "drawn_mass_g"
+        }
+        _ => {
+            let b = &set.sphere;
+            t.push_str(&format!(
+                "# sphere_diameter_mm = {}\n# sphere_mass_g = {}\n# sphere_depth_cm = {}\n",
+                num(b.diameter_m * 1e3),
+                num(b.mass_kg * 1e3),
+                num(b.depth_m * 1e2)
+            ));
+            "apparent_mass_g"
+        }
+    };
+    t.push_str(&head.model_lines(num));
+    t.push_str(&format!("time_min,{column},temperature_c\n"));
+    for r in rows {
+        let reading_kg = match (r.pipette, r.buoyancy) {
+            (Some(p), _) => p.mass_kg,
+            (_, Some(b)) => b.apparent_mass_kg,
+            _ => continue,
+        };
+        t.push_str(&format!(
+            "{},{},{}\n",
+            num(r.point.time_s / 60.0),
+            num(reading_kg * 1e3),
+            num(head.t_c)
+        ));
+    }
+    t
 }
 
 /// The hydrometer at D7928's times within `end_s`: its reading at that time if the run took
@@ -170,9 +266,23 @@ struct Head<'a> {
     volume_ml: f64,
     gs: f64,
     t_c: f64,
+    fluid_density_kg_m3: f64,
+    gravity_m_s2: f64,
+    column_height_cm: f64,
 }
 
 impl Head<'_> {
+    /// The model figures (`settle invert`'s forward model): ρ_f, g and the column's height H,
+    /// each formatted by `f`.
+    fn model_lines(&self, f: impl Fn(f64) -> String) -> String {
+        format!(
+            "# fluid_density_kg_m3 = {}\n# gravity_m_s2 = {}\n# column_height_cm = {}\n",
+            f(self.fluid_density_kg_m3),
+            f(self.gravity_m_s2),
+            f(self.column_height_cm)
+        )
+    }
+
     /// The file's text for `standard`, with the hydrometer's dimensions for D7928 (`measured`)
     /// and a comment naming the schedule's `missing` times (min).
     fn text(
@@ -214,6 +324,7 @@ impl Head<'_> {
                 clean(h.spec.astm_cylinder_area_m2 * 1e4),
             ));
         }
+        t.push_str(&self.model_lines(num));
         if !missing.is_empty() {
             t.push_str(&format!(
                 "# not read at {} min: the run kept no state at those times\n",
