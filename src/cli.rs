@@ -145,9 +145,10 @@ enum Command {
         /// Smoothing weight λ: discrepancy, gcv or a number ≥ 0.
         #[arg(long, default_value = "discrepancy", allow_negative_numbers = true)]
         lambda: String,
-        /// Resolution of the readings in their unit (default 0.5 g/L for the 152H).
-        #[arg(long, allow_negative_numbers = true)]
-        resolution: Option<f64>,
+        /// Resolution of the readings in their unit: one for every file or one per file,
+        /// comma-separated (default 0.5 g/L hydrometer, 0.001 g pipette, 0.01 g sphere).
+        #[arg(long, allow_negative_numbers = true, value_delimiter = ',')]
+        resolution: Vec<f64>,
         /// Monte Carlo repeats of the uncertainty band (0: none).
         #[arg(long, default_value_t = 100)]
         repeats: usize,

@@ -30,9 +30,9 @@ pub mod problem;
 pub mod solve;
 
 use crate::error::Error;
+use crate::instruments::buoyancy::BuoyancySphere;
 use crate::instruments::forward::{unit_fields, Bins, Column, Settling};
 use crate::instruments::hydrometer::{Hydrometer, HydrometerSpec};
-use crate::instruments::buoyancy::BuoyancySphere;
 use crate::instruments::reduction::{
     reduce, water_density_kg_m3, water_viscosity_pa_s, HydrometerType, Instrument, LabReading,
     PipetteRegion, Reduced, Standard, TestSetup,
@@ -95,8 +95,9 @@ pub struct Request {
     pub diameters_um: Option<String>,
     /// `--lambda`: a number, `discrepancy` or `gcv`.
     pub lambda: String,
-    /// `--resolution`: the readings' resolution in their unit (None: the instrument's default).
-    pub resolution: Option<f64>,
+    /// `--resolution`: the readings' resolution in their unit, one for every file or one per
+    /// file in order (empty: each instrument's default).
+    pub resolution: Vec<f64>,
     /// `--repeats`: Monte Carlo repeats of the band (0: no band).
     pub repeats: usize,
     /// `--seed` of the Monte Carlo (ChaCha8).
@@ -113,7 +114,7 @@ impl Default for Request {
             bins: None,
             diameters_um: None,
             lambda: "discrepancy".into(),
-            resolution: None,
+            resolution: Vec::new(),
             repeats: 100,
             seed: 1,
             out_dir: PathBuf::from("out"),
@@ -235,7 +236,21 @@ fn options(req: &Request) -> Result<Options, Error> {
             "allowed: 2–200",
         ));
     }
-    if let Some(r) = req.resolution.filter(|r| !(r.is_finite() && *r > 0.0)) {
+    if !(req.resolution.len() <= 1 || req.resolution.len() == req.files.len()) {
+        return Err(Error::bad_argument(
+            "--resolution",
+            Path::new(&format!("{:?}", req.resolution)),
+            format!(
+                "give one resolution for every file or one per file ({} files)",
+                req.files.len()
+            ),
+        ));
+    }
+    if let Some(r) = req
+        .resolution
+        .iter()
+        .find(|r| !(r.is_finite() && **r > 0.0))
+    {
         return Err(Error::bad_argument(
             "--resolution",
             Path::new(&r.to_string()),
@@ -460,7 +475,8 @@ pub fn run(req: &Request) -> Result<Report, Error> {
     let mut tests = Vec::new();
     let mut standard = Vec::new();
     for (k, file) in req.files.iter().enumerate() {
-        let (test, reduced) = read_test(file, req.resolution)?;
+        let res = req.resolution.get(k).or(req.resolution.first()).copied();
+        let (test, reduced) = read_test(file, res)?;
         tests.push(test);
         standard.extend(reduced.into_iter().map(|r| (k, r)));
     }

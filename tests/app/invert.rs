@@ -136,6 +136,7 @@ fn bad_input_is_one_line_exit_2_and_nothing_written() {
         (vec![CLAY], vec!["--diameters-um", "2-80"], "LO:HI"),
         (vec![CLAY], vec!["--lambda", "-1"], "--lambda"),
         (vec![CLAY], vec!["--bins", "40"], "--bins"),
+        (vec![CLAY], vec!["--resolution", "0.5,0.1"], "one per file"),
         (
             vec!["data/lab/soiltestr_protocol8_d7928.csv"],
             vec![],

@@ -185,3 +185,55 @@ fn the_band_covers_the_input_curve_under_rounded_noisy_readings() {
         "the band covers the input at {covered} of {total} edges"
     );
 }
+
+/// Round trip, full physics (issue 14, Validation): sample 2 simulated with hindered settling
+/// (N = 100 000, contacts off: data/invert/sample2_full, README there), its hydrometer readings
+/// inverted with `--model full`: within 3 points (the issue's figure) of the input curve at the
+/// Stokes diameter of every reading. Also inverts its sphere and pipette files together (one
+/// resolution each) and checks that both instruments are in misfit.csv.
+#[test]
+fn round_trip_full_physics_sample2() {
+    let dir = Path::new("data/invert/sample2_full");
+    let out = tmp();
+    let o = settle()
+        .arg("invert")
+        .arg(dir.join("readings.csv"))
+        .args(["--model", "full", "--repeats", "0", "--out"])
+        .arg(out.path())
+        .output()
+        .expect("spawn settle");
+    assert_exit(&o, 0);
+    let inverted: Vec<(f64, f64)> =
+        read_csv_records(&out.path().join("readings_inverted/inverted.csv"))
+            .iter()
+            .map(|r| (num(r, "diameter_m"), num(r, "percent_finer")))
+            .collect();
+    let gran = read_csv_records(&dir.join("granulometry.csv"));
+    let input: Vec<(f64, f64)> = gran
+        .iter()
+        .filter(|r| r["instrument"] == "input")
+        .map(|r| (num(r, "diameter_m"), num(r, "percent_finer")))
+        .collect();
+    for r in gran.iter().filter(|r| r["instrument"] == "hydrometer") {
+        let d = num(r, "diameter_m");
+        let err = (at(&inverted, d) - at(&input, d)).abs();
+        assert!(err < 3.0, "d = {} µm: error {err} points", d * 1e6);
+    }
+    let o = settle()
+        .arg("invert")
+        .arg(dir.join("readings_sphere.csv"))
+        .arg(dir.join("readings_pipette.csv"))
+        .args(["--resolution", "0.01,0.03", "--repeats", "0", "--out"])
+        .arg(out.path())
+        .output()
+        .expect("spawn settle");
+    assert_exit(&o, 0);
+    let misfit = read_csv_records(&out.path().join("readings_sphere_inverted/misfit.csv"));
+    for inst in ["buoyancy-sphere", "pipette"] {
+        assert_eq!(
+            misfit.iter().filter(|r| r["instrument"] == inst).count(),
+            10,
+            "{inst}"
+        );
+    }
+}
