@@ -237,3 +237,38 @@ fn round_trip_full_physics_sample2() {
         );
     }
 }
+
+/// The constrained solver (`invert::solve::simplex_qp`): with Q = I and c = p it is the
+/// Euclidean projection of p on the simplex {w ≥ 0, Σw = 1}, whose solution is known in closed
+/// form: w_j = max(p_j − τ, 0) with τ such that Σw = 1 (Held, Wolfe & Crowder 1974). Exact to
+/// 1e-12.
+#[test]
+fn the_solver_projects_on_the_simplex() {
+    use nalgebra::{DMatrix, DVector};
+    use settle::invert::solve::simplex_qp;
+    for p in [
+        vec![0.5, 0.2, 0.9, -0.3, 0.1],
+        vec![0.1, 0.1, 0.1, 0.1],
+        vec![3.0, -1.0, 0.0],
+    ] {
+        let n = p.len();
+        let w = simplex_qp(
+            &DMatrix::identity(n, n),
+            &DVector::from_vec(p.clone()),
+            None,
+        );
+        // τ by bisection on Σ max(p − τ, 0) = 1.
+        let (mut lo, mut hi) = (-10.0, 10.0);
+        for _ in 0..200 {
+            let t = 0.5 * (lo + hi);
+            if p.iter().map(|x| (x - t).max(0.0)).sum::<f64>() > 1.0 {
+                lo = t;
+            } else {
+                hi = t;
+            }
+        }
+        for (wj, pj) in w.iter().zip(&p) {
+            assert!((wj - (pj - lo).max(0.0)).abs() < 1e-12, "{p:?}: {w:?}");
+        }
+    }
+}
