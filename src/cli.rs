@@ -125,9 +125,9 @@ enum Command {
     /// `settle reduce`; several files: instruments of the same soil): bins even in ln d over the
     /// diameters the readings resolve, w ≥ 0, Σw = 1, Tikhonov smoothing with λ by the
     /// discrepancy principle (or GCV, or a number), a 5–95 % band by Monte Carlo over the
-    /// readings' uncertainty and the smoothing prior. Writes OUT/<stem>_inverted/inverted.csv, misfit.csv, standard.csv,
-    /// inverted.svg and invert.toml. Bad input exits 2 naming the file or option; nothing is
-    /// written. See docs/commands/invert.md.
+    /// readings' uncertainty and the smoothing prior. Writes OUT/<stem>_inverted/inverted.csv,
+    /// misfit.csv, standard.csv, inverted.svg and invert.toml. Bad input exits 2 naming the file
+    /// or option; nothing is written. See docs/commands/invert.md.
     Invert {
         /// The readings files (CSV, the format of `settle reduce`).
         #[arg(required = true)]
