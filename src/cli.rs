@@ -154,6 +154,47 @@ enum Command {
     /// `settle fit slump --height-mm H --slump-mm S1,S2 --density RHO` prints the yield stress
     /// of slump tests (f-EDEM Appendix I). See docs/commands/fit.md.
     Fit(crate::fit::Args),
+    /// Recover the grain-size distribution from one or several instruments' readings.
+    ///
+    /// Fits settle's forward model (the suspension each size leaves at each reading time, read
+    /// through the instrument's exact geometry) to the readings of READINGS.csv (the format of
+    /// `settle reduce`; several files: instruments of the same soil): bins even in ln d over the
+    /// diameters the readings resolve, w ≥ 0, Σw = 1, Tikhonov smoothing with λ by the
+    /// discrepancy principle (or GCV, or a number), a 5–95 % band by Monte Carlo over the
+    /// readings' uncertainty and the smoothing prior. Writes OUT/<stem>_inverted/inverted.csv,
+    /// misfit.csv, standard.csv, inverted.svg and invert.toml. Bad input exits 2 naming the file
+    /// or option; nothing is written. See docs/commands/invert.md.
+    Invert {
+        /// The readings files (CSV, the format of `settle reduce`).
+        #[arg(required = true)]
+        readings: Vec<PathBuf>,
+        /// Forward model: ideal-stokes (Stokes settling) or full (hindered settling at the
+        /// test's concentration).
+        #[arg(long, default_value = "ideal-stokes")]
+        model: String,
+        /// Diameter bins over the resolved range (default: twice the readings, 8–30).
+        #[arg(long)]
+        bins: Option<usize>,
+        /// Resolved diameter range LO:HI in µm (default: from the readings' times and depths).
+        #[arg(long, value_name = "LO:HI")]
+        diameters_um: Option<String>,
+        /// Smoothing weight λ: discrepancy, gcv or a number ≥ 0.
+        #[arg(long, default_value = "discrepancy", allow_negative_numbers = true)]
+        lambda: String,
+        /// Resolution of the readings in their unit: one for every file or one per file,
+        /// comma-separated (default 0.5 g/L hydrometer, 0.001 g pipette, 0.01 g sphere).
+        #[arg(long, allow_negative_numbers = true, value_delimiter = ',')]
+        resolution: Vec<f64>,
+        /// Monte Carlo repeats of the uncertainty band (0: none).
+        #[arg(long, default_value_t = 100)]
+        repeats: usize,
+        /// Seed of the Monte Carlo.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Output folder.
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+    },
 }
 
 /// Parses the arguments, runs, and returns the process exit code.
@@ -302,6 +343,46 @@ pub fn main() -> i32 {
                     e.exit_code()
                 }
             }
+        }
+        Command::Invert {
+            readings,
+            model,
+            bins,
+            diameters_um,
+            lambda,
+            resolution,
+            repeats,
+            seed,
+            out,
+        } => invert(crate::invert::Request {
+            files: readings,
+            model,
+            bins,
+            diameters_um,
+            lambda,
+            resolution,
+            repeats,
+            seed,
+            out_dir: out,
+        }),
+    }
+}
+
+/// `settle invert`: runs and prints the summary and warnings; the exit code.
+fn invert(req: crate::invert::Request) -> i32 {
+    match crate::invert::run(&req) {
+        Ok(r) => {
+            for l in &r.lines {
+                println!("{l}");
+            }
+            for w in &r.warnings {
+                println!("  warning: {w}");
+            }
+            0
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            e.exit_code()
         }
     }
 }

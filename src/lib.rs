@@ -16,7 +16,7 @@
 //! | 2 engine | [`engine`] | the Rapier worlds |
 //! | 3 scenario | [`scenario`] | schema, loading, validation, input files, cost |
 //! | 4 scenes | [`scenes`] | one folder per kind, and the scene API ([`scenes::Prepared`], [`scenes::RunContext`], [`scenes::SceneReport`]) |
-//! | 5 application | [`run`], [`sweep`], [`bench`](mod@bench), [`reduce`], [`laws`], [`fit`], [`cli`] | the commands |
+//! | 5 application | [`run`], [`sweep`], [`bench`](mod@bench), [`reduce`], [`invert`], [`laws`], [`fit`], [`cli`] | the commands |
 
 // Layer 0: infrastructure.
 pub mod checkpoint;
@@ -40,6 +40,7 @@ pub mod scenes;
 pub mod bench;
 pub mod cli;
 pub mod fit;
+pub mod invert;
 pub mod laws;
 pub mod reduce;
 pub mod run;

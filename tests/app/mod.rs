@@ -1,11 +1,12 @@
 //! The application layer: `src/run.rs`, `src/checkpoint.rs`, `src/interrupt.rs`, `src/sweep/`,
-//! `src/reduce/`, `src/laws/`.
+//! `src/reduce/`, `src/invert/`, `src/laws/`, `src/fit/`.
 
 #[cfg(unix)]
 mod checkpoint;
 pub(crate) mod console;
 mod fit;
 mod interrupt;
+mod invert;
 mod laws;
 mod readings;
 mod reduce;

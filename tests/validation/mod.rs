@@ -3,6 +3,7 @@
 
 mod bingham_laws;
 mod hindered;
+mod invert;
 mod paste_drop;
 mod slump;
 mod sphere_drag;

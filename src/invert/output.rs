@@ -1,0 +1,282 @@
+//! The files and the console summary of `settle invert`.
+
+use super::solve::LambdaRule;
+use super::{Model, Report, Request};
+use crate::error::Error;
+use crate::io::chart::{Band, Chart, Curve, Scale, Series};
+use crate::io::fmt::g;
+use crate::io::{self, StagedDir};
+use crate::reduce::clean;
+use std::path::{Path, PathBuf};
+
+/// Writes the staged folder `OUT/<name>/` and commits it.
+pub fn write(
+    req: &Request,
+    name: &str,
+    model: Model,
+    rule: LambdaRule,
+    r: &Report,
+) -> Result<PathBuf, Error> {
+    let dest = req.out_dir.join(name);
+    let ioe = |e: std::io::Error| Error::Io(dest.clone(), e);
+    let stage = StagedDir::new(&req.out_dir, name).map_err(ioe)?;
+    let rows: Vec<Vec<String>> = r
+        .curve
+        .iter()
+        .map(|c| {
+            vec![
+                clean(c.diameter_m),
+                clean(c.percent_finer),
+                clean(c.p5),
+                clean(c.p95),
+            ]
+        })
+        .collect();
+    io::write_csv(
+        &stage.path("inverted.csv"),
+        &[
+            "diameter_m",
+            "percent_finer",
+            "percent_finer_p5",
+            "percent_finer_p95",
+        ],
+        &rows,
+    )
+    .map_err(ioe)?;
+    let rows: Vec<Vec<String>> = r
+        .misfit
+        .iter()
+        .map(|m| {
+            let t = &r.tests[m.file];
+            vec![
+                t.file.display().to_string(),
+                t.probe.name().to_string(),
+                clean(m.time_s),
+                clean(m.reading),
+                clean(m.predicted),
+                clean(m.reading - m.predicted),
+                clean(m.sigma),
+            ]
+        })
+        .collect();
+    io::write_csv(
+        &stage.path("misfit.csv"),
+        &[
+            "file",
+            "instrument",
+            "time_s",
+            "reading",
+            "predicted",
+            "residual",
+            "sigma",
+        ],
+        &rows,
+    )
+    .map_err(ioe)?;
+    let rows: Vec<Vec<String>> = r
+        .standard
+        .iter()
+        .map(|(k, s)| {
+            let t = &r.tests[*k];
+            vec![
+                t.file.display().to_string(),
+                t.probe.name().to_string(),
+                clean(s.reading.time_s),
+                clean(s.reading.reading),
+                clean(s.effective_depth_m),
+                clean(s.diameter_m),
+                clean(s.percent_finer),
+            ]
+        })
+        .collect();
+    io::write_csv(
+        &stage.path("standard.csv"),
+        &[
+            "file",
+            "instrument",
+            "time_s",
+            "reading",
+            "effective_depth_m",
+            "diameter_m",
+            "percent_finer",
+        ],
+        &rows,
+    )
+    .map_err(ioe)?;
+    chart(&stage.path("inverted.svg"), name, model, r).map_err(ioe)?;
+    io::write_atomic(
+        &stage.path("invert.toml"),
+        record(req, model, rule, r).as_bytes(),
+    )
+    .map_err(ioe)?;
+    stage.commit().map_err(ioe)
+}
+
+fn chart(path: &Path, name: &str, model: Model, r: &Report) -> std::io::Result<()> {
+    let um = |d: f64| d * 1e6;
+    let mut c = Chart::new(format!(
+        "{}: recovered grain-size curve ({} model)",
+        name.trim_end_matches("_inverted"),
+        model.name()
+    ))
+    .x("particle diameter [µm]", Scale::Log)
+    .y("percent finer [%]", Scale::Linear)
+    .y_range(0.0, 100.0);
+    if r.curve.iter().any(|p| p.p95 > p.p5) {
+        c = c.band(Band {
+            label: "5–95 % band".into(),
+            points: r
+                .curve
+                .iter()
+                .map(|p| (um(p.diameter_m), p.p5, p.p95))
+                .collect(),
+            shade: 0.18,
+        });
+    }
+    c = c.curve(Curve::new(
+        "inverted",
+        r.curve
+            .iter()
+            .map(|p| (um(p.diameter_m), p.percent_finer))
+            .collect(),
+    ));
+    for (k, t) in r.tests.iter().enumerate() {
+        let pts: Vec<(f64, f64)> = r
+            .standard
+            .iter()
+            .filter(|(f, _)| *f == k)
+            .map(|(_, s)| (um(s.diameter_m), s.percent_finer))
+            .filter(|(d, _)| *d > 0.0)
+            .collect();
+        let file = t
+            .file
+            .file_name()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        c = c.series(Series {
+            label: format!("standard reduction: {file}"),
+            points: pts,
+            colour: k + 1,
+            filled: false,
+            line: false,
+        });
+    }
+    c.svg(path)
+}
+
+fn record(req: &Request, model: Model, rule: LambdaRule, r: &Report) -> String {
+    let files: Vec<String> = req
+        .files
+        .iter()
+        .map(|f| format!("{:?}", f.display().to_string()))
+        .collect();
+    let rule_name = match rule {
+        LambdaRule::Fixed(_) => "fixed",
+        LambdaRule::Discrepancy => "discrepancy",
+        LambdaRule::Gcv => "gcv",
+    };
+    let edges = super::resolved_edges(&r.bins);
+    let mut t = format!(
+        "# written by settle invert\n[invert]\nsettle_version = \"{}\"\ninputs = [{}]\n\
+         model = \"{}\"\nbins = {}\ndiameter_lo_m = {}\ndiameter_hi_m = {}\n\
+         lambda_rule = \"{}\"\nlambda = {}\nchi2 = {}\nreadings = {}\niterations = {}\n\
+         converged = {}\nrepeats = {}\nseed = {}\nwall_time_s = {}\n",
+        env!("CARGO_PKG_VERSION"),
+        files.join(", "),
+        model.name(),
+        edges.len() - 1,
+        clean(edges[0]),
+        clean(edges[edges.len() - 1]),
+        rule_name,
+        clean(r.lambda),
+        clean(r.chi2),
+        r.misfit.len(),
+        r.iterations,
+        r.converged,
+        req.repeats,
+        req.seed,
+        clean(r.wall_time_s),
+    );
+    t.push_str(&format!(
+        "mass_finer_than_range = {}\nmass_coarser_than_range = {}\n",
+        clean(r.w[0]),
+        clean(r.w[r.w.len() - 1])
+    ));
+    for test in &r.tests {
+        let an = &test.col.analysis;
+        t.push_str(&format!(
+            "\n[[file]]\npath = {:?}\ninstrument = \"{}\"\nreadings = {}\nresolution = {}\n\
+             sigma = {}\ncolumn_height_m = {}\nlayers = {}\nc0_kg_m3 = {}\nviscosity_pa_s = {}\n\
+             fluid_density_kg_m3 = {}\ngrain_density_kg_m3 = {}\ngravity_m_s2 = {}\n",
+            test.file.display().to_string(),
+            test.probe.name(),
+            test.readings.len(),
+            clean(test.resolution),
+            clean(test.sigma()),
+            clean(test.col.height_m),
+            test.col.layers,
+            clean(an.c0_kg_m3),
+            clean(an.viscosity_pa_s),
+            clean(an.fluid_density_kg_m3),
+            clean(an.grain_density_kg_m3),
+            clean(an.gravity_m_s2),
+        ));
+    }
+    t
+}
+
+/// Warnings: χ² well above the number of readings (the model does not explain them within
+/// their uncertainty), iterations that did not converge.
+pub fn warnings(r: &Report, rule: LambdaRule) -> Vec<String> {
+    let m = r.misfit.len() as f64;
+    let mut w = Vec::new();
+    if r.chi2 > 2.0 * m && rule != LambdaRule::Gcv {
+        w.push(format!(
+            "χ² = {} for {} readings: the model does not explain the readings within their \
+             uncertainty (check the figures, the model or --resolution)",
+            g(r.chi2),
+            r.misfit.len()
+        ));
+    }
+    if !r.converged {
+        w.push(format!(
+            "the iterations did not converge to 0.01 points in {}",
+            r.iterations
+        ));
+    }
+    w
+}
+
+/// The console summary: a title line, then diameter, percent finer and band.
+pub fn summary(req: &Request, model: Model, r: &Report) -> Vec<String> {
+    let mut lines = vec![format!(
+        "{} ({} model, {} readings, {} bins, λ = {}, χ² = {}, {} iterations, {} s) -> {}",
+        req.files
+            .iter()
+            .map(|f| f.display().to_string())
+            .collect::<Vec<_>>()
+            .join(" + "),
+        model.name(),
+        r.misfit.len(),
+        r.curve.len().saturating_sub(1),
+        g(r.lambda),
+        g(r.chi2),
+        r.iterations,
+        g(r.wall_time_s),
+        r.out.display()
+    )];
+    lines.push(format!(
+        "  {:>8} {:>8} {:>8} {:>8}",
+        "d_um", "finer_%", "p5_%", "p95_%"
+    ));
+    for c in &r.curve {
+        lines.push(format!(
+            "  {:>8} {:>8} {:>8} {:>8}",
+            g(c.diameter_m * 1e6),
+            g(c.percent_finer),
+            g(c.p5),
+            g(c.p95)
+        ));
+    }
+    lines
+}
