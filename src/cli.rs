@@ -306,44 +306,16 @@ pub fn main() -> i32 {
                 hydrometer,
                 out_dir: out,
             };
-            match crate::reduce::run(&req) {
-                Ok(r) => {
-                    for l in &r.lines {
-                        println!("{l}");
-                    }
-                    for w in &r.warnings {
-                        println!("  warning: {w}");
-                    }
-                    0
-                }
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    e.exit_code()
-                }
-            }
+            outcome(crate::reduce::run(&req), |r| (&r.lines, &r.warnings))
         }
         Command::Laws {
             spheres,
             fluids,
             out,
-        } => {
-            let req = crate::laws::Request {
-                files: spheres.zip(fluids),
-                out_dir: out,
-            };
-            match crate::laws::run(&req) {
-                Ok(r) => {
-                    for l in &r.lines {
-                        println!("{l}");
-                    }
-                    0
-                }
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    e.exit_code()
-                }
-            }
-        }
+        } => laws(crate::laws::Request {
+            files: spheres.zip(fluids),
+            out_dir: out,
+        }),
         Command::Invert {
             readings,
             model,
@@ -368,14 +340,29 @@ pub fn main() -> i32 {
     }
 }
 
+/// `settle laws`: runs and prints the table; the exit code.
+fn laws(req: crate::laws::Request) -> i32 {
+    outcome(crate::laws::run(&req), |r| (&r.lines, &[]))
+}
+
 /// `settle invert`: runs and prints the summary and warnings; the exit code.
 fn invert(req: crate::invert::Request) -> i32 {
-    match crate::invert::run(&req) {
+    outcome(crate::invert::run(&req), |r| (&r.lines, &r.warnings))
+}
+
+/// Prints a command's lines and warnings (`text` picks them from its report) and returns 0, or
+/// prints its error and returns the error's exit code.
+fn outcome<T>(
+    result: Result<T, crate::error::Error>,
+    text: impl Fn(&T) -> (&[String], &[String]),
+) -> i32 {
+    match result {
         Ok(r) => {
-            for l in &r.lines {
+            let (lines, warnings) = text(&r);
+            for l in lines {
                 println!("{l}");
             }
-            for w in &r.warnings {
+            for w in warnings {
                 println!("  warning: {w}");
             }
             0
