@@ -5,6 +5,7 @@ mod bingham_laws;
 mod hindered;
 mod invert;
 mod paste_drop;
+mod sedimentation_reference;
 mod slump;
 mod sphere_drag;
 mod stokes_single;
