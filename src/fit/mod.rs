@@ -46,11 +46,7 @@ pub fn parse_bound(s: &str) -> Result<Bound, String> {
         .split_once('=')
         .ok_or_else(|| format!("`{s}`: {ALLOWED}"))?;
     let key = key.trim();
-    let valid_key = !key.is_empty()
-        && key
-            .chars()
-            .all(|c| c.is_ascii_alphanumeric() || "_.[]".contains(c));
-    if !valid_key {
+    if !crate::scenario::is_key_path(key) {
         return Err(format!("`{key}` is not a scenario key: {ALLOWED}"));
     }
     let num = |t: &str| t.trim().parse::<f64>().ok().filter(|x| x.is_finite());

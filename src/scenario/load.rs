@@ -148,6 +148,15 @@ pub fn record_table(s: &Scenario, file: &Path) -> Result<toml::Table, toml::ser:
     Ok(t)
 }
 
+/// Whether `key` can name a scenario key: a dotted path of letters, digits and `_`, with `[i]`
+/// indices (`fluid.yield_stress_pa`, `spheres[0].diameter_m`); not empty.
+pub fn is_key_path(key: &str) -> bool {
+    !key.is_empty()
+        && key
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || "_.[]".contains(c))
+}
+
 /// Applies one `KEY=VALUE` override to a TOML table. The value is parsed as TOML (number,
 /// boolean, array, quoted string) and otherwise taken as a bare string. Keys are dotted paths;
 /// `name[i]` indexes an array of tables. Missing tables are created.

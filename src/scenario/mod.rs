@@ -20,7 +20,8 @@ mod spec;
 mod validate;
 
 pub use load::{
-    apply_override, load, load_str, parse, parse_str, record_table, Overrides, ScenarioError,
+    apply_override, is_key_path, load, load_str, parse, parse_str, record_table, Overrides,
+    ScenarioError,
 };
 pub use schema::*;
 pub use spec::{

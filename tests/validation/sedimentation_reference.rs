@@ -41,9 +41,18 @@ fn simulated(k: u32, contacts: &str) -> HashMap<String, Figures> {
     cmd.args(["run", &format!("scenarios/sedimentation_sample{k}.toml")])
         .args(["--set", "sample.particles=10000", "-q"]);
     if contacts == "off" {
-        cmd.args(["--set", "sample.contacts=false", "--set", "sample.lubrication=false"]);
+        cmd.args([
+            "--set",
+            "sample.contacts=false",
+            "--set",
+            "sample.lubrication=false",
+        ]);
     }
-    let o = cmd.arg("--out").arg(out.path()).output().expect("spawn settle");
+    let o = cmd
+        .arg("--out")
+        .arg(out.path())
+        .output()
+        .expect("spawn settle");
     assert_exit(&o, 0);
     let path = out
         .path()

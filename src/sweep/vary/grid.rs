@@ -59,11 +59,7 @@ pub fn parse_vary(s: &str) -> Result<Axis, BadValue> {
     };
     let (key, grid) = s.split_once('=').ok_or(bad)?;
     let key = key.trim();
-    let valid_key = !key.is_empty()
-        && key
-            .chars()
-            .all(|c| c.is_ascii_alphanumeric() || "_.[]".contains(c));
-    if !valid_key {
+    if !crate::scenario::is_key_path(key) {
         return Err(bad);
     }
     let number = |t: &str| t.trim().parse::<f64>().ok().filter(|x| x.is_finite());
