@@ -14,10 +14,10 @@
 //! plastic. *AIChE Journal* 13(6):1193–1196. **Not verified against the paper: no page or
 //! equation number can be given.** Checked in December 2026 with the search tools (documentation
 //! pages, web pages, public code, issue threads): neither the paper nor a text that reproduces
-//! its formula (Chhabra, *Bubbles, Drops and Particles in Non-Newtonian Fluids*, 2nd ed., 2007,
-//! ch. 4 "Rigid particles in visco-plastic liquids"; Chhabra & Richardson, *Non-Newtonian Flow
-//! and Applied Rheology*, 2008, ch. 5) could be read beyond a first page, and no public code
-//! implements the law. What was found:
+//! its formula (Chhabra, *Bubbles, Drops and Particles in Non-Newtonian Fluids*, 2nd ed., CRC,
+//! ch. 4 "Rigid particles in visco-plastic liquids", of which only the first page, p. 123, was
+//! found; Chhabra & Richardson, *Non-Newtonian Flow and Applied Rheology*, 2008, not found) could
+//! be read, and no public code implements the law. What was found:
 //! - the structure "the Newtonian standard drag curve at a modified Reynolds number" is
 //!   confirmed by the abstract of Woo, H., *Drag characteristics of spheres in Bingham fluids*
 //!   (ASCE conference paper, <https://cedb.asce.org/CEDBsearch/record.jsp?dockey=0057498>):
