@@ -11,11 +11,22 @@
 //! τ_y/(Δρ g d) < 4/(21π) ≈ 0.061.
 //!
 //! Source: Ansley, R. W. & Smith, T. N. (1967). Motion of spherical particles in a Bingham
-//! plastic. *AIChE Journal* 13(6):1193–1196, their modified Reynolds number (as reproduced in
-//! Chhabra, *Bubbles, Drops and Particles in Non-Newtonian Fluids*, 2nd ed., 2007, ch. 3). The
-//! paper and the book could not be consulted here: the form and the constant 7π/24 are from
-//! recollection and are NOT checked against the paper's own figure; the page and equation number
-//! are not given for that reason.
+//! plastic. *AIChE Journal* 13(6):1193–1196. **Not verified against the paper: no page or
+//! equation number can be given.** Checked in December 2026 with the search tools (documentation
+//! pages, web pages, public code, issue threads): neither the paper nor a text that reproduces
+//! its formula (Chhabra, *Bubbles, Drops and Particles in Non-Newtonian Fluids*, 2nd ed., CRC,
+//! ch. 4 "Rigid particles in visco-plastic liquids", of which only the first page, p. 123, was
+//! found; Chhabra & Richardson, *Non-Newtonian Flow and Applied Rheology*, 2008, not found) could
+//! be read, and no public code implements the law. What was found:
+//! - the structure "the Newtonian standard drag curve at a modified Reynolds number" is
+//!   confirmed by the abstract of Woo, H., *Drag characteristics of spheres in Bingham fluids*
+//!   (ASCE conference paper, <https://cedb.asce.org/CEDBsearch/record.jsp?dockey=0057498>):
+//!   "Ansley and Smith's type of drag relation can be traced back closely, if not completely,
+//!   to the Newtonian drag curve";
+//! - the constant 7π/24 and the form 1 + (7π/24) Bi are NOT confirmed by any source read; they
+//!   remain a recollection of the secondary literature. A different constant changes the static
+//!   resistance 3π k d² τ_y in proportion (k = 7/6 would give Beris et al.'s 14π R² τ_y); the
+//!   paper's own figure (C_d against Re* with the standard curve) is the check still to do.
 
 use super::additive::cd_re_clift_gauvin;
 use std::f64::consts::PI;

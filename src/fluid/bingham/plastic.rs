@@ -16,8 +16,8 @@ pub enum PlasticLaw {
     /// Ansley & Smith (1967): the standard drag curve at Re* ([`super::ansley_smith`]). Bingham
     /// fluids only.
     AnsleySmith,
-    /// Wilson et al. (2003): the standard drag curve with the rheogram's secant viscosity
-    /// ([`super::wilson`]). Bingham and Herschel–Bulkley fluids.
+    /// Wilson et al. (2003): the standard drag curve with the rheogram's secant viscosity at 0.3
+    /// of the mean surface stress ([`super::wilson`]). Bingham and Herschel–Bulkley fluids.
     Wilson,
 }
 

@@ -70,7 +70,8 @@ pub enum DragLawName {
     BinghamAdditive,
     /// Ansley & Smith (1967), Bingham fluids only ([`crate::fluid::bingham::ansley_smith`]).
     AnsleySmith,
-    /// Wilson et al. (2003) secant viscosity, Bingham and Herschel–Bulkley fluids
+    /// Wilson et al. (2003) secant viscosity at 0.3 of the mean surface stress, Bingham and
+    /// Herschel–Bulkley fluids
     /// ([`crate::fluid::bingham::wilson`]).
     #[serde(rename = "wilson-2003")]
     Wilson2003,
