@@ -101,11 +101,14 @@ fn resume(out: &Path) -> Output {
     o
 }
 
-const SEDIMENTATION: [&str; 4] = [
+/// With contacts on (off by default), so that the Rapier world of the clusters is checkpointed.
+const SEDIMENTATION: [&str; 6] = [
     "run",
     "scenarios/sedimentation_sample2.toml",
     "--set",
     "sample.particles=20000",
+    "--set",
+    "sample.contacts=true",
 ];
 
 /// The sedimentation cylinder (20 000 grains, full physics, 1440 min), killed with SIGKILL at a

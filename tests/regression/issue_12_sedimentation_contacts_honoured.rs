@@ -30,6 +30,7 @@ fn run(contacts: Option<&str>) -> (State, GrainContacts) {
         "time.end_s=300.0".to_string(),
         "sample.record_times_s=[300.0]".to_string(),
         "sample.snapshot_times_s=[]".to_string(),
+        "sample.contacts=true".to_string(),
     ];
     let p = prepare(Path::new(&path), None, &ov).unwrap();
     let su = setup(&p.scenario, &p.path).unwrap();

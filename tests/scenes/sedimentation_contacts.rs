@@ -294,12 +294,13 @@ fn full_physics_with_contacts_accounts_for_every_grain() {
         "time.dt_s=10".into(),
         "sample.record_times_s=[10.0, 30.0, 60.0, 120.0]".into(),
         "sample.snapshot_times_s=[]".into(),
+        "sample.contacts=true".into(),
     ];
     let p = prepare(Path::new("scenarios/sedimentation_sample1.toml"), None, &ov).unwrap();
     let sm = p.scenario.sample.as_ref().unwrap();
     assert!(
-        sm.contacts && sm.lubrication,
-        "contacts and lubrication are on by default"
+        sm.contacts && sm.lubrication_on(),
+        "contacts on, lubrication follows them"
     );
     let su = setup(&p.scenario, &p.path).unwrap();
     let total: f64 = su

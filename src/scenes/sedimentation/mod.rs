@@ -26,7 +26,7 @@
 //!   `granulometry.csv`/`.svg`, `instruments.csv`/`.svg`, `bulb_density.csv`/`.svg` and
 //!   `instrument_errors.csv`.
 //! - **Contacts and lubrication** (`physics = "full"`, `sample.contacts` and
-//!   `sample.lubrication`, both on by default; never in `ideal-stokes`): after the free update
+//!   `sample.lubrication`, both off by default (lubrication follows contacts); never in `ideal-stokes`): after the free update
 //!   of a step, a cell list ([`contacts::PairFinder`]: columns in x as wide
 //!   as the largest pair reach, sorted by height; real diameters) finds every pair of suspended
 //!   grains whose gap falls below the lubrication cut-off h_out = 0.1 a_eff at some time of the

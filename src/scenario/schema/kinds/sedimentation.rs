@@ -124,14 +124,17 @@ pub struct SampleSpec {
     /// Grain–grain and grain–wall contacts of suspended grains (`physics = "full"` only; the
     /// `ideal-stokes` reference has none): each step, the pairs whose gap can close within the
     /// step are resolved in a Rapier 2D world ([`crate::engine::dim2::World`]) with walls at
-    /// x = 0 and B and the bed surface as floor. Default true.
-    #[serde(default = "default_true")]
+    /// x = 0 and B and the bed surface as floor. Default false: a representative grain stands
+    /// for 7 to 160 000 real ones, so its encounters are a sample of the real ones whose effect
+    /// grows with N and is not converged at any N a run can afford (docs/validation/
+    /// sedimentation.md, convergence in N); without contacts the readings converge in N.
+    #[serde(default)]
     pub contacts: bool,
     /// Squeeze-film lubrication between close grains (`physics = "full"` only):
     /// F = 6πμ a_eff² v_n / h ([`crate::fluid::lubrication`]) for gaps below the outer cut-off.
-    /// Default true.
-    #[serde(default = "default_true")]
-    pub lubrication: bool,
+    /// Default: as `contacts` ([`SampleSpec::lubrication_on`]); allowed only with contacts.
+    #[serde(default)]
+    pub lubrication: Option<bool>,
     /// Outer cut-off of the lubrication force, as a fraction of the pair's effective radius
     /// a_eff = a₁a₂/(a₁ + a₂): no squeeze force beyond h_out = this × a_eff (the leading-order
     /// term is within ~10 % of the exact two-sphere resistance up to h ≈ 0.1 a_eff, Kim &
@@ -152,9 +155,6 @@ pub struct SampleSpec {
     pub hindered: crate::fluid::HinderedLaw,
 }
 
-fn default_true() -> bool {
-    true
-}
 fn default_lub_outer() -> f64 {
     0.1
 }
@@ -188,6 +188,11 @@ fn default_max_step() -> f64 {
 }
 
 impl SampleSpec {
+    /// Whether the squeeze-film lubrication is on: `lubrication` if given, else as `contacts`.
+    pub fn lubrication_on(&self) -> bool {
+        self.lubrication.unwrap_or(self.contacts)
+    }
+
     /// Thickness h_z of the 2D projection of the modelled wedges of a cylinder of diameter
     /// `width_m`, m: h_z = π B f / 4 (two opposing 1° wedges, f = 1/180: h_z = π B / 720; seed
     /// 000 §4.4), so that B H h_z = f π B² H / 4.
@@ -246,7 +251,7 @@ impl SampleSpec {
                 ),
             ));
         }
-        if self.lubrication && !self.contacts {
+        if self.lubrication == Some(true) && !self.contacts {
             return Err(c.err(
                 "sample.lubrication",
                 "the squeeze film is solved inside the contact solve: allowed lubrication = true only with sample.contacts = true (set lubrication = false too)",

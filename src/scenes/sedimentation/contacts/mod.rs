@@ -53,7 +53,7 @@ impl ContactStage {
                 fluid_density_kg_m3: k.fluid_density_kg_m3,
                 gravity_m_s2: k.gravity_m_s2,
                 viscosity_pa_s: k.viscosity_pa_s,
-                lubrication: sm.lubrication.then_some(Cutoffs {
+                lubrication: sm.lubrication_on().then_some(Cutoffs {
                     inner: sm.lubrication_inner_cutoff,
                     outer: sm.lubrication_outer_cutoff,
                 }),
