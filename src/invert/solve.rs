@@ -148,6 +148,54 @@ impl Linear {
         (p * (af.transpose() * af)).trace()
     }
 
+    /// Strict bounds of a linear functional of the distribution (Backus 1970, "Inference from
+    /// inadequate and inaccurate data"; Stark 1992, J. Geophys. Res. 97 B10, 14055): the smallest
+    /// and largest value of c·w over every distribution of the bins (w ≥ 0, Σw = 1) whose
+    /// χ² = Σ ((b − J w)/σ)² is at most `chi2_max`, no smoothing. With c_j the fraction of bin j
+    /// finer than d (`Bins::fraction_finer`), c·w is F(d): the range of the cumulative curve at
+    /// d that the readings allow. None if no distribution fits within `chi2_max`.
+    ///
+    /// Convex (a linear objective over the intersection of an ellipsoid and the simplex), solved
+    /// through its Lagrangian: w(μ) = argmin χ²(w) ± μ c·w over the simplex ([`simplex_qp`])
+    /// has χ²(w(μ)) non-decreasing in μ ≥ 0, and μ is bisected (in ln μ) until χ² = `chi2_max`.
+    pub fn strict_bounds(&self, c: &[f64], chi2_max: f64) -> Option<(f64, f64)> {
+        let (a, y) = self.weighted();
+        let n = a.ncols();
+        let mut q = a.transpose() * &a * 2.0;
+        let s = (q.trace() / n as f64).max(1e-300);
+        for k in 0..n {
+            q[(k, k)] += 1e-10 * s;
+        }
+        let g = a.transpose() * &y * 2.0;
+        let cv = DVector::from_column_slice(c);
+        let at = |mu: f64, sign: f64| {
+            let w = simplex_qp(&q, &(&g - &cv * (sign * mu)), None);
+            (self.chi2(&w), cv.dot(&DVector::from_column_slice(&w)))
+        };
+        if at(0.0, 1.0).0 > chi2_max {
+            return None;
+        }
+        let extreme = |sign: f64| {
+            let (mut lo, mut hi) = ((1e-8 * s).ln(), (1e12 * s).ln());
+            if at(hi.exp(), sign).0 <= chi2_max {
+                return at(hi.exp(), sign).1;
+            }
+            if at(lo.exp(), sign).0 > chi2_max {
+                return at(0.0, sign).1;
+            }
+            for _ in 0..48 {
+                let mid = 0.5 * (lo + hi);
+                if at(mid.exp(), sign).0 <= chi2_max {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            at(lo.exp(), sign).1
+        };
+        Some((extreme(1.0), extreme(-1.0)))
+    }
+
     /// Solves with λ chosen by `rule` over a grid of λ/scale from 10⁻¹⁰ to 10⁴ (8 per decade).
     pub fn solve(&self, rule: LambdaRule) -> Solution {
         self.solve_drawn(rule, None)
