@@ -191,6 +191,11 @@ enum Command {
         /// Seed of the Monte Carlo.
         #[arg(long, default_value_t = 1)]
         seed: u64,
+        /// Also the strict bounds of the curve at each diameter: its smallest and largest value
+        /// over every distribution of the bins, without smoothing, whose χ² is at most the
+        /// number of readings (what the readings alone leave open).
+        #[arg(long)]
+        bounds: bool,
         /// Output folder.
         #[arg(long, default_value = "out")]
         out: PathBuf,
@@ -325,6 +330,7 @@ pub fn main() -> i32 {
             resolution,
             repeats,
             seed,
+            bounds,
             out,
         } => invert(crate::invert::Request {
             files: readings,
@@ -335,6 +341,7 @@ pub fn main() -> i32 {
             resolution,
             repeats,
             seed,
+            bounds,
             out_dir: out,
         }),
     }

@@ -102,6 +102,8 @@ pub struct Request {
     pub repeats: usize,
     /// `--seed` of the Monte Carlo (ChaCha8).
     pub seed: u64,
+    /// `--bounds`: also the strict bounds of the curve at each edge ([`Linear::strict_bounds`]).
+    pub bounds: bool,
     /// Output folder; results go to `out_dir/<stem of the first file>_inverted/`.
     pub out_dir: PathBuf,
 }
@@ -117,6 +119,7 @@ impl Default for Request {
             resolution: Vec::new(),
             repeats: 100,
             seed: 1,
+            bounds: false,
             out_dir: PathBuf::from("out"),
         }
     }
@@ -133,6 +136,10 @@ pub struct CurvePoint {
     pub p5: f64,
     /// 95th percentile of the Monte Carlo, %.
     pub p95: f64,
+    /// Strict bounds (`--bounds`): the smallest and largest percent finer at this diameter over
+    /// every distribution of the bins (no smoothing) whose χ² is at most the number of
+    /// readings, %; None when not asked for or when no distribution fits that well.
+    pub bounds: Option<(f64, f64)>,
 }
 
 /// One reading against its prediction.
@@ -374,7 +381,7 @@ pub fn run(req: &Request) -> Result<Report, Error> {
         ));
     }
     let bins = bins_for(&tests, n, range);
-    let fit = fit(&tests, &bins, model, rule, req.repeats, req.seed)?;
+    let fit = fit_with(&tests, &bins, model, rule, req.repeats, req.seed, req.bounds)?;
     let mut misfit = Vec::new();
     let mut row = 0;
     for (k, t) in tests.iter().enumerate() {
@@ -441,8 +448,36 @@ pub fn fit(
     repeats: usize,
     seed: u64,
 ) -> Result<Fit, Error> {
+    fit_with(tests, bins, model, rule, repeats, seed, false)
+}
+
+/// [`fit`], with the strict bounds of the curve at each resolved edge when `bounds`: the range
+/// of F(d) over every distribution of `bins` (w ≥ 0, Σw = 1, no smoothing) whose χ² of the last
+/// linear problem is at most the number of readings m (Backus 1970; Stark 1992). Unlike the
+/// band, they show what the readings alone leave open, e.g. a steep curve between two readings.
+pub fn fit_with(
+    tests: &[Test],
+    bins: &Bins,
+    model: Model,
+    rule: LambdaRule,
+    repeats: usize,
+    seed: u64,
+    bounds: bool,
+) -> Result<Fit, Error> {
     let inv = invert(tests, bins, model, rule)?;
-    let curve = band(&inv, tests, bins, rule, repeats, seed);
+    let mut curve = band(&inv, tests, bins, rule, repeats, seed);
+    if bounds {
+        let m = inv.predicted.len() as f64;
+        for p in &mut curve {
+            let c: Vec<f64> = (0..bins.len())
+                .map(|j| bins.fraction_finer(j, p.diameter_m))
+                .collect();
+            p.bounds = inv
+                .linear
+                .strict_bounds(&c, m)
+                .map(|(lo, hi)| ((100.0 * lo).max(0.0), (100.0 * hi).min(100.0)));
+        }
+    }
     Ok(Fit {
         w: inv.solution.w.clone(),
         curve,
@@ -587,6 +622,7 @@ fn band(
                 percent_finer: f,
                 p5,
                 p95,
+                bounds: None,
             }
         })
         .collect()

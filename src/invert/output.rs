@@ -24,25 +24,31 @@ pub fn write(
         .curve
         .iter()
         .map(|c| {
-            vec![
+            let mut row = vec![
                 clean(c.diameter_m),
                 clean(c.percent_finer),
                 clean(c.p5),
                 clean(c.p95),
-            ]
+            ];
+            if req.bounds {
+                let (lo, hi) = c.bounds.map_or((String::new(), String::new()), |(lo, hi)| {
+                    (clean(lo), clean(hi))
+                });
+                row.extend([lo, hi]);
+            }
+            row
         })
         .collect();
-    io::write_csv(
-        &stage.path("inverted.csv"),
-        &[
-            "diameter_m",
-            "percent_finer",
-            "percent_finer_p5",
-            "percent_finer_p95",
-        ],
-        &rows,
-    )
-    .map_err(ioe)?;
+    let mut header = vec![
+        "diameter_m",
+        "percent_finer",
+        "percent_finer_p5",
+        "percent_finer_p95",
+    ];
+    if req.bounds {
+        header.extend(["percent_finer_min", "percent_finer_max"]);
+    }
+    io::write_csv(&stage.path("inverted.csv"), &header, &rows).map_err(ioe)?;
     let rows: Vec<Vec<String>> = r
         .misfit
         .iter()
@@ -133,6 +139,18 @@ fn chart(path: &Path, name: &str, model: Model, r: &Report) -> std::io::Result<(
             shade: 0.18,
         });
     }
+    let bounds: Vec<(f64, f64, f64)> = r
+        .curve
+        .iter()
+        .filter_map(|p| p.bounds.map(|(lo, hi)| (um(p.diameter_m), lo, hi)))
+        .collect();
+    if !bounds.is_empty() {
+        c = c.band(Band {
+            label: "strict bounds (every curve with χ² ≤ m)".into(),
+            points: bounds,
+            shade: 0.07,
+        });
+    }
     c = c.curve(Curve::new(
         "inverted",
         r.curve
@@ -180,7 +198,7 @@ fn record(req: &Request, model: Model, rule: LambdaRule, r: &Report) -> String {
         "# written by settle invert\n[invert]\nsettle_version = \"{}\"\ninputs = [{}]\n\
          model = \"{}\"\nbins = {}\ndiameter_lo_m = {}\ndiameter_hi_m = {}\n\
          lambda_rule = \"{}\"\nlambda = {}\nchi2 = {}\nreadings = {}\niterations = {}\n\
-         converged = {}\nrepeats = {}\nseed = {}\nwall_time_s = {}\n",
+         converged = {}\nrepeats = {}\nseed = {}\nbounds = {}\nwall_time_s = {}\n",
         env!("CARGO_PKG_VERSION"),
         files.join(", "),
         model.name(),
@@ -195,6 +213,7 @@ fn record(req: &Request, model: Model, rule: LambdaRule, r: &Report) -> String {
         r.converged,
         req.repeats,
         req.seed,
+        req.bounds,
         clean(r.wall_time_s),
     );
     t.push_str(&format!(
@@ -265,18 +284,29 @@ pub fn summary(req: &Request, model: Model, r: &Report) -> Vec<String> {
         g(r.wall_time_s),
         r.out.display()
     )];
-    lines.push(format!(
+    let mut head = format!(
         "  {:>8} {:>8} {:>8} {:>8}",
         "d_um", "finer_%", "p5_%", "p95_%"
-    ));
+    );
+    if req.bounds {
+        head += &format!(" {:>8} {:>8}", "min_%", "max_%");
+    }
+    lines.push(head);
     for c in &r.curve {
-        lines.push(format!(
+        let mut line = format!(
             "  {:>8} {:>8} {:>8} {:>8}",
             g(c.diameter_m * 1e6),
             g(c.percent_finer),
             g(c.p5),
             g(c.p95)
-        ));
+        );
+        if req.bounds {
+            let (lo, hi) = c
+                .bounds
+                .map_or(("—".into(), "—".into()), |(lo, hi)| (g(lo), g(hi)));
+            line += &format!(" {lo:>8} {hi:>8}");
+        }
+        lines.push(line);
     }
     lines
 }

@@ -172,3 +172,60 @@ fn bad_input_is_one_line_exit_2_and_nothing_written() {
     // No readings file at all: clap's usage error, exit 2.
     assert_exit(&settle().arg("invert").output().unwrap(), 2);
 }
+
+/// `--bounds` (docs/commands/invert.md, Strict bounds): sample 2 simulated with hindered settling
+/// (data/invert/sample2_full, N = 100 000), its buoyancy sphere and pipette inverted together with
+/// the full model. At every edge the strict bounds contain the recovered curve and the input
+/// curve (0.5 point for the input's interpolation between its tabulated diameters), and between
+/// the 0.5 and 1 min readings (62–70 µm), where no reading sees the steep part of the curve,
+/// they span more than 50 points: the readings alone do not determine it.
+#[test]
+fn bounds_contain_the_input_and_show_what_the_readings_leave_open() {
+    let out = tmp();
+    let dir = Path::new("data/invert/sample2_full");
+    let files = [
+        dir.join("readings_sphere.csv"),
+        dir.join("readings_pipette.csv"),
+    ];
+    let files: Vec<&str> = files.iter().map(|f| f.to_str().unwrap()).collect();
+    let args = [
+        "--model",
+        "full",
+        "--resolution",
+        "0.01,0.03",
+        "--bounds",
+        "--repeats",
+        "0",
+    ];
+    let o = invert(&files, out.path(), &args);
+    assert_exit(&o, 0);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("min_%") && stdout.contains("max_%"), "{stdout}");
+    let rows = read_csv_records(&out.path().join("readings_sphere_inverted/inverted.csv"));
+    let input: Vec<(f64, f64)> = read_csv_records(&dir.join("granulometry.csv"))
+        .iter()
+        .filter(|r| r["instrument"] == "input")
+        .map(|r| (num(r, "diameter_m"), num(r, "percent_finer")))
+        .collect();
+    let at = |d: f64| {
+        let k = input.partition_point(|p| p.0 < d).clamp(1, input.len() - 1);
+        let ((d0, f0), (d1, f1)) = (input[k - 1], input[k]);
+        f0 + (f1 - f0) * (d.ln() - d0.ln()) / (d1.ln() - d0.ln())
+    };
+    let mut widest_between = 0.0f64;
+    for r in &rows {
+        let (d, f) = (num(r, "diameter_m"), num(r, "percent_finer"));
+        let (lo, hi) = (num(r, "percent_finer_min"), num(r, "percent_finer_max"));
+        assert!(lo - 1e-6 <= f && f <= hi + 1e-6, "d = {d}: {f} not in [{lo}, {hi}]");
+        let truth = at(d).clamp(0.0, 100.0);
+        assert!(
+            lo - 0.5 <= truth && truth <= hi + 0.5,
+            "d = {} µm: input {truth} not in [{lo}, {hi}]",
+            d * 1e6
+        );
+        if (60e-6..72e-6).contains(&d) {
+            widest_between = widest_between.max(hi - lo);
+        }
+    }
+    assert!(widest_between > 50.0, "widest {widest_between}");
+}
