@@ -381,7 +381,15 @@ pub fn run(req: &Request) -> Result<Report, Error> {
         ));
     }
     let bins = bins_for(&tests, n, range);
-    let fit = fit_with(&tests, &bins, model, rule, req.repeats, req.seed, req.bounds)?;
+    let fit = fit_with(
+        &tests,
+        &bins,
+        model,
+        rule,
+        req.repeats,
+        req.seed,
+        req.bounds,
+    )?;
     let mut misfit = Vec::new();
     let mut row = 0;
     for (k, t) in tests.iter().enumerate() {
@@ -439,23 +447,12 @@ pub struct Fit {
 }
 
 /// Inverts the readings of `tests` over `bins` with `model` and the λ `rule`; the band from
-/// `repeats` Monte Carlo repeats seeded `seed`.
+/// `repeats` Monte Carlo repeats seeded `seed`; with `bounds`, the strict bounds of the curve at
+/// each resolved edge: the range of F(d) over every distribution of `bins` (w ≥ 0, Σw = 1, no
+/// smoothing) whose χ² of the last linear problem is at most the number of readings m (Backus
+/// 1970; Stark 1992). Unlike the band, they show what the readings alone leave open, e.g. a
+/// steep curve between two readings.
 pub fn fit(
-    tests: &[Test],
-    bins: &Bins,
-    model: Model,
-    rule: LambdaRule,
-    repeats: usize,
-    seed: u64,
-) -> Result<Fit, Error> {
-    fit_with(tests, bins, model, rule, repeats, seed, false)
-}
-
-/// [`fit`], with the strict bounds of the curve at each resolved edge when `bounds`: the range
-/// of F(d) over every distribution of `bins` (w ≥ 0, Σw = 1, no smoothing) whose χ² of the last
-/// linear problem is at most the number of readings m (Backus 1970; Stark 1992). Unlike the
-/// band, they show what the readings alone leave open, e.g. a steep curve between two readings.
-pub fn fit_with(
     tests: &[Test],
     bins: &Bins,
     model: Model,

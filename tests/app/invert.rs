@@ -3,25 +3,13 @@
 //! nothing written.
 
 use crate::common::chart::assert_readable_chart;
-use crate::common::{assert_exit, read_csv_records, settle, tmp, tree};
+use crate::common::{assert_exit, num, read_csv_records, settle, settle_command, tmp, tree};
 use std::path::Path;
 
 const CLAY: &str = "data/lab/envalysis_clayloam_d422.csv";
 
 fn invert(files: &[&str], out: &Path, args: &[&str]) -> std::process::Output {
-    settle()
-        .arg("invert")
-        .args(files)
-        .arg("--out")
-        .arg(out)
-        .args(args)
-        .output()
-        .expect("spawn settle")
-}
-
-fn num(r: &std::collections::HashMap<String, String>, k: &str) -> f64 {
-    r[k].parse()
-        .unwrap_or_else(|e| panic!("{k} = `{}`: {e}", r[k]))
+    settle_command("invert", files, out, args)
 }
 
 /// docs/commands/invert.md's worked example: envalysis' clay loam (data/lab/README.md) inverted
@@ -200,7 +188,10 @@ fn bounds_contain_the_input_and_show_what_the_readings_leave_open() {
     let o = invert(&files, out.path(), &args);
     assert_exit(&o, 0);
     let stdout = String::from_utf8_lossy(&o.stdout);
-    assert!(stdout.contains("min_%") && stdout.contains("max_%"), "{stdout}");
+    assert!(
+        stdout.contains("min_%") && stdout.contains("max_%"),
+        "{stdout}"
+    );
     let rows = read_csv_records(&out.path().join("readings_sphere_inverted/inverted.csv"));
     let input: Vec<(f64, f64)> = read_csv_records(&dir.join("granulometry.csv"))
         .iter()
@@ -216,7 +207,10 @@ fn bounds_contain_the_input_and_show_what_the_readings_leave_open() {
     for r in &rows {
         let (d, f) = (num(r, "diameter_m"), num(r, "percent_finer"));
         let (lo, hi) = (num(r, "percent_finer_min"), num(r, "percent_finer_max"));
-        assert!(lo - 1e-6 <= f && f <= hi + 1e-6, "d = {d}: {f} not in [{lo}, {hi}]");
+        assert!(
+            lo - 1e-6 <= f && f <= hi + 1e-6,
+            "d = {d}: {f} not in [{lo}, {hi}]"
+        );
         let truth = at(d).clamp(0.0, 100.0);
         assert!(
             lo - 0.5 <= truth && truth <= hi + 0.5,

@@ -16,15 +16,10 @@
 //!   Table 2's 0–60 g/L (D422, checked within 0.1 cm), 0.112 cm over D7928's marks −5 and
 //!   60 g/L (checked within 0.12 cm).
 
-use crate::common::{read_csv_records, settle, tmp};
+use crate::common::{num, read_csv_records, settle, tmp};
 use settle::instruments::reduction::{d7928, water_density_kg_m3};
 use std::collections::HashMap;
 use std::path::Path;
-
-fn num(r: &HashMap<String, String>, k: &str) -> f64 {
-    r[k].parse()
-        .unwrap_or_else(|e| panic!("{k} = `{}`: {e}", r[k]))
-}
 
 /// The value of the `# key = value` line of a readings file.
 fn figure(text: &str, key: &str) -> f64 {

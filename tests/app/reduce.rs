@@ -3,23 +3,11 @@
 //! column (or the key) and what is allowed, exit 2, nothing written.
 
 use crate::common::chart::assert_readable_chart;
-use crate::common::{assert_exit, read_csv_records, settle, tmp, tree};
+use crate::common::{assert_exit, num, read_csv_records, settle_command, tmp, tree};
 use std::path::Path;
 
 fn reduce(file: &Path, out: &Path, args: &[&str]) -> std::process::Output {
-    settle()
-        .arg("reduce")
-        .arg(file)
-        .arg("--out")
-        .arg(out)
-        .args(args)
-        .output()
-        .expect("spawn settle")
-}
-
-fn num(r: &std::collections::HashMap<String, String>, k: &str) -> f64 {
-    r[k].parse()
-        .unwrap_or_else(|e| panic!("{k} = `{}`: {e}", r[k]))
+    settle_command("reduce", &[file.to_str().unwrap()], out, args)
 }
 
 /// docs/commands/reduce.md, D422: envalysis' clay loam (data/lab/README.md).

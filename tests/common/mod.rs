@@ -91,6 +91,29 @@ pub fn read_csv_records(path: &Path) -> Vec<HashMap<String, String>> {
         .collect()
 }
 
+/// The number in field `k` of a CSV record (panics naming the field if it is not one).
+pub fn num(r: &HashMap<String, String>, k: &str) -> f64 {
+    r[k].parse()
+        .unwrap_or_else(|e| panic!("{k} = `{}`: {e}", r[k]))
+}
+
+/// Runs `settle SUB INPUTS... --out OUT ARGS...` and returns its output.
+pub fn settle_command(
+    sub: &str,
+    inputs: &[&str],
+    out: &Path,
+    args: &[&str],
+) -> std::process::Output {
+    settle()
+        .arg(sub)
+        .args(inputs)
+        .arg("--out")
+        .arg(out)
+        .args(args)
+        .output()
+        .expect("spawn settle")
+}
+
 /// Runs the calling test's body in a child process of its own, for a test that changes
 /// process-wide state (such as requesting an interrupt): all tests share one process.
 ///

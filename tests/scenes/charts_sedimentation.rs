@@ -4,7 +4,7 @@
 //! 900 s, and the hydrometer at 2, 5 and 15 min).
 
 use crate::common::chart::{assert_readable_chart, svg_texts};
-use crate::common::{read_csv_records, settle};
+use crate::common::{num, read_csv_records, settle};
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
@@ -30,11 +30,6 @@ fn out() -> &'static Path {
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
         dir.join("sedimentation_sample1")
     })
-}
-
-fn num(r: &std::collections::HashMap<String, String>, k: &str) -> f64 {
-    r[k].parse()
-        .unwrap_or_else(|e| panic!("{k} = `{}`: {e}", r[k]))
 }
 
 /// Seed Fig. 11: one panel per snapshot time with the time written out, a depth axis in cm and a

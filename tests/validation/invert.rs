@@ -1,20 +1,12 @@
 //! Validation of `settle invert` (issue 14): the round trip through the simulation under ideal
 //! Stokes settling, and the Monte Carlo band under rounded, noisy readings.
 
-use crate::common::{assert_exit, read_csv_records, settle, tmp};
+use crate::common::{assert_exit, num, read_csv_records, settle, tmp};
 use settle::instruments::ideal_field;
 use settle::invert::solve::LambdaRule;
 use settle::invert::{bins_for, fit, read_test, Model};
 use settle::sample::Distribution;
-use std::collections::HashMap;
 use std::path::Path;
-
-type Row = HashMap<String, String>;
-
-fn num(r: &Row, k: &str) -> f64 {
-    r[k].parse()
-        .unwrap_or_else(|e| panic!("{k} = `{}`: {e}", r[k]))
-}
 
 /// F(d) of a curve given at increasing diameters (m, %), linear in log d between them, clamped.
 fn at(curve: &[(f64, f64)], d: f64) -> f64 {
@@ -169,6 +161,7 @@ fn the_band_covers_the_input_curve_under_rounded_noisy_readings() {
             LambdaRule::Discrepancy,
             40,
             repeat,
+            false,
         )
         .expect("inverts");
         for p in &f.curve {
@@ -411,7 +404,16 @@ fn the_readings_do_not_determine_a_steep_curve_between_two_readings() {
             .map(|(f, d)| read_test(&Path::new(dir).join(f), Some(*d)).unwrap().0)
             .collect();
         let bins = bins_for(&tests, 60, None);
-        let f = fit(&tests, &bins, Model::Full, LambdaRule::Discrepancy, 0, 1).unwrap();
+        let f = fit(
+            &tests,
+            &bins,
+            Model::Full,
+            LambdaRule::Discrepancy,
+            0,
+            1,
+            false,
+        )
+        .unwrap();
         let (m, n) = (f.predicted.len(), bins.len());
         let mut lin = Linear {
             j: nalgebra::DMatrix::zeros(m, n),
