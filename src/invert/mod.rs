@@ -381,7 +381,7 @@ pub fn run(req: &Request) -> Result<Report, Error> {
         ));
     }
     let bins = bins_for(&tests, n, range);
-    let fit = fit_with(
+    let fit = fit(
         &tests,
         &bins,
         model,
