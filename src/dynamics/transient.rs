@@ -102,6 +102,32 @@ pub fn basset_kernel(inertia_kg: f64, k_n_s_m: f64, c_h: f64, run_s: f64) -> Exp
     )
 }
 
+/// The exponential sum of Mei & Adrian's (1992) finite-Re kernel
+/// ([`crate::fluid::transient::kernel::mei_adrian_kernel`]) at Reynolds number `reynolds` for a
+/// sphere of viscous diffusion time `tau_d_s` = d²/ν, over the same times as [`basset_kernel`]
+/// (same arguments), fitted with non-negative weights on the same log-spaced rates
+/// ([`ExpSum::fit`]).
+pub fn mei_adrian_kernel_sum(
+    inertia_kg: f64,
+    k_n_s_m: f64,
+    c_h: f64,
+    run_s: f64,
+    tau_d_s: f64,
+    reynolds: f64,
+) -> ExpSum {
+    let b = k_n_s_m / inertia_kg;
+    let c = c_h / inertia_kg;
+    let t_scale = (1.0 / b).min(1.0 / (std::f64::consts::PI * c * c));
+    let t_lo = 1e-2 * t_scale;
+    let t_hi = (10.0 * run_s).max(1e4 * t_scale);
+    ExpSum::fit(
+        t_lo,
+        t_hi,
+        crate::fluid::transient::kernel::DEFAULT_STEP,
+        |t| crate::fluid::transient::kernel::mei_adrian_kernel(t, tau_d_s, reynolds),
+    )
+}
+
 /// One body's state under [`TransientModel`].
 #[derive(Clone, Debug)]
 pub struct TransientBody {

@@ -197,6 +197,7 @@ fn slump_calculator_prints_table_a1() {
 #[test]
 fn constant_restitution_fitted_to_table_a2() {
     let dir = tmp();
+    #[allow(clippy::approx_constant)] // drop heights of Table A2, m (0.318 is not 1/π)
     let heights = [0.095, 0.188, 0.252, 0.318, 0.398];
     let rebound = [0.0370, 0.0720, 0.0909, 0.1180, 0.1469];
     let mut text = String::from("file,column,row,value\n");

@@ -50,6 +50,10 @@ pub enum History {
     Off,
     /// Basset–Boussinesq, kernel t^{−1/2} (Maxey & Riley 1983), as a sum of exponentials.
     Basset,
+    /// The finite-Reynolds kernel of Mei & Adrian (1992): Basset's at short times, decaying as
+    /// t^{−2} beyond t_c ∝ (f_H/Re)² d²/ν; fitted by a sum of exponentials at the sphere's
+    /// terminal Reynolds number (quasi-steady drag, unbounded fluid).
+    MeiAdrian,
 }
 
 /// Which wall correction.
