@@ -116,6 +116,20 @@ impl ExpSum {
     /// w₀ of the unresolved short times is ∫₀^{t_hi} (K − Σ) dt (with K = t^{−1/2} below
     /// 1e-6 t_lo), so the impulse of the kernel is kept.
     pub fn fit(t_lo_s: f64, t_hi_s: f64, h: f64, kernel: impl Fn(f64) -> f64) -> Self {
+        let all = Self::fit_all(t_lo_s, t_hi_s, h, kernel);
+        let keep: Vec<usize> = (0..all.len())
+            .filter(|&j| all.weights_per_sqrt_s[j] > 0.0)
+            .collect();
+        Self {
+            rates_per_s: keep.iter().map(|&j| all.rates_per_s[j]).collect(),
+            weights_per_sqrt_s: keep.iter().map(|&j| all.weights_per_sqrt_s[j]).collect(),
+            instant_sqrt_s: all.instant_sqrt_s,
+        }
+    }
+
+    /// [`ExpSum::fit`] keeping the terms of zero weight: every kernel fitted on the same times
+    /// has the same rates, term by term (for weights that change with the Reynolds number).
+    pub fn fit_all(t_lo_s: f64, t_hi_s: f64, h: f64, kernel: impl Fn(f64) -> f64) -> Self {
         let grid = Self::covering(t_lo_s, t_hi_s, h);
         let (s_lo, s_hi) = (t_lo_s.ln(), t_hi_s.ln());
         let n_t = ((s_hi - s_lo) * FIT_SAMPLES_PER_E_FOLD).ceil() as usize + 1;
@@ -127,16 +141,9 @@ impl ExpSum {
         });
         let b = nalgebra::DVector::from_element(n_t, 1.0);
         let w = nnls(&a, &b);
-        let (mut rates, mut weights) = (Vec::new(), Vec::new());
-        for (j, &wj) in w.iter().enumerate() {
-            if wj > 0.0 {
-                rates.push(grid.rates_per_s[j]);
-                weights.push(wj);
-            }
-        }
         let mut sum = Self {
-            rates_per_s: rates,
-            weights_per_sqrt_s: weights,
+            rates_per_s: grid.rates_per_s,
+            weights_per_sqrt_s: w.iter().copied().collect(),
             instant_sqrt_s: 0.0,
         };
         // ∫₀^{t_hi} (K − Σ) dt: analytic below t_a, trapezoidal in ln t above.
