@@ -5,13 +5,13 @@
 # representative grains. Prints, per N and instrument, the RMS of that difference over the
 # readings and seeds, and its ratio to the RMS at the first N: 1/sqrt(N) scaling means the RMS
 # falls by sqrt(10) = 3.16 per decade. Usage: scripts/noise_vs_n.sh [K] [N...] (default 2,
-# 10000 100000 1000000); needs `cargo build --release`.
+# 10000 30000 100000 300000); needs `cargo build --release`.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
 k=${1:-2}
 shift || true
-ns=("${@:-10000 100000 1000000}")
+ns=("${@:-10000 30000 100000 300000}")
 read -r -a ns <<< "${ns[*]}"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT

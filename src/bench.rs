@@ -96,6 +96,7 @@ pub fn run(root: &Path, quick: bool) -> Result<Vec<Figure>, Error> {
     valentik_dt(&ps, quick, &mut out)?;
     paste_drops(root, &mut out)?;
     sedimentation(root, quick, &mut out)?;
+    transient_step(root, quick, &mut out)?;
     if !quick {
         valentik_sweep(&ps, &mut out)?;
     }
@@ -302,6 +303,103 @@ fn sedimentation(root: &Path, quick: bool, out: &mut Vec<Figure>) -> Result<(), 
         out.push(fig(&name, "contact_wall_time_s", st.contacts.wall_s, "s"));
     }
 
+    Ok(())
+}
+
+/// The cost of the transient forces on a free body's step (issue 16): ten Cate's E4 sphere
+/// (Schiller–Naumann drag, exponential integrator) falling in a deep column (no bottom, no wall
+/// factor) for 10 s at dt = 1e-5 s (quick: 1e-4 s), quasi-steady against added mass + the
+/// history force (Basset, Mei & Adrian at the terminal Re, at the current Re; the last includes
+/// building its table of fits), measured back to back in one run (two alternating
+/// rounds, the faster of each).
+fn transient_step(root: &Path, quick: bool, out: &mut Vec<Figure>) -> Result<(), Error> {
+    let dt = if quick { 1e-4 } else { 1e-5 };
+    let file = root.join("scenarios/ten_cate_e4.toml");
+    let time = |history: Option<&str>| -> Result<(f64, u64, usize), Error> {
+        let mut ov = vec![
+            "container.height_m=1000".to_string(),
+            "time.end_s=10".to_string(),
+            "transient.wall=off".to_string(),
+        ];
+        match history {
+            Some("mei-adrian-current") => {
+                ov.push("transient.history=mei-adrian".to_string());
+                ov.push("transient.history_reynolds=current".to_string());
+            }
+            Some(h) => ov.push(format!("transient.history={h}")),
+            None => ov.push("transient.added_mass=false".to_string()),
+        }
+        let p = prepare(&file, Some(dt), &ov).map_err(Error::BadInput)?;
+        let states = match history {
+            Some(_) => {
+                free_settling::history_states(&p.scenario, p.rheology, &p.spheres).unwrap_or(0)
+            }
+            None => 2,
+        };
+        let opts = RunOptions {
+            dt_s: dt,
+            integrator: Integrator::Exponential,
+            timeseries: false,
+        };
+        let t0 = Instant::now();
+        let r = free_settling::run(&p.scenario, p.rheology, &p.spheres, opts)
+            .map_err(|u| Error::Unstable(file.clone(), u))?;
+        let wall = t0.elapsed().as_secs_f64();
+        Ok((wall, r.iter().map(|x| x.steps).sum(), states))
+    };
+    // Two rounds, alternating, the faster of each (warm caches, less noise from the machine).
+    let mut best = [(f64::INFINITY, 0u64, 0usize); 4];
+    let cases = [
+        None,
+        Some("basset"),
+        Some("mei-adrian"),
+        Some("mei-adrian-current"),
+    ];
+    for _ in 0..2 {
+        for (i, h) in cases.into_iter().enumerate() {
+            let r = time(h)?;
+            if r.0 < best[i].0 {
+                best[i] = r;
+            }
+        }
+    }
+    let [(w_qs, n_qs, _), (w_b, n_b, s_b), (w_m, n_m, s_m), (w_c, n_c, _)] = best;
+    let b = "transient_free_body";
+    out.push(fig(b, &format!("steps_dt_{dt:e}"), n_qs as f64, "steps"));
+    out.push(fig(
+        b,
+        "quasi_steady_step_ns",
+        w_qs / n_qs as f64 * 1e9,
+        "ns",
+    ));
+    out.push(fig(b, "basset_states", s_b as f64, "states"));
+    out.push(fig(b, "basset_step_ns", w_b / n_b as f64 * 1e9, "ns"));
+    out.push(fig(
+        b,
+        "ratio_basset_to_quasi_steady",
+        (w_b / n_b as f64) / (w_qs / n_qs as f64),
+        "-",
+    ));
+    out.push(fig(b, "mei_adrian_states", s_m as f64, "states"));
+    out.push(fig(b, "mei_adrian_step_ns", w_m / n_m as f64 * 1e9, "ns"));
+    out.push(fig(
+        b,
+        "ratio_mei_adrian_to_quasi_steady",
+        (w_m / n_m as f64) / (w_qs / n_qs as f64),
+        "-",
+    ));
+    out.push(fig(
+        b,
+        "mei_adrian_current_re_step_ns",
+        w_c / n_c as f64 * 1e9,
+        "ns",
+    ));
+    out.push(fig(
+        b,
+        "ratio_mei_adrian_current_re_to_quasi_steady",
+        (w_c / n_c as f64) / (w_qs / n_qs as f64),
+        "-",
+    ));
     Ok(())
 }
 

@@ -102,6 +102,118 @@ pub fn basset_kernel(inertia_kg: f64, k_n_s_m: f64, c_h: f64, run_s: f64) -> Exp
     )
 }
 
+/// The times t_lo … t_hi a history kernel is fitted on (s): from 1e-2 of the faster of M/k and
+/// M²/(π C_H²) to 10 × the run (at least 10⁴ × that time scale), as in [`basset_kernel`].
+fn history_times(inertia_kg: f64, k_n_s_m: f64, c_h: f64, run_s: f64) -> (f64, f64) {
+    let b = k_n_s_m / inertia_kg;
+    let c = c_h / inertia_kg;
+    let t_scale = (1.0 / b).min(1.0 / (std::f64::consts::PI * c * c));
+    (1e-2 * t_scale, (10.0 * run_s).max(1e4 * t_scale))
+}
+
+/// The exponential sum of Mei & Adrian's (1992) finite-Re kernel
+/// ([`crate::fluid::transient::kernel::mei_adrian_kernel`]) at Reynolds number `reynolds` for a
+/// sphere of viscous diffusion time `tau_d_s` = d²/ν, over the same times as [`basset_kernel`]
+/// (same arguments), fitted with non-negative weights on the same log-spaced rates
+/// ([`ExpSum::fit`]).
+pub fn mei_adrian_kernel_sum(
+    inertia_kg: f64,
+    k_n_s_m: f64,
+    c_h: f64,
+    run_s: f64,
+    tau_d_s: f64,
+    reynolds: f64,
+) -> ExpSum {
+    let (t_lo, t_hi) = history_times(inertia_kg, k_n_s_m, c_h, run_s);
+    ExpSum::fit(
+        t_lo,
+        t_hi,
+        crate::fluid::transient::kernel::DEFAULT_STEP,
+        |t| crate::fluid::transient::kernel::mei_adrian_kernel(t, tau_d_s, reynolds),
+    )
+}
+
+/// Mei & Adrian's kernel fitted on one set of rates at a grid of Reynolds numbers, for a kernel
+/// that follows the body's current Re (`transient.history_reynolds = "current"`): the weights at
+/// Re are interpolated linearly in ln Re between the two nearest fits (non-negative, as both
+/// are); below the grid (Re < [`MeiAdrianTable::RE_MIN`]) the kernel is Basset's over the run.
+#[derive(Clone, Debug)]
+pub struct MeiAdrianTable {
+    ln_re: Vec<f64>,
+    /// Per grid point: every term's weight (s^{−1/2}) and w₀ (s^{1/2}).
+    fits: Vec<(Vec<f64>, f64)>,
+    /// The rates shared by every fit, 1/s.
+    pub rates_per_s: Vec<f64>,
+}
+
+impl MeiAdrianTable {
+    /// Lowest Reynolds number of the grid (there t_c ≈ 6e3 d²/ν: Basset's kernel).
+    pub const RE_MIN: f64 = 1e-2;
+    /// Grid points per decade of Re.
+    pub const PER_DECADE: f64 = 8.0;
+
+    /// The fits from Re = [`Self::RE_MIN`] to `re_max` for the body of [`mei_adrian_kernel_sum`]
+    /// (same arguments).
+    pub fn new(
+        inertia_kg: f64,
+        k_n_s_m: f64,
+        c_h: f64,
+        run_s: f64,
+        tau_d_s: f64,
+        re_max: f64,
+    ) -> Self {
+        let (t_lo, t_hi) = history_times(inertia_kg, k_n_s_m, c_h, run_s);
+        let (l0, l1) = (Self::RE_MIN.ln(), re_max.max(10.0 * Self::RE_MIN).ln());
+        let n = ((l1 - l0) / std::f64::consts::LN_10 * Self::PER_DECADE).ceil() as usize;
+        let ln_re: Vec<f64> = (0..=n)
+            .map(|i| l0 + (l1 - l0) * i as f64 / n as f64)
+            .collect();
+        let mut rates = Vec::new();
+        let fits = ln_re
+            .iter()
+            .map(|l| {
+                let e = ExpSum::fit_all(
+                    t_lo,
+                    t_hi,
+                    crate::fluid::transient::kernel::DEFAULT_STEP,
+                    |t| crate::fluid::transient::kernel::mei_adrian_kernel(t, tau_d_s, l.exp()),
+                );
+                rates = e.rates_per_s;
+                (e.weights_per_sqrt_s, e.instant_sqrt_s)
+            })
+            .collect();
+        Self {
+            ln_re,
+            fits,
+            rates_per_s: rates,
+        }
+    }
+
+    /// The sum at Reynolds number `re` (clamped to the grid).
+    pub fn at(&self, re: f64) -> ExpSum {
+        let mut w = vec![0.0; self.rates_per_s.len()];
+        let w0 = self.weights_into(re, &mut w);
+        ExpSum {
+            rates_per_s: self.rates_per_s.clone(),
+            weights_per_sqrt_s: w,
+            instant_sqrt_s: w0,
+        }
+    }
+
+    /// Writes the weights at `re` into `w` and returns w₀.
+    pub fn weights_into(&self, re: f64, w: &mut [f64]) -> f64 {
+        let l = re.max(Self::RE_MIN).ln();
+        let last = self.ln_re.len() - 1;
+        let i = self.ln_re.partition_point(|x| *x <= l).clamp(1, last) - 1;
+        let a = ((l - self.ln_re[i]) / (self.ln_re[i + 1] - self.ln_re[i])).clamp(0.0, 1.0);
+        let (p, q) = (&self.fits[i], &self.fits[i + 1]);
+        for (j, wj) in w.iter_mut().enumerate() {
+            *wj = p.0[j] + a * (q.0[j] - p.0[j]);
+        }
+        p.1 + a * (q.1 - p.1)
+    }
+}
+
 /// One body's state under [`TransientModel`].
 #[derive(Clone, Debug)]
 pub struct TransientBody {
@@ -129,6 +241,32 @@ impl TransientBody {
             y,
             prop: None,
             prev: None,
+        }
+    }
+
+    /// Replaces the history kernel's weights by `w` (one per term, s^{−1/2}) and its
+    /// instantaneous weight by `w0` (s^{1/2}), for a kernel that changes with the body's
+    /// Reynolds number ([`MeiAdrianTable`]); the states q_j are kept (they do not depend on the
+    /// weights). The propagator is rebuilt only when the weights (summed) or w₀ moved by more than
+    /// [`SLOPE_TOLERANCE`] (relative), as for the drag slope.
+    pub fn set_history_weights(&mut self, w: &[f64], w0: f64) {
+        let Some((_, k)) = self.model.history.as_mut() else {
+            return;
+        };
+        let total: f64 = k.weights_per_sqrt_s.iter().sum();
+        let moved: f64 = k
+            .weights_per_sqrt_s
+            .iter()
+            .zip(w)
+            .map(|(a, b)| (a - b).abs())
+            .sum();
+        if moved > SLOPE_TOLERANCE * total
+            || (k.instant_sqrt_s - w0).abs() > SLOPE_TOLERANCE * k.instant_sqrt_s
+        {
+            k.weights_per_sqrt_s.copy_from_slice(w);
+            k.instant_sqrt_s = w0;
+            self.inertia_kg = self.model.inertia_kg();
+            self.prop = None;
         }
     }
 

@@ -118,7 +118,8 @@ fn the_history_force_is_refused_in_a_bingham_fluid() {
 
 /// Where a transient force is not available, the scenario is refused with the key and the
 /// reason: the wall without a container, any transient force on the Rapier engine, the history
-/// force in the paste (Bingham) or with another integrator, a coefficient out of range.
+/// force in the paste (Bingham) or with another integrator, a coefficient out of range, a
+/// Reynolds number for a kernel that has none.
 #[test]
 fn unsupported_combinations_are_refused() {
     let refuse = |file: &str, set: &[&str], key: &str, words: &str| {
@@ -157,5 +158,14 @@ fn unsupported_combinations_are_refused() {
         &["transient.added_mass_coefficient=3"],
         "transient.added_mass_coefficient",
         "2",
+    );
+    refuse(
+        SCENARIO,
+        &[
+            "transient.history=basset",
+            "transient.history_reynolds=current",
+        ],
+        "transient.history_reynolds",
+        "mei-adrian",
     );
 }

@@ -24,6 +24,22 @@ pub struct Transient {
     /// The wall correction of the drag. Default `off`.
     #[serde(default)]
     pub wall: Wall,
+    /// The Reynolds number of Mei & Adrian's kernel (`history = "mei-adrian"` only). Default
+    /// `terminal`.
+    #[serde(default)]
+    pub history_reynolds: HistoryReynolds,
+}
+
+/// Which Reynolds number Mei & Adrian's kernel takes.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum HistoryReynolds {
+    /// Fixed at the terminal Re of the quasi-steady drag (unbounded fluid): one fit at release.
+    #[default]
+    Terminal,
+    /// The body's current Re = |v| d/ν: the weights follow it (fits on a grid of Re, 8 per
+    /// decade from 0.01, interpolated), the rates and the history states are kept.
+    Current,
 }
 
 fn half() -> f64 {
@@ -37,6 +53,7 @@ impl Default for Transient {
             added_mass_coefficient: 0.5,
             history: History::Off,
             wall: Wall::Off,
+            history_reynolds: HistoryReynolds::Terminal,
         }
     }
 }
@@ -50,6 +67,10 @@ pub enum History {
     Off,
     /// Basset–Boussinesq, kernel t^{−1/2} (Maxey & Riley 1983), as a sum of exponentials.
     Basset,
+    /// The finite-Reynolds kernel of Mei & Adrian (1992): Basset's at short times, decaying as
+    /// t^{−2} beyond t_c ∝ (f_H/Re)² d²/ν; fitted by a sum of exponentials at the sphere's
+    /// terminal Reynolds number (quasi-steady drag, unbounded fluid).
+    MeiAdrian,
 }
 
 /// Which wall correction.
@@ -94,6 +115,13 @@ impl Transient {
             if s.time.integrator != Integrator::Exponential {
                 return Err(c.err("transient.history", "the history force is integrated by the exponential scheme only: set time.integrator = \"exponential\""));
             }
+        }
+        if self.history_reynolds != HistoryReynolds::Terminal && self.history != History::MeiAdrian
+        {
+            return Err(c.err(
+                "transient.history_reynolds",
+                "only Mei & Adrian's kernel depends on the Reynolds number: set history = \"mei-adrian\" or remove history_reynolds",
+            ));
         }
         if self.wall != Wall::Off {
             if s.kind != Kind::FreeSettling {

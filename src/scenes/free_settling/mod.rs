@@ -62,6 +62,18 @@ pub use simulate::{
 use crate::error::Error;
 use crate::scenes::{Prepared, SceneReport};
 
+/// State variables per body of the history force (v, x and one per exponential of the kernel)
+/// of the first sphere of `cases` in `scenario`; None without a history force.
+pub fn history_states(
+    scenario: &crate::scenario::Scenario,
+    rheology: crate::scenario::RheologyModel,
+    cases: &[crate::scenario::inputs::SphereCase],
+) -> Option<usize> {
+    let c = cases.first()?;
+    let su = setup::SphereSetup::<3>::new(scenario, rheology, c, RunOptions::of(scenario));
+    su.transient.as_ref()?.history.as_ref().map(|m| m.states())
+}
+
 /// Runs the spheres of a free-settling or drop scenario and writes its files into `stage`:
 /// the entry point of `settle run` for these kinds. Interrupted (Ctrl-C/SIGTERM), it writes
 /// nothing and returns [`Error::InterruptedUnwritten`] with the scenario file.

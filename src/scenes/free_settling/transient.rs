@@ -5,7 +5,10 @@
 //!   mass m_p + C_m m_f (any drag law and integrator, drops included: C_m times the immersed
 //!   fluid mass while a drop crosses the surface).
 //! - The history force is carried as state by [`crate::dynamics::transient::TransientBody`] (20
-//!   states per body for the scenarios here), kernel fitted over 10 × `time.end_s`.
+//!   states per body for the scenarios here), kernel fitted over 10 × `time.end_s`: Basset's
+//!   t^{−1/2}, or Mei & Adrian's (1992) finite-Re kernel at the terminal Reynolds number of the
+//!   quasi-steady drag (unbounded fluid; the kernel was derived for small unsteadiness about a
+//!   steady Re, and it differs from Basset's only after t_c, when the sphere is near that speed).
 //! - The wall multiplies the drag by Brenner's λ(gap) ([`crate::fluid::transient::wall`]), frozen
 //!   over a step.
 //!
@@ -15,13 +18,14 @@
 
 use super::setup::SphereSetup;
 use crate::dynamics::transient::{
-    basset_coefficient, basset_kernel, TransientBody, TransientModel,
+    basset_coefficient, basset_kernel, mei_adrian_kernel_sum, MeiAdrianTable, TransientBody,
+    TransientModel,
 };
 use crate::dynamics::{advance, Integrator, Motion, Step};
 use crate::fluid::transient::wall::brenner_factor;
 use crate::fluid::transient::BassetProblem;
 use crate::fluid::{DragLaw, SphereDrag};
-use crate::scenario::{History, Scenario, Wall};
+use crate::scenario::{History, HistoryReynolds, Scenario, Wall};
 use nalgebra::SVector;
 
 /// The transient forces of one sphere, fixed at release.
@@ -35,6 +39,8 @@ pub(super) struct TransientSetup {
     pub wall: Wall,
     /// The closed form (Stokes drag, history on, from rest, no wall).
     pub basset: Option<BassetProblem>,
+    /// Mei & Adrian's kernel at the current Re: the fits and d/ν, s/m (Re = |v| d/ν).
+    pub current_re: Option<(MeiAdrianTable, f64)>,
 }
 
 impl TransientSetup {
@@ -49,23 +55,45 @@ impl TransientSetup {
         };
         let added = cm * m_f_kg;
         let mu = drag.law.viscosity_pa_s();
-        let history = (t.history == History::Basset).then(|| {
-            let c_h = basset_coefficient(d_m, s.fluid.density_kg_m3, mu);
-            let k = 3.0 * std::f64::consts::PI * mu * d_m;
-            TransientModel {
-                mass_kg: m_kg,
-                added_mass_kg: added,
-                history: Some((c_h, basset_kernel(m_kg + added, k, c_h, s.time.end_s))),
-            }
+        let c_h = basset_coefficient(d_m, s.fluid.density_kg_m3, mu);
+        let k = 3.0 * std::f64::consts::PI * mu * d_m;
+        let nu = mu / s.fluid.density_kg_m3;
+        let (tau_d, inertia) = (d_m * d_m / nu, m_kg + added);
+        // Re at the terminal speed of the quasi-steady drag in an unbounded fluid.
+        let re_t = || {
+            let net = ((m_kg - m_f_kg) * s.gravity_m_s2).abs();
+            drag.balance_speed(net).speed_m_s * d_m / nu
+        };
+        let current =
+            t.history == History::MeiAdrian && t.history_reynolds == HistoryReynolds::Current;
+        let current_re = current.then(|| {
+            let table = MeiAdrianTable::new(inertia, k, c_h, s.time.end_s, tau_d, 4.0 * re_t());
+            (table, d_m / nu)
+        });
+        let kernel = match t.history {
+            History::Off => None,
+            History::Basset => Some(basset_kernel(inertia, k, c_h, s.time.end_s)),
+            History::MeiAdrian => Some(match &current_re {
+                Some((table, _)) => table.at(s.release.velocity_m_s.abs() * d_m / nu),
+                None => mei_adrian_kernel_sum(inertia, k, c_h, s.time.end_s, tau_d, re_t()),
+            }),
+        };
+        let history = kernel.map(|ker| TransientModel {
+            mass_kg: m_kg,
+            added_mass_kg: added,
+            history: Some((c_h, ker)),
         });
         let stokes = matches!(drag.law, DragLaw::Stokes { .. });
-        let basset =
-            (stokes && history.is_some() && t.wall == Wall::Off && s.release.velocity_m_s == 0.0)
-                .then(|| {
-                    let rho_p = m_kg / (std::f64::consts::PI * d_m.powi(3) / 6.0);
-                    BassetProblem::sphere(d_m, rho_p, s.fluid.density_kg_m3, mu, cm, s.gravity_m_s2)
-                });
+        let basset = (stokes
+            && t.history == History::Basset
+            && t.wall == Wall::Off
+            && s.release.velocity_m_s == 0.0)
+            .then(|| {
+                let rho_p = m_kg / (std::f64::consts::PI * d_m.powi(3) / 6.0);
+                BassetProblem::sphere(d_m, rho_p, s.fluid.density_kg_m3, mu, cm, s.gravity_m_s2)
+            });
         Some(Self {
+            current_re,
             added_mass_kg: added,
             history,
             wall: t.wall,
@@ -117,6 +145,18 @@ pub(super) fn submerged_step<const D: usize>(
         let a = s.abs();
         (drag.force_n(a).copysign(s), drag.slope_n_s_m(a))
     };
+    if let Some((table, d_over_nu)) = su.transient.as_ref().and_then(|t| t.current_re.as_ref()) {
+        let n = table.rates_per_s.len();
+        let (mut buf, mut heap) = ([0.0; 64], Vec::new());
+        let w: &mut [f64] = if n <= 64 {
+            &mut buf[..n]
+        } else {
+            heap.resize(n, 0.0);
+            &mut heap
+        };
+        let w0 = table.weights_into(v.norm() * d_over_nu, w);
+        body.set_history_weights(w, w0);
+    }
     let w = su.net_weight_n;
     let (s1, dx) = if commit {
         body.step(dt, w, f)
