@@ -546,7 +546,7 @@ fn set_lubrication_cutoffs_out_of_range() {
 fn set_lubrication_without_contacts() {
     let o = settle_run(
         &[good("sedimentation_sample1.toml")],
-        &["--set", "sample.contacts=false"],
+        &["--set", "sample.lubrication=true"],
     );
     assert_refused(
         &o,
