@@ -150,20 +150,28 @@ impl Stepper {
     /// ([`Stepper::stokes_speeds_m_s`]). The largest speed is searched in parallel (a maximum
     /// does not depend on the order).
     pub fn step_size_s(&self, st: &State, next_event_s: f64, stokes_speeds_m_s: &[f64]) -> f64 {
-        let mut dt = (next_event_s - st.time_s).min(self.max_step_s);
-        if !self.ideal {
-            let vmax = st
-                .velocity_m_s
+        let vmax = if self.ideal {
+            0.0
+        } else {
+            st.velocity_m_s
                 .par_iter()
                 .zip(st.settled.par_iter())
                 .zip(stokes_speeds_m_s.par_iter())
                 .with_min_len(INTERRUPT_CHECK_GRAINS)
                 .filter(|((_, s), _)| !**s)
                 .map(|((v, _), &vs)| v.abs().max(vs))
-                .reduce(|| 0.0, f64::max);
-            if vmax > 0.0 {
-                dt = dt.min(0.5 * self.cell_m / vmax);
-            }
+                .reduce(|| 0.0, f64::max)
+        };
+        self.step_with_vmax_s(st.time_s, next_event_s, vmax)
+    }
+
+    /// The step of [`Stepper::step_size_s`] from time `t_s` given the largest speed `vmax_m_s`
+    /// of the suspended grains (each the larger of its speed and its Stokes terminal speed),
+    /// m/s, as [`Stepper::deposit_vmax`] returns it.
+    pub fn step_with_vmax_s(&self, t_s: f64, next_event_s: f64, vmax_m_s: f64) -> f64 {
+        let mut dt = (next_event_s - t_s).min(self.max_step_s);
+        if !self.ideal && vmax_m_s > 0.0 {
+            dt = dt.min(0.5 * self.cell_m / vmax_m_s);
         }
         dt.max(1e-12)
     }
@@ -175,8 +183,19 @@ impl Stepper {
     /// grain's update is independent. Returns false if an interrupt was requested
     /// ([`crate::interrupt::requested`], checked before each chunk): the update is then
     /// incomplete and the caller must rewind the step ([`StepStart::rewind`]). Otherwise returns
-    /// the number of grains advanced.
-    pub fn free_update(&self, st: &mut State, grid: &VoidageGrid, dt_s: f64) -> Option<u64> {
+    /// the number of grains advanced, and whether any grain (suspended or not) now fails the
+    /// test of [`Stepper::grain_fault`] with the bound `speed_bound_m_s` in the cylinder of
+    /// `setup` (checked here as the grains are updated; `grain_fault` then names the first).
+    pub fn free_update(
+        &self,
+        st: &mut State,
+        setup: &Setup,
+        grid: &VoidageGrid,
+        dt_s: f64,
+    ) -> Option<(u64, bool)> {
+        let (width, height) = (setup.width_m, setup.height_m);
+        let bound = self.speed_bound_m_s;
+        let suspect = AtomicBool::new(false);
         let floor = st.bed_height_m;
         let (g, rho_p, rho_f) = (
             self.gravity_m_s2,
@@ -197,12 +216,12 @@ impl Stepper {
                     return 0;
                 }
                 let mut moved = 0u64;
-                for ((gr, v), _) in grains
-                    .iter_mut()
-                    .zip(speeds.iter_mut())
-                    .zip(settled)
-                    .filter(|(_, s)| !**s)
-                {
+                let mut bad = false;
+                for ((gr, v), &s) in grains.iter_mut().zip(speeds.iter_mut()).zip(settled) {
+                    if s {
+                        bad |= Self::faulty(gr, *v, width, height, bound);
+                        continue;
+                    }
                     let d = gr.diameter_m;
                     let drag = grid.drag_at(d, gr.x_m, gr.y_m);
                     let m = sphere_mass_kg(d, rho_p);
@@ -214,11 +233,25 @@ impl Stepper {
                         gr.y_m = floor + 0.5 * d;
                     }
                     moved += 1;
+                    bad |= Self::faulty(gr, *v, width, height, bound);
+                }
+                if bad {
+                    suspect.store(true, Ordering::Relaxed);
                 }
                 moved
             })
             .sum::<u64>();
-        (!stopped.into_inner()).then_some(moved)
+        (!stopped.into_inner()).then_some((moved, suspect.into_inner()))
+    }
+
+    /// The test of [`Stepper::grain_fault`] on one grain of speed `v` (m/s) in a cylinder of
+    /// `width` × `height` (m) with speed bound `bound` (m/s).
+    fn faulty(gr: &crate::sample::Grain, v: f64, width: f64, height: f64, bound: f64) -> bool {
+        !(gr.y_m.is_finite() && v.is_finite() && gr.x_m.is_finite())
+            || v.abs() > bound
+            || gr.y_m > height + gr.diameter_m
+            || gr.x_m < -1e-12
+            || gr.x_m > width + 1e-12
     }
 
     /// ideal-Stokes with the exponential integrator: advances every suspended grain of `st`
@@ -378,6 +411,37 @@ impl Stepper {
         }
     }
 
+    /// [`Stepper::deposit`], returning the largest speed of the grains still suspended after it
+    /// (each the larger of its speed and its Stokes terminal speed, `stokes_speeds_m_s`), m/s,
+    /// 0 if none: the bound of the next step ([`Stepper::step_with_vmax_s`]), found in the same
+    /// pass.
+    pub fn deposit_vmax(&self, st: &mut State, stokes_speeds_m_s: &[f64]) -> f64 {
+        let mut vmax = 0.0f64;
+        for (((gr, v), settled), &vs) in st
+            .grains
+            .iter_mut()
+            .zip(st.velocity_m_s.iter_mut())
+            .zip(st.settled.iter_mut())
+            .zip(stokes_speeds_m_s)
+        {
+            if *settled {
+                continue;
+            }
+            if gr.y_m - 0.5 * gr.diameter_m <= st.bed_height_m + 1e-15 {
+                *settled = true;
+                *v = 0.0;
+                gr.y_m = st.bed_height_m + 0.5 * gr.diameter_m;
+                if !self.ideal {
+                    st.bed_height_m +=
+                        gr.weight * sphere_volume_m3(gr.diameter_m) / self.bed_area_m2;
+                }
+            } else {
+                vmax = vmax.max(v.abs().max(vs));
+            }
+        }
+        vmax
+    }
+
     /// The first grain in a numerical fault after a step of `dt_s` from `st` (state updated in
     /// place, time not yet advanced), as an [`Unstable`] report: a non-finite position or
     /// velocity, a centre outside the cylinder (beside the walls, or a diameter above the top),
@@ -397,13 +461,7 @@ impl Stepper {
             .grains
             .par_iter()
             .zip(st.velocity_m_s.par_iter())
-            .position_first(|(gr, v)| {
-                !(gr.y_m.is_finite() && v.is_finite() && gr.x_m.is_finite())
-                    || v.abs() > bound
-                    || gr.y_m > height + gr.diameter_m
-                    || gr.x_m < -1e-12
-                    || gr.x_m > width + 1e-12
-            })?;
+            .position_first(|(gr, v)| Self::faulty(gr, *v, width, height, bound))?;
         let (gr, v) = (st.grains[i], st.velocity_m_s[i]);
         let d = gr.diameter_m;
         let (stable, basis) = if self.integrator == Integrator::Explicit {
