@@ -5,7 +5,7 @@ use super::observer::Observer;
 use super::schedule::Schedule;
 use super::setup::Setup;
 use super::state::State;
-use super::step::{advance_clock, clock_after, Interval, StepStart, Stepper};
+use super::step::{advance_clock, clock_after, IdealCache, Interval, StepStart, Stepper};
 use super::voidage::VoidageGrid;
 use crate::dynamics::Integrator;
 use crate::scenario::{SampleSpec, Scenario};
@@ -60,6 +60,11 @@ pub fn simulate(
     } else {
         grid.grain_volumes_m3(&st)
     };
+    let cache = if by_interval {
+        IdealCache::new(&stepper, &st)
+    } else {
+        IdealCache::default()
+    };
     let mut runs: Vec<(f64, u64)> = Vec::new();
     // The largest suspended speed after the last deposition (full physics), for the next step.
     let mut vmax: Option<f64> = None;
@@ -86,7 +91,7 @@ pub fn simulate(
             }
             let t0 = Instant::now();
             start.capture_all(&st);
-            let (end, moved) = stepper.ideal_interval(&mut st, setup, &runs);
+            let (end, moved) = stepper.ideal_interval(&mut st, setup, &runs, &cache);
             st.stages.free_update_s += t0.elapsed().as_secs_f64();
             match end {
                 Interval::Done => {

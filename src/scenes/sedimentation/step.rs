@@ -273,6 +273,7 @@ impl Stepper {
         st: &mut State,
         setup: &Setup,
         runs: &[(f64, u64)],
+        cache: &IdealCache,
     ) -> (Interval, u64) {
         const L: usize = 8;
         let floor = st.bed_height_m;
@@ -294,7 +295,8 @@ impl Stepper {
             .par_chunks_mut(n)
             .zip(st.velocity_m_s.par_chunks_mut(n))
             .zip(st.settled.par_chunks_mut(n))
-            .map(|((grains, speeds), settled)| {
+            .enumerate()
+            .map(|(ci, ((grains, speeds), settled))| {
                 if stopped.load(Ordering::Relaxed)
                     || fault.load(Ordering::Relaxed)
                     || crate::interrupt::requested()
@@ -304,19 +306,27 @@ impl Stepper {
                 }
                 let mut moved = 0u64;
                 let mut bad = false;
-                for ((grs, vs), sts) in grains
+                for (gi, ((grs, vs), sts)) in grains
                     .chunks_mut(L)
                     .zip(speeds.chunks_mut(L))
                     .zip(settled.chunks_mut(L))
+                    .enumerate()
                 {
+                    let first = ci * n + gi * L;
                     let l = grs.len();
                     let mut live = [false; L];
+                    for i in 0..l {
+                        let x = grs[i].x_m;
+                        bad |= !x.is_finite() || x < -1e-12 || x > width + 1e-12;
+                        live[i] = !sts[i];
+                    }
+                    if !live.iter().any(|&x| x) {
+                        continue;
+                    }
                     let (mut y, mut v, mut d) = ([0.0; L], [0.0; L], [0.0; L]);
                     let (mut m, mut w, mut k) = ([1.0; L], [0.0; L], [0.0; L]);
-                    for i in 0..l {
+                    for i in (0..l).filter(|&i| live[i]) {
                         let gr = &grs[i];
-                        live[i] = !sts[i];
-                        bad |= !gr.x_m.is_finite() || gr.x_m < -1e-12 || gr.x_m > width + 1e-12;
                         (y[i], v[i], d[i]) = (gr.y_m, vs[i], gr.diameter_m);
                         m[i] = sphere_mass_kg(d[i], rho_p);
                         w[i] = -(m[i] - sphere_mass_kg(d[i], rho_f)) * g;
@@ -327,9 +337,13 @@ impl Stepper {
                             break;
                         }
                         let (mut c1, mut c2) = ([0.0; L], [0.0; L]);
-                        for i in 0..l {
-                            let (phi1, phi2) = phi12(-k[i] / m[i] * dt);
-                            (c1[i], c2[i]) = (dt * phi1, dt * dt * phi2);
+                        for i in (0..l).filter(|&i| live[i]) {
+                            (c1[i], c2[i]) = if dt == cache.dt_s {
+                                cache.factors[first + i]
+                            } else {
+                                let (phi1, phi2) = phi12(-k[i] / m[i] * dt);
+                                (dt * phi1, dt * dt * phi2)
+                            };
                         }
                         for _ in 0..count {
                             for i in 0..L {
@@ -493,6 +507,39 @@ impl Stepper {
             stable_dt_s: stable,
             dt_basis: basis,
         })
+    }
+}
+
+/// The factors dt φ₁ and dt² φ₂ of the exponential update of every grain at one step size
+/// (ideal-Stokes: the largest step, which most steps take), computed once per run for
+/// [`Stepper::ideal_interval`].
+#[derive(Clone, Debug, Default)]
+pub struct IdealCache {
+    /// The step they are for, s (0: none; every step is longer).
+    pub dt_s: f64,
+    /// (dt φ₁, dt² φ₂) of each grain, s and s².
+    pub factors: Vec<(f64, f64)>,
+}
+
+impl IdealCache {
+    /// The factors of every grain of `st` at the largest step of `stepper` (Stokes drag).
+    pub fn new(stepper: &Stepper, st: &State) -> Self {
+        let stokes = DragLaw::Stokes {
+            viscosity_pa_s: stepper.viscosity_pa_s,
+        };
+        let dt = stepper.max_step_s;
+        let factors = st
+            .grains
+            .par_iter()
+            .map(|gr| {
+                let d = gr.diameter_m;
+                let m = sphere_mass_kg(d, stepper.grain_density_kg_m3);
+                let k = SphereDrag::new(stokes, d, stepper.fluid_density_kg_m3).slope_n_s_m(0.0);
+                let (phi1, phi2) = phi12(-k / m * dt);
+                (dt * phi1, dt * dt * phi2)
+            })
+            .collect();
+        Self { dt_s: dt, factors }
     }
 }
 
