@@ -323,6 +323,7 @@ impl Stepper {
                     if !live.iter().any(|&x| x) {
                         continue;
                     }
+                    let was_live = live;
                     let (mut y, mut v, mut d) = ([0.0; L], [0.0; L], [0.0; L]);
                     let (mut m, mut w, mut k) = ([1.0; L], [0.0; L], [0.0; L]);
                     for i in (0..l).filter(|&i| live[i]) {
@@ -381,7 +382,7 @@ impl Stepper {
                             break;
                         }
                     }
-                    for i in 0..l {
+                    for i in (0..l).filter(|&i| was_live[i]) {
                         grs[i].y_m = y[i];
                         vs[i] = v[i];
                     }
