@@ -87,15 +87,20 @@ fn run_all(ps: &[Prepared], dt: f64, integ: Integrator) -> Result<(f64, u64), Er
     Ok((t0.elapsed().as_secs_f64(), steps))
 }
 
-/// Runs the benchmarks; `root` is the project folder (for the scenario files).
-pub fn run(root: &Path, quick: bool) -> Result<Vec<Figure>, Error> {
+/// Runs the benchmarks of `opts`; `root` is the project folder (for the scenario files).
+pub fn run(root: &Path, opts: Options) -> Result<Vec<Figure>, Error> {
+    let quick = opts.quick;
     let mut out = Vec::new();
+    if opts.sedimentation_only {
+        sedimentation(root, quick, opts.grains, &mut out)?;
+        return Ok(out);
+    }
     stokes_step(quick, &mut out);
     bingham_step(quick, &mut out);
     let ps = valentik(root)?;
     valentik_dt(&ps, quick, &mut out)?;
     paste_drops(root, &mut out)?;
-    sedimentation(root, quick, &mut out)?;
+    sedimentation(root, quick, opts.grains, &mut out)?;
     transient_step(root, quick, &mut out)?;
     if !quick {
         valentik_sweep(&ps, &mut out)?;
@@ -245,26 +250,86 @@ fn paste_drops(root: &Path, out: &mut Vec<Figure>) -> Result<(), Error> {
     Ok(())
 }
 
-/// The sedimentation cylinder, sample 5, 1440 min, ideal-Stokes and full physics.
-fn sedimentation(root: &Path, quick: bool, out: &mut Vec<Figure>) -> Result<(), Error> {
+/// What `settle bench` runs.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Options {
+    /// Shorter loops and no full sweep (a quick smoke run).
+    pub quick: bool,
+    /// Representative grains of the sedimentation benchmarks (default 20 000 with `quick`, else
+    /// 100 000).
+    pub grains: Option<usize>,
+    /// Only the sedimentation benchmarks.
+    pub sedimentation_only: bool,
+}
+
+/// Peak and current resident set size of this process, bytes (`VmHWM`, `VmRSS` of
+/// /proc/self/status; None where there is no /proc).
+fn rss_bytes() -> Option<(f64, f64)> {
+    let s = std::fs::read_to_string("/proc/self/status").ok()?;
+    let kb = |key: &str| -> Option<f64> {
+        let line = s.lines().find(|l| l.starts_with(key))?;
+        line.split_whitespace().nth(1)?.parse::<f64>().ok()
+    };
+    Some((kb("VmHWM:")? * 1024.0, kb("VmRSS:")? * 1024.0))
+}
+
+/// CPU time of this process so far (user + system, all threads), s: fields 14 and 15 of
+/// /proc/self/stat in clock ticks of 1/100 s (USER_HZ). None where there is no /proc.
+fn cpu_time_s() -> Option<f64> {
+    let s = std::fs::read_to_string("/proc/self/stat").ok()?;
+    let rest = s.rsplit_once(") ")?.1;
+    let f: Vec<&str> = rest.split_whitespace().collect();
+    let ticks = f.get(11)?.parse::<f64>().ok()? + f.get(12)?.parse::<f64>().ok()?;
+    Some(ticks / 100.0)
+}
+
+/// Resets the peak resident set size of this process to the current one (Linux ≥ 4.0: `5` to
+/// /proc/self/clear_refs). False where that is not possible.
+fn reset_peak_rss() -> bool {
+    std::fs::write("/proc/self/clear_refs", "5").is_ok()
+}
+
+/// The sedimentation cylinder, sample 5, 1440 min, at `grains` representative grains (default
+/// 20 000 quick, 100 000 otherwise): ideal-Stokes, full physics without contacts, and (not
+/// quick) full physics as the scenario has it (contacts and lubrication). Each gives its wall
+/// time, the grain-steps of the free update per second (of the free update's own wall time and
+/// of the whole run's), the wall time of every stage of the step loop, and the peak resident
+/// set size over the run per grain (the peak is reset before the setup; no snapshots).
+fn sedimentation(
+    root: &Path,
+    quick: bool,
+    grains: Option<usize>,
+    out: &mut Vec<Figure>,
+) -> Result<(), Error> {
     // 5. Sedimentation cylinder, sample 5, 1440 min.
-    let n = if quick { "20000" } else { "100000" };
-    for physics in ["ideal-stokes", "full"] {
-        if quick && physics == "full" {
+    let n = grains.unwrap_or(if quick { 20_000 } else { 100_000 });
+    for (label, physics, contacts) in [
+        ("ideal-stokes", "ideal-stokes", None),
+        ("full-nocontacts", "full", Some(false)),
+        ("full", "full", Some(true)),
+    ] {
+        if quick && label == "full" {
             continue;
         }
-        let ov = [
+        let mut ov = vec![
             format!("physics={physics}"),
             format!("sample.particles={n}"),
             "sample.snapshot_times_s=[]".to_string(),
         ];
+        if contacts == Some(false) {
+            ov.push("sample.contacts=false".into());
+            ov.push("sample.lubrication=false".into());
+        }
         let p = prepare(
             &root.join("scenarios/sedimentation_sample5.toml"),
             None,
             &ov,
         )
         .map_err(Error::BadInput)?;
+        let peak_reset = reset_peak_rss();
+        let rss0 = rss_bytes();
         let su = crate::scenes::sedimentation::setup(&p.scenario, &p.path)?;
+        let cpu0 = cpu_time_s();
         let t0 = Instant::now();
         let st = crate::scenes::sedimentation::simulate(
             &p.scenario,
@@ -273,34 +338,86 @@ fn sedimentation(root: &Path, quick: bool, out: &mut Vec<Figure>) -> Result<(), 
             &[],
             &mut (),
         );
-        let name = format!("sedimentation_sample5_{physics}");
-        out.push(fig(&name, "grains", su.grains.len() as f64, "grains"));
-        out.push(fig(
-            &name,
-            "wall_time_1440min_s",
-            t0.elapsed().as_secs_f64(),
-            "s",
-        ));
+        let wall = t0.elapsed().as_secs_f64();
+        let cpu1 = cpu_time_s();
+        let rss1 = rss_bytes();
+        let name = format!("sedimentation_sample5_{label}");
+        let ng = su.grains.len() as f64;
+        let sg = &st.stages;
+        out.push(fig(&name, "grains", ng, "grains"));
+        out.push(fig(&name, "wall_time_1440min_s", wall, "s"));
+        if let (Some(c0), Some(c1)) = (cpu0, cpu1) {
+            // On a shared machine the wall time counts the other processes too.
+            out.push(fig(&name, "cpu_time_1440min_s", c1 - c0, "s"));
+        }
         out.push(fig(&name, "steps", st.steps as f64, "steps"));
+        // N × steps: the grain-steps of an update that visits every grain at every step (the
+        // figure of issue 17's 5.5e7 grain-steps/s).
         out.push(fig(
             &name,
-            "contact_pairs",
-            st.contacts.pairs as f64,
-            "pairs",
+            "all_grains_times_steps_per_s",
+            ng * st.steps as f64 / wall.max(1e-9),
+            "grain-steps/s",
         ));
         out.push(fig(
             &name,
-            "contact_grains_handed",
-            st.contacts.grains as f64,
-            "grains",
+            "free_update_grain_steps",
+            sg.grain_steps as f64,
+            "grain-steps",
         ));
         out.push(fig(
             &name,
-            "contact_rapier_steps",
-            st.contacts.rapier_steps as f64,
-            "steps",
+            "free_update_grain_steps_per_s",
+            sg.grain_steps as f64 / sg.free_update_s.max(1e-9),
+            "grain-steps/s",
         ));
-        out.push(fig(&name, "contact_wall_time_s", st.contacts.wall_s, "s"));
+        out.push(fig(
+            &name,
+            "run_grain_steps_per_s",
+            sg.grain_steps as f64 / wall.max(1e-9),
+            "grain-steps/s",
+        ));
+        for (q, v) in [
+            ("stage_step_size_s", sg.step_size_s),
+            ("stage_voidage_s", sg.voidage_s),
+            ("stage_free_update_s", sg.free_update_s),
+            ("stage_fault_scan_s", sg.fault_scan_s),
+            ("stage_contacts_s", sg.contacts_s),
+            ("stage_deposit_events_s", sg.deposit_events_s),
+        ] {
+            out.push(fig(&name, q, v, "s"));
+        }
+        if let (true, Some((_, before)), Some((peak, _))) = (peak_reset, rss0, rss1) {
+            out.push(fig(&name, "peak_rss_bytes", peak, "B"));
+            out.push(fig(&name, "peak_rss_bytes_per_grain", peak / ng, "B/grain"));
+            out.push(fig(
+                &name,
+                "peak_rss_above_start_bytes_per_grain",
+                (peak - before) / ng,
+                "B/grain",
+            ));
+        }
+        if contacts == Some(true) {
+            out.push(fig(
+                &name,
+                "contact_pairs",
+                st.contacts.pairs as f64,
+                "pairs",
+            ));
+            out.push(fig(
+                &name,
+                "contact_grains_handed",
+                st.contacts.grains as f64,
+                "grains",
+            ));
+            out.push(fig(
+                &name,
+                "contact_rapier_steps",
+                st.contacts.rapier_steps as f64,
+                "steps",
+            ));
+            out.push(fig(&name, "contact_wall_time_s", st.contacts.wall_s, "s"));
+        }
     }
 
     Ok(())

@@ -77,6 +77,14 @@ enum Command {
         /// Shorter loops and no full sweep (a quick smoke run).
         #[arg(long)]
         quick: bool,
+        /// Representative grains of the sedimentation benchmarks (default 20000 with --quick,
+        /// else 100000).
+        #[arg(long)]
+        grains: Option<usize>,
+        /// Only the sedimentation benchmarks (grain-steps per second, stage wall times, peak
+        /// memory per grain).
+        #[arg(long)]
+        sedimentation_only: bool,
     },
     /// Time-step sensitivity sweep: run every (integrator, dt) and compare.
     ///
@@ -251,8 +259,18 @@ pub fn main() -> i32 {
                 }
             }
         }
-        Command::Bench { out, quick } => {
-            let figs = match crate::bench::project_root().and_then(|r| crate::bench::run(&r, quick))
+        Command::Bench {
+            out,
+            quick,
+            grains,
+            sedimentation_only,
+        } => {
+            let opts = crate::bench::Options {
+                quick,
+                grains,
+                sedimentation_only,
+            };
+            let figs = match crate::bench::project_root().and_then(|r| crate::bench::run(&r, opts))
             {
                 Ok(f) => f,
                 Err(e) => {

@@ -149,8 +149,9 @@ fn backward_euler<const D: usize>(
     }
 }
 
-/// φ₁(z) = (e^z − 1)/z and φ₂(z) = (e^z − 1 − z)/z², accurate for small |z| (z ≤ 0 here).
-fn phi12(z: f64) -> (f64, f64) {
+/// φ₁(z) = (e^z − 1)/z and φ₂(z) = (e^z − 1 − z)/z², accurate for small |z| (z ≤ 0 here): the
+/// factors of the exponential update (Hochbruck & Ostermann 2010, Acta Numerica 19, §2.1).
+pub fn phi12(z: f64) -> (f64, f64) {
     if z.abs() < 1e-3 {
         let phi1 = 1.0 + z / 2.0 + z * z / 6.0 + z * z * z / 24.0;
         let phi2 = 0.5 + z / 6.0 + z * z / 24.0 + z * z * z / 120.0;

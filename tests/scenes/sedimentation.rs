@@ -190,3 +190,50 @@ fn an_explicit_blow_up_stops_the_run_instead_of_filling_the_bed() {
         "nothing written"
     );
 }
+
+/// ideal-Stokes with the exponential integrator makes the steps between two events at once,
+/// grain by grain (`Stepper::ideal_interval`); it must give the state of the step loop (free
+/// update, deposition, clock after every step) bit for bit: every height, speed and settled flag,
+/// the time and the step count.
+#[test]
+fn ideal_stokes_intervals_give_the_step_loop_bit_for_bit() {
+    use settle::scenes::sedimentation::schedule::Schedule;
+    use settle::scenes::sedimentation::step::{advance_clock, Stepper};
+    use settle::scenes::sedimentation::voidage::VoidageGrid;
+    let ov: Vec<String> = vec![
+        "physics=ideal-stokes".into(),
+        "sample.particles=3000".into(),
+        "time.end_s=7200.0".into(),
+        "sample.snapshot_times_s=[]".into(),
+    ];
+    let p = prepare(Path::new("scenarios/sedimentation_sample2.toml"), None, &ov).unwrap();
+    let su = setup(&p.scenario, &p.path).unwrap();
+    let fast = simulate(&p.scenario, &su, State::initial(&su), &[], &mut ());
+    // The step loop, stage by stage.
+    let s = &p.scenario;
+    let sm = &su.spec.sample;
+    let mut st = State::initial(&su);
+    let stepper = Stepper::new(s, sm, &su, &st);
+    let grid = VoidageGrid::new(&su, sm.voidage_cell_m, true, stepper.fluid_density_kg_m3);
+    let schedule = Schedule::new(s, sm, &[]);
+    while schedule.running(&st) {
+        let next = schedule.next_event_s(&st);
+        let dt = stepper.step_size_s(&st, next, &[]);
+        let (_, suspect) = stepper.free_update(&mut st, &su, &grid, dt).unwrap();
+        assert!(!suspect);
+        stepper.deposit(&mut st);
+        advance_clock(&mut st, dt, next);
+        schedule.dispatch(&mut st, &mut ());
+    }
+    assert_eq!((fast.time_s, fast.steps), (st.time_s, st.steps));
+    assert!(st.settled.iter().any(|&x| x) && st.settled.iter().any(|&x| !x));
+    for (i, (a, b)) in fast.grains.iter().zip(&st.grains).enumerate() {
+        assert_eq!(a.y_m.to_bits(), b.y_m.to_bits(), "grain {i}: height");
+        assert_eq!(
+            fast.velocity_m_s[i].to_bits(),
+            st.velocity_m_s[i].to_bits(),
+            "grain {i}: speed"
+        );
+        assert_eq!(fast.settled[i], st.settled[i], "grain {i}: settled");
+    }
+}

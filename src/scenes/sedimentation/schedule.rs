@@ -39,7 +39,17 @@ impl Schedule {
 
     /// True while `st` has not reached the end time.
     pub fn running(&self, st: &State) -> bool {
-        st.time_s < self.end_s * (1.0 - 1e-12)
+        self.running_at(st.time_s)
+    }
+
+    /// True while time `t_s` has not reached the end time.
+    pub fn running_at(&self, t_s: f64) -> bool {
+        t_s < self.end_s * (1.0 - 1e-12)
+    }
+
+    /// True when an event at `event_s` is reached at time `t_s` (within a relative 1e-12).
+    pub fn reached(event_s: f64, t_s: f64) -> bool {
+        event_s <= t_s * (1.0 + 1e-12)
     }
 
     /// The next time to land on from the cursors of `st`: the earliest pending record, snapshot
@@ -56,7 +66,7 @@ impl Schedule {
     /// Hands `st` to `obs` for every event it has reached, in the order records, snapshots,
     /// readings, and advances the cursors of `st`.
     pub fn dispatch(&self, st: &mut State, obs: &mut impl Observer) {
-        let reached = |x: f64, t: f64| x <= t * (1.0 + 1e-12);
+        let reached = Self::reached;
         let [mut ti, mut si, mut ri] = st.cursor;
         while ti < self.records.len() && reached(self.records[ti], st.time_s) {
             obs.record(st);

@@ -5,9 +5,11 @@ use super::observer::Observer;
 use super::schedule::Schedule;
 use super::setup::Setup;
 use super::state::State;
-use super::step::{advance_clock, StepStart, Stepper};
+use super::step::{advance_clock, clock_after, IdealCache, Interval, StepStart, Stepper};
 use super::voidage::VoidageGrid;
+use crate::dynamics::Integrator;
 use crate::scenario::{SampleSpec, Scenario};
+use std::time::Instant;
 
 /// Runs scenario `s` (prepared as `setup`, whose spec gives the `[sample]` settings) from
 /// `state` (the initial one, [`State::initial`], or one saved by a checkpoint) to `time.end_s`,
@@ -20,6 +22,11 @@ use crate::scenario::{SampleSpec, Scenario};
 ///
 /// Each step: schedule (next event) → voidage grid and step size → free update → fault scan →
 /// contact stage (pairs, clusters, their solve) → deposition → clock and events.
+///
+/// In ideal-Stokes with the exponential integrator, the grains do not interact and every step
+/// size is known in advance, so the steps up to the next event are made at once, grain by grain
+/// ([`Stepper::ideal_interval`], the same arithmetic in the same order: the same result bit for
+/// bit); `obs` is then told once per interval, at its end.
 pub fn simulate(
     s: &Scenario,
     setup: &Setup,
@@ -42,28 +49,108 @@ pub fn simulate(
     let with_contacts = !stepper.ideal && sm.contacts;
     let mut contacts = ContactStage::new(sm, setup, &stepper);
     let mut start = StepStart::default();
+    let mut by_interval = stepper.ideal && stepper.integrator == Integrator::Exponential;
+    let speeds = if stepper.ideal {
+        Vec::new()
+    } else {
+        stepper.stokes_speeds_m_s(&st)
+    };
+    let volumes = if stepper.ideal {
+        Vec::new()
+    } else {
+        grid.grain_volumes_m3(&st)
+    };
+    let cache = if by_interval {
+        IdealCache::new(&stepper, &st)
+    } else {
+        IdealCache::default()
+    };
+    let mut runs: Vec<(f64, u64)> = Vec::new();
+    // The largest suspended speed after the last deposition (full physics), for the next step.
+    let mut vmax: Option<f64> = None;
     while schedule.running(&st) {
         if crate::interrupt::requested() {
             st.interrupted = true;
             break;
         }
         let next_event = schedule.next_event_s(&st);
-        let dt = stepper.step_size_s(&st, next_event);
+        if by_interval {
+            // The steps up to the event (or the end), as the step loop below would take them.
+            runs.clear();
+            let mut t = st.time_s;
+            loop {
+                let dt = stepper.clock_step_s(t, next_event);
+                match runs.last_mut() {
+                    Some((d, c)) if *d == dt => *c += 1,
+                    _ => runs.push((dt, 1)),
+                }
+                t = clock_after(t, dt, next_event);
+                if Schedule::reached(next_event, t) || !schedule.running_at(t) {
+                    break;
+                }
+            }
+            let t0 = Instant::now();
+            start.capture_all(&st);
+            let (end, moved) = stepper.ideal_interval(&mut st, setup, &runs, &cache);
+            st.stages.free_update_s += t0.elapsed().as_secs_f64();
+            match end {
+                Interval::Done => {
+                    st.stages.grain_steps += moved;
+                    let t0 = Instant::now();
+                    for &(dt, count) in &runs {
+                        for _ in 0..count {
+                            advance_clock(&mut st, dt, next_event);
+                        }
+                    }
+                    schedule.dispatch(&mut st, obs);
+                    obs.step(&st);
+                    st.stages.deposit_events_s += t0.elapsed().as_secs_f64();
+                    continue;
+                }
+                Interval::Interrupted => {
+                    start.rewind_all(&mut st);
+                    st.interrupted = true;
+                    break;
+                }
+                Interval::Fault => {
+                    // Redo the interval step by step: the fault scan reports the grain.
+                    start.rewind_all(&mut st);
+                    by_interval = false;
+                }
+            }
+        }
+        let t0 = Instant::now();
+        let dt = match vmax {
+            Some(v) => stepper.step_with_vmax_s(st.time_s, next_event, v),
+            None => stepper.step_size_s(&st, next_event, &speeds),
+        };
+        let t1 = Instant::now();
+        st.stages.step_size_s += (t1 - t0).as_secs_f64();
         if !stepper.ideal {
-            grid.fill(&st);
+            grid.fill(&st, &volumes);
         }
         start.capture(&st);
-        if !stepper.free_update(&mut st, &grid, dt) {
+        let t2 = Instant::now();
+        st.stages.voidage_s += (t2 - t1).as_secs_f64();
+        let Some((moved, suspect)) = stepper.free_update(&mut st, setup, &grid, dt) else {
             // Interrupted within the step: back to its start, which stays resumable.
             start.rewind(&mut st);
             st.interrupted = true;
             break;
+        };
+        st.stages.grain_steps += moved;
+        let t3 = Instant::now();
+        st.stages.free_update_s += (t3 - t2).as_secs_f64();
+        // Faults of the free update (the contact solve's clusters the engine checks itself),
+        // tested grain by grain in the update; the scan names the first.
+        if suspect {
+            if let Some(u) = stepper.grain_fault(&st, setup, dt, Some(stepper.speed_bound_m_s)) {
+                st.fault = Some(u);
+                break;
+            }
         }
-        // Faults of the free update (the contact solve's clusters the engine checks itself).
-        if let Some(u) = stepper.grain_fault(&st, setup, dt, Some(stepper.speed_bound_m_s)) {
-            st.fault = Some(u);
-            break;
-        }
+        let t4 = Instant::now();
+        st.stages.fault_scan_s += (t4 - t3).as_secs_f64();
         if with_contacts {
             match contacts.run(&mut st, &start, &grid, dt) {
                 StageEnd::Interrupted => {
@@ -81,10 +168,17 @@ pub fn simulate(
                 StageEnd::Done { moved: false } => {}
             }
         }
-        stepper.deposit(&mut st);
+        let t5 = Instant::now();
+        st.stages.contacts_s += (t5 - t4).as_secs_f64();
+        if stepper.ideal {
+            stepper.deposit(&mut st);
+        } else {
+            vmax = Some(stepper.deposit_vmax(&mut st, &speeds));
+        }
         advance_clock(&mut st, dt, next_event);
         schedule.dispatch(&mut st, obs);
         obs.step(&st);
+        st.stages.deposit_events_s += t5.elapsed().as_secs_f64();
     }
     st
 }

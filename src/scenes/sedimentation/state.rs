@@ -52,6 +52,10 @@ pub struct State {
     /// nothing).
     #[serde(skip)]
     pub fault: Option<crate::dynamics::Unstable>,
+    /// Where this process's wall time went, by stage, and the grain-steps of the free update
+    /// (not checkpointed: it measures the machine, for `settle bench`).
+    #[serde(skip)]
+    pub stages: StageTimes,
 }
 
 impl State {
@@ -70,8 +74,31 @@ impl State {
             cursor: [0; 3],
             contacts: ContactStats::default(),
             fault: None,
+            stages: StageTimes::default(),
         }
     }
+}
+
+/// Wall time of the stages of the step loop ([`super::simulate`](fn@super::simulate)), s, and the
+/// work of the free update: what `settle bench` reports (never a CSV output of a run).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StageTimes {
+    /// Grain-steps of the free update: suspended grains advanced, summed over the steps (in
+    /// ideal-Stokes, the steps a grain takes within an interval between two events, advanced
+    /// all at once, count one each).
+    pub grain_steps: u64,
+    /// Step-size scan, s.
+    pub step_size_s: f64,
+    /// Voidage grid fill, s.
+    pub voidage_s: f64,
+    /// Free update (with the in-line fault checks of the ideal-Stokes intervals), s.
+    pub free_update_s: f64,
+    /// Fault scan after the free update, s.
+    pub fault_scan_s: f64,
+    /// Contact stage (pairs, clusters, solves), s.
+    pub contacts_s: f64,
+    /// Deposition, clock and events (records, snapshots, readings, observer), s.
+    pub deposit_events_s: f64,
 }
 
 /// How much the contact and lubrication pipeline did over a run.

@@ -4,9 +4,9 @@
 use super::setup::Setup;
 use super::state::State;
 use super::voidage::VoidageGrid;
-use crate::dynamics::{advance, DtBasis, Integrator, Unstable};
+use crate::dynamics::{advance, phi12, DtBasis, Integrator, Unstable};
 use crate::fluid::newtonian::{stokes_response_time_s, stokes_terminal_velocity_m_s};
-use crate::fluid::{sphere_mass_kg, sphere_volume_m3};
+use crate::fluid::{sphere_mass_kg, sphere_volume_m3, DragLaw, SphereDrag};
 use crate::scenario::{Physics, SampleSpec, Scenario};
 use nalgebra::SVector;
 use rayon::prelude::*;
@@ -26,6 +26,8 @@ pub struct StepStart {
     pub y_m: Vec<f64>,
     /// Vertical velocity of each grain, m/s.
     pub v_m_s: Vec<f64>,
+    /// Settled flag of each grain (kept only by [`StepStart::capture_all`]).
+    pub settled: Vec<bool>,
 }
 
 impl StepStart {
@@ -35,6 +37,21 @@ impl StepStart {
         self.y_m.extend(st.grains.iter().map(|g| g.y_m));
         self.v_m_s.clear();
         self.v_m_s.extend_from_slice(&st.velocity_m_s);
+    }
+
+    /// Keeps the heights, speeds and settled flags of `st` (before an ideal-Stokes interval,
+    /// which deposits grains as it goes).
+    pub fn capture_all(&mut self, st: &State) {
+        self.capture(st);
+        self.settled.clear();
+        self.settled.extend_from_slice(&st.settled);
+    }
+
+    /// Puts every grain of `st` back at the heights, speeds and settled flags kept by
+    /// [`StepStart::capture_all`].
+    pub fn rewind_all(&self, st: &mut State) {
+        self.rewind(st);
+        st.settled.copy_from_slice(&self.settled);
     }
 
     /// Puts every grain of `st` back at the captured heights and speeds.
@@ -111,23 +128,50 @@ impl Stepper {
         )
     }
 
+    /// The Stokes terminal speed of every grain of `st` ([`Stepper::stokes_speed_m_s`]), m/s:
+    /// computed once per run for [`Stepper::step_size_s`].
+    pub fn stokes_speeds_m_s(&self, st: &State) -> Vec<f64> {
+        st.grains
+            .iter()
+            .map(|gr| self.stokes_speed_m_s(gr.diameter_m))
+            .collect()
+    }
+
+    /// The step from time `t_s` to `next_event_s` before any bound from the grains: up to the
+    /// event, at most `max_step_s`, at least 1e-12 s.
+    pub fn clock_step_s(&self, t_s: f64, next_event_s: f64) -> f64 {
+        (next_event_s - t_s).min(self.max_step_s).max(1e-12)
+    }
+
     /// The step from `st`: up to `next_event_s`, at most `max_step_s`; full physics also keeps
     /// the fastest suspended grain (its speed, or its Stokes terminal speed if larger, for grains
     /// still accelerating) within half a voidage cell per step. At least 1e-12 s.
-    pub fn step_size_s(&self, st: &State, next_event_s: f64) -> f64 {
-        let mut dt = (next_event_s - st.time_s).min(self.max_step_s);
-        if !self.ideal {
-            let vmax = st
-                .velocity_m_s
-                .iter()
-                .zip(&st.settled)
-                .zip(&st.grains)
+    /// `stokes_speeds_m_s` holds each grain's Stokes terminal speed
+    /// ([`Stepper::stokes_speeds_m_s`]). The largest speed is searched in parallel (a maximum
+    /// does not depend on the order).
+    pub fn step_size_s(&self, st: &State, next_event_s: f64, stokes_speeds_m_s: &[f64]) -> f64 {
+        let vmax = if self.ideal {
+            0.0
+        } else {
+            st.velocity_m_s
+                .par_iter()
+                .zip(st.settled.par_iter())
+                .zip(stokes_speeds_m_s.par_iter())
+                .with_min_len(INTERRUPT_CHECK_GRAINS)
                 .filter(|((_, s), _)| !**s)
-                .map(|((v, _), gr)| v.abs().max(self.stokes_speed_m_s(gr.diameter_m)))
-                .fold(0.0, f64::max);
-            if vmax > 0.0 {
-                dt = dt.min(0.5 * self.cell_m / vmax);
-            }
+                .map(|((v, _), &vs)| v.abs().max(vs))
+                .reduce(|| 0.0, f64::max)
+        };
+        self.step_with_vmax_s(st.time_s, next_event_s, vmax)
+    }
+
+    /// The step of [`Stepper::step_size_s`] from time `t_s` given the largest speed `vmax_m_s`
+    /// of the suspended grains (each the larger of its speed and its Stokes terminal speed),
+    /// m/s, as [`Stepper::deposit_vmax`] returns it.
+    pub fn step_with_vmax_s(&self, t_s: f64, next_event_s: f64, vmax_m_s: f64) -> f64 {
+        let mut dt = (next_event_s - t_s).min(self.max_step_s);
+        if !self.ideal && vmax_m_s > 0.0 {
+            dt = dt.min(0.5 * self.cell_m / vmax_m_s);
         }
         dt.max(1e-12)
     }
@@ -138,8 +182,20 @@ impl Stepper {
     /// [`Stepper::deposit`]). In parallel, by chunks of [`INTERRUPT_CHECK_GRAINS`] grains: every
     /// grain's update is independent. Returns false if an interrupt was requested
     /// ([`crate::interrupt::requested`], checked before each chunk): the update is then
-    /// incomplete and the caller must rewind the step ([`StepStart::rewind`]).
-    pub fn free_update(&self, st: &mut State, grid: &VoidageGrid, dt_s: f64) -> bool {
+    /// incomplete and the caller must rewind the step ([`StepStart::rewind`]). Otherwise returns
+    /// the number of grains advanced, and whether any grain (suspended or not) now fails the
+    /// test of [`Stepper::grain_fault`] with the bound `speed_bound_m_s` in the cylinder of
+    /// `setup` (checked here as the grains are updated; `grain_fault` then names the first).
+    pub fn free_update(
+        &self,
+        st: &mut State,
+        setup: &Setup,
+        grid: &VoidageGrid,
+        dt_s: f64,
+    ) -> Option<(u64, bool)> {
+        let (width, height) = (setup.width_m, setup.height_m);
+        let bound = self.speed_bound_m_s;
+        let suspect = AtomicBool::new(false);
         let floor = st.bed_height_m;
         let (g, rho_p, rho_f) = (
             self.gravity_m_s2,
@@ -149,21 +205,23 @@ impl Stepper {
         let integrator = self.integrator;
         let n = INTERRUPT_CHECK_GRAINS;
         let stopped = AtomicBool::new(false);
-        st.grains
+        let moved = st
+            .grains
             .par_chunks_mut(n)
             .zip(st.velocity_m_s.par_chunks_mut(n))
             .zip(st.settled.par_chunks(n))
-            .for_each(|((grains, speeds), settled)| {
+            .map(|((grains, speeds), settled)| {
                 if stopped.load(Ordering::Relaxed) || crate::interrupt::requested() {
                     stopped.store(true, Ordering::Relaxed);
-                    return;
+                    return 0;
                 }
-                for ((gr, v), _) in grains
-                    .iter_mut()
-                    .zip(speeds.iter_mut())
-                    .zip(settled)
-                    .filter(|(_, s)| !**s)
-                {
+                let mut moved = 0u64;
+                let mut bad = false;
+                for ((gr, v), &s) in grains.iter_mut().zip(speeds.iter_mut()).zip(settled) {
+                    if s {
+                        bad |= Self::faulty(gr, *v, width, height, bound);
+                        continue;
+                    }
                     let d = gr.diameter_m;
                     let drag = grid.drag_at(d, gr.x_m, gr.y_m);
                     let m = sphere_mass_kg(d, rho_p);
@@ -174,9 +232,176 @@ impl Stepper {
                     if gr.y_m - 0.5 * d <= floor {
                         gr.y_m = floor + 0.5 * d;
                     }
+                    moved += 1;
+                    bad |= Self::faulty(gr, *v, width, height, bound);
                 }
-            });
-        !stopped.into_inner()
+                if bad {
+                    suspect.store(true, Ordering::Relaxed);
+                }
+                moved
+            })
+            .sum::<u64>();
+        (!stopped.into_inner()).then_some((moved, suspect.into_inner()))
+    }
+
+    /// The test of [`Stepper::grain_fault`] on one grain of speed `v` (m/s) in a cylinder of
+    /// `width` × `height` (m) with speed bound `bound` (m/s).
+    fn faulty(gr: &crate::sample::Grain, v: f64, width: f64, height: f64, bound: f64) -> bool {
+        !(gr.y_m.is_finite() && v.is_finite() && gr.x_m.is_finite())
+            || v.abs() > bound
+            || gr.y_m > height + gr.diameter_m
+            || gr.x_m < -1e-12
+            || gr.x_m > width + 1e-12
+    }
+
+    /// ideal-Stokes with the exponential integrator: advances every suspended grain of `st`
+    /// through all the steps of an interval between two events at once, `runs` giving the steps
+    /// in order as (dt, count) pairs, s. The result is bit for bit that of the step loop
+    /// ([`Stepper::free_update`], [`Stepper::grain_fault`], [`Stepper::deposit`] after each
+    /// step): Stokes drag is linear, so the exponential update (`crate::dynamics`, exact for
+    /// linear drag) is done here with the same operations, but for one grain after another, its
+    /// φ-functions computed once per distinct dt and its state kept in registers; in ideal-Stokes
+    /// the grains do not interact and the bed does not rise, so every grain's path is its own.
+    /// Grains are taken eight at a time (independent chains the processor overlaps), in parallel
+    /// by chunks of [`INTERRUPT_CHECK_GRAINS`]. Grains deposit on the bed as they reach it.
+    /// The clock is not advanced (see [`advance_clock`]). Returns what stopped the interval and
+    /// the grain-steps made; on anything but [`Interval::Done`] the caller must rewind
+    /// ([`StepStart::rewind_all`]): on a fault (a grain the fault scan would report) the step
+    /// loop redoes the interval step by step to report it.
+    pub fn ideal_interval(
+        &self,
+        st: &mut State,
+        setup: &Setup,
+        runs: &[(f64, u64)],
+        cache: &IdealCache,
+    ) -> (Interval, u64) {
+        const L: usize = 8;
+        let floor = st.bed_height_m;
+        let (g, rho_p, rho_f) = (
+            self.gravity_m_s2,
+            self.grain_density_kg_m3,
+            self.fluid_density_kg_m3,
+        );
+        let (width, height) = (setup.width_m, setup.height_m);
+        let bound = self.speed_bound_m_s;
+        let stokes = DragLaw::Stokes {
+            viscosity_pa_s: self.viscosity_pa_s,
+        };
+        let n = INTERRUPT_CHECK_GRAINS;
+        let stopped = AtomicBool::new(false);
+        let fault = AtomicBool::new(false);
+        let moved = st
+            .grains
+            .par_chunks_mut(n)
+            .zip(st.velocity_m_s.par_chunks_mut(n))
+            .zip(st.settled.par_chunks_mut(n))
+            .enumerate()
+            .map(|(ci, ((grains, speeds), settled))| {
+                if stopped.load(Ordering::Relaxed)
+                    || fault.load(Ordering::Relaxed)
+                    || crate::interrupt::requested()
+                {
+                    stopped.store(true, Ordering::Relaxed);
+                    return 0;
+                }
+                let mut moved = 0u64;
+                let mut bad = false;
+                for (gi, ((grs, vs), sts)) in grains
+                    .chunks_mut(L)
+                    .zip(speeds.chunks_mut(L))
+                    .zip(settled.chunks_mut(L))
+                    .enumerate()
+                {
+                    let first = ci * n + gi * L;
+                    let l = grs.len();
+                    let mut live = [false; L];
+                    for i in 0..l {
+                        let x = grs[i].x_m;
+                        bad |= !x.is_finite() || x < -1e-12 || x > width + 1e-12;
+                        live[i] = !sts[i];
+                    }
+                    if !live.iter().any(|&x| x) {
+                        continue;
+                    }
+                    let was_live = live;
+                    let (mut y, mut v, mut d) = ([0.0; L], [0.0; L], [0.0; L]);
+                    let (mut m, mut w, mut k) = ([1.0; L], [0.0; L], [0.0; L]);
+                    for i in (0..l).filter(|&i| live[i]) {
+                        let gr = &grs[i];
+                        (y[i], v[i], d[i]) = (gr.y_m, vs[i], gr.diameter_m);
+                        m[i] = sphere_mass_kg(d[i], rho_p);
+                        w[i] = -(m[i] - sphere_mass_kg(d[i], rho_f)) * g;
+                        k[i] = SphereDrag::new(stokes, d[i], rho_f).slope_n_s_m(0.0);
+                    }
+                    for &(dt, count) in runs {
+                        if !live.iter().any(|&x| x) {
+                            break;
+                        }
+                        let (mut c1, mut c2) = ([0.0; L], [0.0; L]);
+                        for i in (0..l).filter(|&i| live[i]) {
+                            (c1[i], c2[i]) = if dt == cache.dt_s {
+                                cache.factors[first + i]
+                            } else {
+                                let (phi1, phi2) = phi12(-k[i] / m[i] * dt);
+                                (dt * phi1, dt * dt * phi2)
+                            };
+                        }
+                        for _ in 0..count {
+                            for i in 0..L {
+                                if !live[i] {
+                                    continue;
+                                }
+                                // As `crate::dynamics::exponential` for Stokes drag.
+                                let a0 = (w[i] - v[i] * k[i]) / m[i];
+                                let v1 = v[i] + a0 * c1[i];
+                                let dx = v[i] * dt + a0 * c2[i];
+                                v[i] = v1;
+                                y[i] += dx;
+                                let half = 0.5 * d[i];
+                                if y[i] - half <= floor {
+                                    y[i] = floor + half;
+                                }
+                                moved += 1;
+                                // As `grain_fault` (the horizontal position is checked above).
+                                bad |= !(y[i].is_finite() && v[i].is_finite())
+                                    || v[i].abs() > bound
+                                    || y[i] > height + d[i];
+                                // As `deposit` (the bed does not rise in ideal-Stokes).
+                                if y[i] - half <= floor + 1e-15 {
+                                    sts[i] = true;
+                                    v[i] = 0.0;
+                                    y[i] = floor + half;
+                                    live[i] = false;
+                                }
+                            }
+                            if bad {
+                                break;
+                            }
+                        }
+                        if bad {
+                            break;
+                        }
+                    }
+                    for i in (0..l).filter(|&i| was_live[i]) {
+                        grs[i].y_m = y[i];
+                        vs[i] = v[i];
+                    }
+                    if bad {
+                        fault.store(true, Ordering::Relaxed);
+                        break;
+                    }
+                }
+                moved
+            })
+            .sum::<u64>();
+        let end = if fault.into_inner() {
+            Interval::Fault
+        } else if stopped.into_inner() {
+            Interval::Interrupted
+        } else {
+            Interval::Done
+        };
+        (end, moved)
     }
 
     /// Deposition (serial: the bed grows as grains join it): every suspended grain touching the
@@ -201,6 +426,37 @@ impl Stepper {
         }
     }
 
+    /// [`Stepper::deposit`], returning the largest speed of the grains still suspended after it
+    /// (each the larger of its speed and its Stokes terminal speed, `stokes_speeds_m_s`), m/s,
+    /// 0 if none: the bound of the next step ([`Stepper::step_with_vmax_s`]), found in the same
+    /// pass.
+    pub fn deposit_vmax(&self, st: &mut State, stokes_speeds_m_s: &[f64]) -> f64 {
+        let mut vmax = 0.0f64;
+        for (((gr, v), settled), &vs) in st
+            .grains
+            .iter_mut()
+            .zip(st.velocity_m_s.iter_mut())
+            .zip(st.settled.iter_mut())
+            .zip(stokes_speeds_m_s)
+        {
+            if *settled {
+                continue;
+            }
+            if gr.y_m - 0.5 * gr.diameter_m <= st.bed_height_m + 1e-15 {
+                *settled = true;
+                *v = 0.0;
+                gr.y_m = st.bed_height_m + 0.5 * gr.diameter_m;
+                if !self.ideal {
+                    st.bed_height_m +=
+                        gr.weight * sphere_volume_m3(gr.diameter_m) / self.bed_area_m2;
+                }
+            } else {
+                vmax = vmax.max(v.abs().max(vs));
+            }
+        }
+        vmax
+    }
+
     /// The first grain in a numerical fault after a step of `dt_s` from `st` (state updated in
     /// place, time not yet advanced), as an [`Unstable`] report: a non-finite position or
     /// velocity, a centre outside the cylinder (beside the walls, or a diameter above the top),
@@ -220,13 +476,7 @@ impl Stepper {
             .grains
             .par_iter()
             .zip(st.velocity_m_s.par_iter())
-            .position_first(|(gr, v)| {
-                !(gr.y_m.is_finite() && v.is_finite() && gr.x_m.is_finite())
-                    || v.abs() > bound
-                    || gr.y_m > height + gr.diameter_m
-                    || gr.x_m < -1e-12
-                    || gr.x_m > width + 1e-12
-            })?;
+            .position_first(|(gr, v)| Self::faulty(gr, *v, width, height, bound))?;
         let (gr, v) = (st.grains[i], st.velocity_m_s[i]);
         let d = gr.diameter_m;
         let (stable, basis) = if self.integrator == Integrator::Explicit {
@@ -261,13 +511,64 @@ impl Stepper {
     }
 }
 
-/// Advances the clock of `st` by `dt_s` (landing exactly on `next_event_s` when within a relative
-/// 1e-9 of it) and counts the step.
+/// The factors dt φ₁ and dt² φ₂ of the exponential update of every grain at one step size
+/// (ideal-Stokes: the largest step, which most steps take), computed once per run for
+/// [`Stepper::ideal_interval`].
+#[derive(Clone, Debug, Default)]
+pub struct IdealCache {
+    /// The step they are for, s (0: none; every step is longer).
+    pub dt_s: f64,
+    /// (dt φ₁, dt² φ₂) of each grain, s and s².
+    pub factors: Vec<(f64, f64)>,
+}
+
+impl IdealCache {
+    /// The factors of every grain of `st` at the largest step of `stepper` (Stokes drag).
+    pub fn new(stepper: &Stepper, st: &State) -> Self {
+        let stokes = DragLaw::Stokes {
+            viscosity_pa_s: stepper.viscosity_pa_s,
+        };
+        let dt = stepper.max_step_s;
+        let factors = st
+            .grains
+            .par_iter()
+            .map(|gr| {
+                let d = gr.diameter_m;
+                let m = sphere_mass_kg(d, stepper.grain_density_kg_m3);
+                let k = SphereDrag::new(stokes, d, stepper.fluid_density_kg_m3).slope_n_s_m(0.0);
+                let (phi1, phi2) = phi12(-k / m * dt);
+                (dt * phi1, dt * dt * phi2)
+            })
+            .collect();
+        Self { dt_s: dt, factors }
+    }
+}
+
+/// What ended an interval of [`Stepper::ideal_interval`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Interval {
+    /// Every step made.
+    Done,
+    /// An interrupt was requested: the interval is incomplete.
+    Interrupted,
+    /// A grain would be reported by the fault scan: the interval is incomplete.
+    Fault,
+}
+
+/// The time after a step of `dt_s` from `t_s`, s: landing exactly on `next_event_s` when within a
+/// relative 1e-9 of it.
+pub fn clock_after(t_s: f64, dt_s: f64, next_event_s: f64) -> f64 {
+    let t = t_s + dt_s;
+    if (next_event_s - t).abs() <= 1e-9 * next_event_s.max(1.0) {
+        next_event_s
+    } else {
+        t
+    }
+}
+
+/// Advances the clock of `st` by `dt_s` ([`clock_after`]) and counts the step.
 pub fn advance_clock(st: &mut State, dt_s: f64, next_event_s: f64) {
-    st.time_s += dt_s;
+    st.time_s = clock_after(st.time_s, dt_s, next_event_s);
     st.steps += 1;
     st.dt_range_s = (st.dt_range_s.0.min(dt_s), st.dt_range_s.1.max(dt_s));
-    if (next_event_s - st.time_s).abs() <= 1e-9 * next_event_s.max(1.0) {
-        st.time_s = next_event_s;
-    }
 }

@@ -67,13 +67,23 @@ impl VoidageGrid {
         j * self.ncx + i
     }
 
-    /// Refills the grid with the solid volume of the suspended grains of `st`.
-    pub fn fill(&mut self, st: &State) {
+    /// The real solid volume of every grain of `st` (its weight times its volume), m³: computed
+    /// once per run for [`VoidageGrid::fill`].
+    pub fn grain_volumes_m3(&self, st: &State) -> Vec<f64> {
+        st.grains
+            .iter()
+            .map(|gr| gr.weight * sphere_volume_m3(gr.diameter_m))
+            .collect()
+    }
+
+    /// Refills the grid with the solid volume of the suspended grains of `st`, given the real
+    /// solid volume of each grain ([`VoidageGrid::grain_volumes_m3`]), summed in grain order.
+    pub fn fill(&mut self, st: &State, volumes_m3: &[f64]) {
         self.solid_m3.iter_mut().for_each(|x| *x = 0.0);
-        for (gr, &settled) in st.grains.iter().zip(&st.settled) {
+        for ((gr, &settled), &vol) in st.grains.iter().zip(&st.settled).zip(volumes_m3) {
             if !settled {
                 let c = self.cell_of(gr.x_m, gr.y_m);
-                self.solid_m3[c] += gr.weight * sphere_volume_m3(gr.diameter_m);
+                self.solid_m3[c] += vol;
             }
         }
     }
