@@ -264,40 +264,14 @@ pub fn main() -> i32 {
             quick,
             grains,
             sedimentation_only,
-        } => {
-            let opts = crate::bench::Options {
+        } => bench(
+            &out,
+            crate::bench::Options {
                 quick,
                 grains,
                 sedimentation_only,
-            };
-            let figs = match crate::bench::project_root().and_then(|r| crate::bench::run(&r, opts))
-            {
-                Ok(f) => f,
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    return e.exit_code();
-                }
-            };
-            for f in &figs {
-                println!(
-                    "{:<16} {:<34} {:>14} {}",
-                    f.benchmark,
-                    f.quantity,
-                    crate::io::fmt::g(f.value),
-                    f.unit
-                );
-            }
-            let path = out.join("bench.csv");
-            if let Err(e) =
-                std::fs::create_dir_all(&out).and_then(|_| crate::bench::write(&path, &figs))
-            {
-                let e = crate::error::Error::Io(path, e);
-                eprintln!("error: {e}");
-                return e.exit_code();
-            }
-            println!("-> {}", path.display());
-            0
-        }
+            },
+        ),
         Command::Fit(args) => match crate::fit::main(&args) {
             Ok(lines) => {
                 for l in &lines {
@@ -363,6 +337,34 @@ pub fn main() -> i32 {
             out_dir: out,
         }),
     }
+}
+
+/// `settle bench`: runs the benchmarks, prints them and writes OUT/bench.csv; the exit code.
+fn bench(out: &std::path::Path, opts: crate::bench::Options) -> i32 {
+    let figs = match crate::bench::project_root().and_then(|r| crate::bench::run(&r, opts)) {
+        Ok(f) => f,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return e.exit_code();
+        }
+    };
+    for f in &figs {
+        println!(
+            "{:<16} {:<34} {:>14} {}",
+            f.benchmark,
+            f.quantity,
+            crate::io::fmt::g(f.value),
+            f.unit
+        );
+    }
+    let path = out.join("bench.csv");
+    if let Err(e) = std::fs::create_dir_all(out).and_then(|_| crate::bench::write(&path, &figs)) {
+        let e = crate::error::Error::Io(path, e);
+        eprintln!("error: {e}");
+        return e.exit_code();
+    }
+    println!("-> {}", path.display());
+    0
 }
 
 /// `settle laws`: runs and prints the table; the exit code.

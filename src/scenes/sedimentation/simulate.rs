@@ -75,20 +75,7 @@ pub fn simulate(
         }
         let next_event = schedule.next_event_s(&st);
         if by_interval {
-            // The steps up to the event (or the end), as the step loop below would take them.
-            runs.clear();
-            let mut t = st.time_s;
-            loop {
-                let dt = stepper.clock_step_s(t, next_event);
-                match runs.last_mut() {
-                    Some((d, c)) if *d == dt => *c += 1,
-                    _ => runs.push((dt, 1)),
-                }
-                t = clock_after(t, dt, next_event);
-                if Schedule::reached(next_event, t) || !schedule.running_at(t) {
-                    break;
-                }
-            }
+            interval_runs(&stepper, &schedule, st.time_s, next_event, &mut runs);
             let t0 = Instant::now();
             start.capture_all(&st);
             let (end, moved) = stepper.ideal_interval(&mut st, setup, &runs, &cache);
@@ -181,4 +168,28 @@ pub fn simulate(
         st.stages.deposit_events_s += t5.elapsed().as_secs_f64();
     }
     st
+}
+
+/// The steps from `t_s` up to the event `next_event_s` (or the end of the run), as the step loop
+/// of [`simulate`] would take them, as runs of equal steps `(dt, count)` into `runs`.
+fn interval_runs(
+    stepper: &Stepper,
+    schedule: &Schedule,
+    t_s: f64,
+    next_event_s: f64,
+    runs: &mut Vec<(f64, u64)>,
+) {
+    runs.clear();
+    let mut t = t_s;
+    loop {
+        let dt = stepper.clock_step_s(t, next_event_s);
+        match runs.last_mut() {
+            Some((d, c)) if *d == dt => *c += 1,
+            _ => runs.push((dt, 1)),
+        }
+        t = clock_after(t, dt, next_event_s);
+        if Schedule::reached(next_event_s, t) || !schedule.running_at(t) {
+            break;
+        }
+    }
 }
