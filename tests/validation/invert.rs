@@ -22,6 +22,17 @@ fn at(curve: &[(f64, f64)], d: f64) -> f64 {
     curve[curve.len() - 1].1
 }
 
+/// The (diameter_m, percent_finer) pairs of CSV records: every row, or those of `instrument`.
+fn curve_of(
+    rows: &[std::collections::HashMap<String, String>],
+    instrument: Option<&str>,
+) -> Vec<(f64, f64)> {
+    rows.iter()
+        .filter(|r| instrument.is_none_or(|i| r["instrument"] == i))
+        .map(|r| (num(r, "diameter_m"), num(r, "percent_finer")))
+        .collect()
+}
+
 /// Round trip (issue 14, Validation): sample `k` run with ideal Stokes (N = 20 000 to keep the
 /// suite fast; the N = 100 000 figures are in docs/commands/invert.md), its hydrometer's
 /// readings.csv inverted with the defaults: at the Stokes diameter of every reading (the bulb
@@ -54,17 +65,12 @@ fn round_trip(k: u32) -> f64 {
         .output()
         .expect("spawn settle");
     assert_exit(&o, 0);
-    let inverted: Vec<(f64, f64)> =
-        read_csv_records(&out.path().join("readings_inverted/inverted.csv"))
-            .iter()
-            .map(|r| (num(r, "diameter_m"), num(r, "percent_finer")))
-            .collect();
+    let inverted = curve_of(
+        &read_csv_records(&out.path().join("readings_inverted/inverted.csv")),
+        None,
+    );
     let gran = read_csv_records(&run.join("granulometry.csv"));
-    let input: Vec<(f64, f64)> = gran
-        .iter()
-        .filter(|r| r["instrument"] == "input")
-        .map(|r| (num(r, "diameter_m"), num(r, "percent_finer")))
-        .collect();
+    let input = curve_of(&gran, Some("input"));
     let mut worst: f64 = 0.0;
     for r in gran.iter().filter(|r| r["instrument"] == "hydrometer") {
         let (d, sd) = (num(r, "diameter_m"), num(r, "sd_percent"));
@@ -197,17 +203,12 @@ fn round_trip_full_physics_sample2() {
         .output()
         .expect("spawn settle");
     assert_exit(&o, 0);
-    let inverted: Vec<(f64, f64)> =
-        read_csv_records(&out.path().join("readings_inverted/inverted.csv"))
-            .iter()
-            .map(|r| (num(r, "diameter_m"), num(r, "percent_finer")))
-            .collect();
+    let inverted = curve_of(
+        &read_csv_records(&out.path().join("readings_inverted/inverted.csv")),
+        None,
+    );
     let gran = read_csv_records(&dir.join("granulometry.csv"));
-    let input: Vec<(f64, f64)> = gran
-        .iter()
-        .filter(|r| r["instrument"] == "input")
-        .map(|r| (num(r, "diameter_m"), num(r, "percent_finer")))
-        .collect();
+    let input = curve_of(&gran, Some("input"));
     for r in gran.iter().filter(|r| r["instrument"] == "hydrometer") {
         let d = num(r, "diameter_m");
         let err = (at(&inverted, d) - at(&input, d)).abs();
@@ -438,11 +439,7 @@ fn the_readings_do_not_determine_a_steep_curve_between_two_readings() {
             }
         }
         let gran = read_csv_records(&Path::new(dir).join("granulometry.csv"));
-        let input: Vec<(f64, f64)> = gran
-            .iter()
-            .filter(|r| r["instrument"] == "input")
-            .map(|r| (num(r, "diameter_m"), num(r, "percent_finer")))
-            .collect();
+        let input = curve_of(&gran, Some("input"));
         for &d in diameters {
             let c: Vec<f64> = (0..n).map(|j| bins.fraction_finer(j, d)).collect();
             let (lo, hi) = lin.strict_bounds(&c, m as f64).expect("feasible");
