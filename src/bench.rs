@@ -489,34 +489,24 @@ fn transient_step(root: &Path, quick: bool, out: &mut Vec<Figure>) -> Result<(),
         w_qs / n_qs as f64 * 1e9,
         "ns",
     ));
-    out.push(fig(b, "basset_states", s_b as f64, "states"));
-    out.push(fig(b, "basset_step_ns", w_b / n_b as f64 * 1e9, "ns"));
-    out.push(fig(
-        b,
-        "ratio_basset_to_quasi_steady",
-        (w_b / n_b as f64) / (w_qs / n_qs as f64),
-        "-",
-    ));
-    out.push(fig(b, "mei_adrian_states", s_m as f64, "states"));
-    out.push(fig(b, "mei_adrian_step_ns", w_m / n_m as f64 * 1e9, "ns"));
-    out.push(fig(
-        b,
-        "ratio_mei_adrian_to_quasi_steady",
-        (w_m / n_m as f64) / (w_qs / n_qs as f64),
-        "-",
-    ));
-    out.push(fig(
-        b,
-        "mei_adrian_current_re_step_ns",
-        w_c / n_c as f64 * 1e9,
-        "ns",
-    ));
-    out.push(fig(
-        b,
-        "ratio_mei_adrian_current_re_to_quasi_steady",
-        (w_c / n_c as f64) / (w_qs / n_qs as f64),
-        "-",
-    ));
+    let per_step_qs = w_qs / n_qs as f64;
+    let history = [
+        ("basset", Some(s_b), w_b / n_b as f64),
+        ("mei_adrian", Some(s_m), w_m / n_m as f64),
+        ("mei_adrian_current_re", None, w_c / n_c as f64),
+    ];
+    for (name, states, per_step) in history {
+        if let Some(states) = states {
+            out.push(fig(b, &format!("{name}_states"), states as f64, "states"));
+        }
+        out.push(fig(b, &format!("{name}_step_ns"), per_step * 1e9, "ns"));
+        out.push(fig(
+            b,
+            &format!("ratio_{name}_to_quasi_steady"),
+            per_step / per_step_qs,
+            "-",
+        ));
+    }
     Ok(())
 }
 
