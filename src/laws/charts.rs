@@ -2,33 +2,12 @@
 //! error against the yield number.
 
 use super::data::DataSet;
-use super::eval::{yield_number, Law, LawResult, State, G_M_S2};
+use super::eval::{yield_number, Law, LawResult, State};
 use crate::fluid::bingham::beris::BERIS_CRITICAL_YIELD_NUMBER;
-use crate::fluid::bingham::{cd_fedem, cd_from_terminal_velocity, reynolds_bingham};
+use crate::fluid::bingham::cd_fedem;
 use crate::io::chart::{grid_svg, Band, Chart, Curve, Scale, Series};
 use crate::io::fmt::sig;
 use std::path::Path;
-
-/// (Re′, C_d) of a sphere moving at `v` (eq. 14 and eq. 17), if it is in a Bingham fluid and C_d
-/// is positive.
-fn re_cd(data: &DataSet, i: usize, v: f64) -> Option<(f64, f64)> {
-    let s = &data.spheres[i];
-    let f = &data.fluids[s.fluid];
-    if !f.is_bingham() || v <= 0.0 || !v.is_finite() {
-        return None;
-    }
-    let (ty, eb) = (f.rheogram.yield_stress_pa, f.rheogram.consistency_pa_sn);
-    let re = reynolds_bingham(f.density_kg_m3, v, s.diameter_m, ty, eb);
-    let cd = cd_from_terminal_velocity(
-        s.density_kg_m3,
-        f.density_kg_m3,
-        s.diameter_m,
-        ty,
-        v,
-        G_M_S2,
-    );
-    (cd > 0.0 && re > 0.0).then_some((re, cd))
-}
 
 /// C_d against Re′ (log–log): the measured points (Table 3's, where given), f-EDEM's eq. 19 and
 /// the (Re′, C_d) each other law predicts for the spheres it lets move (f-EDEM Fig. 1).
@@ -69,7 +48,7 @@ pub fn cd_vs_re(path: &Path, data: &DataSet, results: &[LawResult]) -> std::io::
             .predictions
             .iter()
             .filter(|p| p.state == State::Moving)
-            .filter_map(|p| re_cd(data, p.sphere, p.v_predicted_m_s))
+            .filter_map(|p| super::loso::re_cd(data, p.sphere, p.v_predicted_m_s))
             .collect();
         chart = chart.series(Series {
             label: format!("{} (predicted)", r.law.key()),

@@ -19,8 +19,24 @@ pub fn point(data: &DataSet, s: &Sphere) -> Option<(f64, f64)> {
     if let (Some(re), Some(cd)) = (s.re_tabulated, s.cd_tabulated) {
         return Some((re, cd));
     }
+    Some(at_speed(data, s, s.v_measured_m_s))
+}
+
+/// (Re′, C_d) of sphere `i` moving at `v` (eq. 14 and eq. 17), if it is in a Bingham fluid, `v`
+/// is positive and finite and C_d is positive.
+pub fn re_cd(data: &DataSet, i: usize, v: f64) -> Option<(f64, f64)> {
+    let s = &data.spheres[i];
+    if !data.fluids[s.fluid].is_bingham() || v <= 0.0 || !v.is_finite() {
+        return None;
+    }
+    let (re, cd) = at_speed(data, s, v);
+    (cd > 0.0 && re > 0.0).then_some((re, cd))
+}
+
+/// Re′ (eq. 14) and the C_d of eq. 17 of sphere `s` at speed `v`, in its (Bingham) fluid.
+fn at_speed(data: &DataSet, s: &Sphere, v: f64) -> (f64, f64) {
+    let f = &data.fluids[s.fluid];
     let (ty, eb) = (f.rheogram.yield_stress_pa, f.rheogram.consistency_pa_sn);
-    let v = s.v_measured_m_s;
     let re = reynolds_bingham(f.density_kg_m3, v, s.diameter_m, ty, eb);
     let cd = cd_from_terminal_velocity(
         s.density_kg_m3,
@@ -30,7 +46,7 @@ pub fn point(data: &DataSet, s: &Sphere) -> Option<(f64, f64)> {
         v,
         G_M_S2,
     );
-    Some((re, cd))
+    (re, cd)
 }
 
 /// Least-squares fit of C_d = a/Re′ + b to the points with 1 ≤ Re′ ≤ 150 (residuals in C_d);
