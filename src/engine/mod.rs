@@ -61,6 +61,22 @@
 //!   below a height (and within a cylinder); each body's drag and buoyancy are scaled by its
 //!   immersed fractions at the start of the step (full or partial submergence), and a body with no
 //!   fluid at all moves ballistically.
+//! - **Added mass** ([`dim3::World::set_added_mass_coefficient`], C_m, default 0: off): in a
+//!   fluid at rest `(m + C_m m_f) dv/dt = m g + F_b + F_d + F_c` (Maxey & Riley 1983), m_f the
+//!   fluid mass of the immersed volume at the start of the step (free surface). The inertia
+//!   `M = m + C_m m_f` replaces `m` everywhere the body's inertia enters: the free-flight target
+//!   `advance(integrator, drag, M, W, v₀, dt)` (W keeps m g), the in-contact coupling (effective
+//!   mass `M + k dt` carrying the momentum `M v₀`, the hold decision `M s ≤ F_s dt` and the clamp
+//!   of `F₀`), and Rapier's mass for the step: the body gets C_m m_f as Rapier additional mass
+//!   properties **with no moment of inertia** (a sphere's added moment of inertia is zero in
+//!   potential flow), and the force subtracts the gravity Rapier puts on it, so that gravity
+//!   stays m g while the contact solver sees the effective mass M (+ k dt). Rapier recomputes
+//!   the mass properties at the next step whenever they change (it compares them, so a body
+//!   fully immersed costs nothing more per step). This "effective mass in the contacts" is a
+//!   modelling choice: the added mass of a sphere touching a wall or another sphere is not ½
+//!   (it grows as the gap closes, and a pair's added masses couple), and an impact's
+//!   restitution is Rapier's velocity ratio whatever the mass.
+//!
 //!   [`ContactDrag::Damping`] (Rapier's `linear_damping` = k/m) is kept for comparison: it gets
 //!   velocities and resting forces right, but Rapier damps only after integrating positions, so a
 //!   loaded grain moves ≈ (1 + k dt/m) too far per step: 20 grains of 2.5 µm (τ = 0.87 µs) piled with
@@ -94,7 +110,9 @@
 //!   the body moves. The hold's switch uses the speed at the start of the step.
 //! - Rolling resistance uses each body's own spin (EDEM's type A), not the relative rolling of the
 //!   pair, and in 2D Rapier's disc inertia.
-//! - With a free surface, a body enters the fluid up to one step late (no event location).
+//! - With a free surface, a body enters the fluid up to one step late (no event location); its
+//!   added mass switches on (full submergence) or grows with the immersed cap (partial) with the
+//!   velocity kept: the entry impulse `−v dM/dt` of a growing added mass is not modelled.
 //! - Fluid torque is the rotational Stokes drag only; no hindered settling, lubrication or
 //!   fluid-mediated interaction between grains beyond what the drag law itself contains.
 //! - `World::contact_force_n` sums the normal contact impulses only (friction impulses are not

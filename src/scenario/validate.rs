@@ -42,7 +42,10 @@ const TABLE_KINDS: &[(&str, &[Kind])] = {
         ("repeats", &[FunnelPour]),
         ("sample", &[Sedimentation]),
         ("instruments", &[Sedimentation]),
-        ("transient", &[FreeSettling, Drop]),
+        (
+            "transient",
+            &[FreeSettling, Drop, RestitutionDrop, FunnelPour],
+        ),
     ]
 };
 

@@ -98,3 +98,12 @@ fn correlation(viscosity_pa_s: f64, cd: CdCorrelation) -> DragLaw {
 pub fn sphere_drag(s: &Scenario, rheology: RheologyModel, d_m: f64) -> SphereDrag {
     SphereDrag::new(drag_law(s, rheology), d_m, s.fluid.density_kg_m3)
 }
+
+/// The added-mass coefficient C_m of the scenario's Rapier scenes (`transient.added_mass`,
+/// `transient.added_mass_coefficient`; 0 when off or without `[transient]`), for
+/// [`crate::engine::dim3::World::set_added_mass_coefficient`].
+pub fn added_mass_coefficient(s: &Scenario) -> f64 {
+    s.transient
+        .as_ref()
+        .map_or(0.0, |t| t.added_mass_coefficient_on())
+}

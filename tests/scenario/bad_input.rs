@@ -511,6 +511,41 @@ fn set_restitution_exponent_out_of_range() {
     );
 }
 
+/// `[transient]` in the Rapier scenes (issue 16): the added mass is accepted; the history force
+/// and the wall are refused with their key; a coefficient out of range names key and range.
+#[test]
+fn set_transient_in_the_rapier_scenes() {
+    for file in ["restitution_drop.toml", "paste_68_balls.toml"] {
+        let on = ["transient.added_mass=true".to_string()];
+        let p = settle::run::prepare(&good(file), None, &on).expect("added mass accepted");
+        assert_eq!(settle::scenes::added_mass_coefficient(&p.scenario), 0.5);
+        let o = settle_run(&[good(file)], &["--set", "transient.history=basset"]);
+        assert_refused(
+            &o,
+            file,
+            Some("transient.history"),
+            &["Rapier scenes", "history = \"off\"", "added_mass"],
+        );
+        let o = settle_run(
+            &[good(file)],
+            &[
+                "--set",
+                "transient.added_mass=true",
+                "--set",
+                "transient.added_mass_coefficient=2.5",
+            ],
+        );
+        assert_refused(
+            &o,
+            file,
+            Some("transient.added_mass_coefficient"),
+            &["2.5", "allowed", "≤ 2"],
+        );
+        let o = settle_run(&[good(file)], &["--set", "transient.wall=brenner"]);
+        assert_refused(&o, file, Some("transient.wall"), &["free_settling"]);
+    }
+}
+
 /// Lubrication cut-offs of the sedimentation cylinder out of range are refused with key and range.
 #[test]
 fn set_lubrication_cutoffs_out_of_range() {

@@ -264,10 +264,12 @@ fn a_ball_held_by_the_yield_stress_takes_the_full_impulse_of_an_impact() {
 // Fluid below a free surface.
 
 /// Final depth of the centre of a ball dropped from rest with its lowest point `h` above the
-/// paste surface, through a Rapier world whose paste lies below a free surface.
-fn rapier_drop_depth(h: f64, dt: f64, submergence: settle::scenario::Submergence) -> f64 {
+/// paste surface, through a Rapier world whose paste lies below a free surface, with the
+/// added-mass coefficient `c_m`.
+fn rapier_drop_depth(h: f64, dt: f64, submergence: settle::scenario::Submergence, c_m: f64) -> f64 {
     let surface = 0.15;
     let mut world = dim3::World::new(EngineSettings::for_scene(D, 3.0), G);
+    world.set_added_mass_coefficient(c_m);
     world.set_free_surface(dim3::FreeSurface {
         height_m: surface,
         radius_m: None,
@@ -291,17 +293,24 @@ fn rapier_drop_depth(h: f64, dt: f64, submergence: settle::scenario::Submergence
 fn a_ball_dropped_into_paste_through_rapier_stops_where_the_drop_scene_stops_it() {
     // The drop scene (free engine, entry located within the step) against the Rapier world with
     // a free surface (entry up to one step late): 12.6 mm ball from 150 mm, full and partial
-    // submergence. Tolerance 0.2 mm (~ the travel of one step at entry is 17 µm at dt = 1e-5 s).
+    // submergence, added mass off and on (C_m = ½ of the immersed volume: the ball goes ~11 %
+    // deeper, 3–5 mm, so the comparison with added mass can fail). Tolerance 0.2 mm (~ the
+    // travel of one step at entry is 17 µm at dt = 1e-5 s).
     use settle::scenario::Submergence;
     use settle::scenes::free_settling::{run_sphere, RunOptions};
-    for (sub, name) in [
-        (Submergence::Full, "full"),
-        (Submergence::Partial, "partial"),
+    for (sub, name, c_m) in [
+        (Submergence::Full, "full", 0.0),
+        (Submergence::Partial, "partial", 0.0),
+        (Submergence::Full, "full", 0.5),
+        (Submergence::Partial, "partial", 0.5),
     ] {
         let p = settle::run::prepare(
             std::path::Path::new("scenarios/paste_single_ball.toml"),
             None,
-            &[format!("fluid.submergence={name}")],
+            &[
+                format!("fluid.submergence={name}"),
+                format!("transient.added_mass={}", c_m > 0.0),
+            ],
         )
         .expect("scenario");
         let case = p
@@ -316,11 +325,12 @@ fn a_ball_dropped_into_paste_through_rapier_stops_where_the_drop_scene_stops_it(
         };
         let drop = run_sphere::<3>(&p.scenario, p.rheology, case, opts).expect("drop");
         let expected = drop.final_bottom_depth_m - 0.5 * D;
-        let got = rapier_drop_depth(0.15, 1e-5, sub);
-        println!("{name}: drop scene {expected:.5} m, rapier {got:.5} m");
+        let got = rapier_drop_depth(0.15, 1e-5, sub, c_m);
+        println!("{name}, C_m {c_m}: drop scene {expected:.5} m, rapier {got:.5} m");
         assert!(
             (got - expected).abs() < 2e-4,
-            "{name}: centre depth {got:.5} m through Rapier, {expected:.5} m in the drop scene"
+            "{name}, C_m {c_m}: centre depth {got:.5} m through Rapier, {expected:.5} m in the \
+             drop scene"
         );
     }
 }
@@ -435,6 +445,39 @@ fn a_repeat_is_reproducible_from_its_seed() {
     let a = run_repeat(&p, p.scene.funnel_pour().expect("funnel_pour"), 0, 11).expect("runs");
     let b = run_repeat(&p, p.scene.funnel_pour().expect("funnel_pour"), 5, 11).expect("runs");
     assert_eq!(a.balls, b.balls);
+}
+
+#[test]
+fn a_zero_added_mass_coefficient_pours_as_added_mass_off_and_a_half_moves_the_balls() {
+    // Three balls poured, 0.3 s after opening (some in the paste): `[transient]` with C_m = 0 is
+    // the scenario without it, bit for bit; C_m = ½ changes where the balls are.
+    use settle::scenes::funnel::run_repeat;
+    let base = [
+        "funnel.count=3",
+        "time.end_s=0.3",
+        "funnel.count_time_s=0.3",
+    ];
+    let pour = |extra: &[&str]| {
+        let mut ov = base.to_vec();
+        ov.extend_from_slice(extra);
+        let p = small(&ov);
+        run_repeat(&p, p.scene.funnel_pour().expect("funnel_pour"), 0, 11).expect("runs")
+    };
+    let off = pour(&[]);
+    let zero = pour(&[
+        "transient.added_mass=true",
+        "transient.added_mass_coefficient=0",
+    ]);
+    let half = pour(&["transient.added_mass=true"]);
+    assert_eq!(off.balls, zero.balls);
+    assert_eq!(off.samples, zero.samples);
+    assert_eq!(off.steps, zero.steps);
+    let in_paste = off
+        .balls
+        .iter()
+        .filter(|b| b.place == settle::scenes::funnel::Place::Paste);
+    assert!(in_paste.count() > 0, "{:?}", off.balls);
+    assert_ne!(off.balls, half.balls);
 }
 
 #[test]

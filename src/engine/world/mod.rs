@@ -113,7 +113,7 @@ struct Body {
     body_force_n: Vector,
     /// Rapier's own mass properties of the ball (its collider's), without any boost.
     rapier_mprops: MassProperties,
-    /// True while Rapier's mass carries the effective-mass drag boost.
+    /// True while Rapier's mass carries a boost (the effective-mass drag, the added mass).
     boosted: bool,
     /// Velocity correction of the exact free-flight scheme, added after the Rapier step.
     correction_m_s: Option<Vector>,
@@ -159,6 +159,9 @@ pub struct World {
     restitution: RestitutionLaw,
     /// Smallest contact prediction distance, m; see [`World::set_min_prediction_distance_m`].
     min_prediction_m: f64,
+    /// Added-mass coefficient C_m (0: off); see [`World::set_added_mass_coefficient`].
+    #[serde(default)]
+    added_mass_coefficient: f64,
 }
 
 impl RapierIntegrationParameters for IntegrationParameters {
@@ -197,7 +200,25 @@ impl World {
             yield_hold: true,
             restitution: RestitutionLaw::constant(0.0),
             min_prediction_m: 0.0,
+            added_mass_coefficient: 0.0,
         }
+    }
+
+    /// Turns the added mass on with coefficient `c_m` = C_m ≥ 0 (default 0: off; ½ for a sphere
+    /// in an unbounded fluid). A body then accelerates as
+    /// `(m_p + C_m m_f) dv/dt = m_p g + F_b + F_d + F_c` (fluid at rest; Maxey & Riley 1983,
+    /// Auton, Hunt & Prud'homme 1988), with m_f = ρ_f π d³/6 times its immersed volume fraction
+    /// at the start of the step (ρ_f the drag's fluid density; the free surface's
+    /// [`crate::fluid::immersion::immersion`]). The inertia m_p + C_m m_f is the integrator's mass
+    /// in free flight and Rapier's mass for the step (so contacts see it too, see the module doc
+    /// of [`crate::engine`]); gravity stays m_p g; the moment of inertia is unchanged (a
+    /// sphere's added moment of inertia is zero in potential flow).
+    pub fn set_added_mass_coefficient(&mut self, c_m: f64) {
+        assert!(
+            c_m >= 0.0 && c_m.is_finite(),
+            "added-mass coefficient must be finite and ≥ 0, got {c_m}"
+        );
+        self.added_mass_coefficient = c_m;
     }
 
     /// Sets a floor under the contact prediction distance, m (default 0: Rapier's 0.02 length
@@ -293,6 +314,23 @@ impl World {
 
     fn rigid_body(&self, body: BodyId) -> &rapier::prelude::RigidBody {
         &self.physics.bodies[self.bodies[body.0].handle]
+    }
+}
+
+/// Sets Rapier's additional mass of a body to `added_kg` (a real mass, kg; converted to
+/// Rapier's mass units) with no moment of inertia, or removes any boost when `added_kg` is 0
+/// (takes effect at the next Rapier step). Returns the body's Rapier mass for the step.
+fn boost_added_mass(rb: &mut rapier::prelude::RigidBody, body: &mut Body, added_kg: f64) -> f64 {
+    if added_kg > 0.0 {
+        let mut props = body.rapier_mprops;
+        props.inv_mass *= body.mass_kg / added_kg;
+        props.inv_principal_inertia = Default::default();
+        rb.set_additional_mass_properties(props, false);
+        body.boosted = true;
+        body.rapier_mass_kg() * ((body.mass_kg + added_kg) / body.mass_kg)
+    } else {
+        unboost(rb, body);
+        body.rapier_mass_kg()
     }
 }
 

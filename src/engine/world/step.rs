@@ -4,12 +4,12 @@
 //! distance, Rapier's step, the free-flight velocity corrections and the fault scan
 //! ([`crate::engine::faults`]).
 
-use super::{rapier, to_na, to_rapier, unboost, Body, Vector, World, DEFAULT_PREDICTION};
+use super::{boost_added_mass, rapier, to_na, to_rapier, Body, Vector, World, DEFAULT_PREDICTION};
 use crate::dynamics::{Integrator, Unstable};
 use crate::engine::coupling;
 use crate::engine::faults::{self, unstable, FaultLimits};
 use crate::engine::{sphere_inertia_kg_m2, ContactDrag};
-use crate::fluid::SphereDrag;
+use crate::fluid::{sphere_mass_kg, SphereDrag};
 use rapier::prelude::RigidBody;
 
 /// What acts on a body over a step besides gravity and the contacts.
@@ -20,6 +20,8 @@ struct Loads {
     body_force_n: Vector,
     /// Rotational drag rate k_rot/I, with the immersed fraction applied, 1/s.
     spin_drag_rate_hz: f64,
+    /// Added mass C_m m_f of the immersed volume, kg (0: off or out of the fluid).
+    added_mass_kg: f64,
     /// Σ|F_n| over the body's contacts during the last step, N (0 without rolling resistance).
     normal_force_sum_n: f64,
 }
@@ -100,11 +102,19 @@ impl World {
                 } else {
                     0.0
                 };
-                let (drag, body_force_n, spin_drag_rate_hz) = self.fluid_now(b);
+                let (drag, body_force_n, spin_drag_rate_hz, immersed) = self.fluid_now(b);
+                let c_m = self.added_mass_coefficient;
+                let added_mass_kg = if c_m > 0.0 && immersed > 0.0 {
+                    let m_f = sphere_mass_kg(b.drag.diameter_m, b.drag.fluid_density_kg_m3);
+                    c_m * m_f * immersed
+                } else {
+                    0.0
+                };
                 Loads {
                     drag,
                     body_force_n,
                     spin_drag_rate_hz,
+                    added_mass_kg,
                     normal_force_sum_n,
                 }
             })
@@ -139,7 +149,6 @@ impl World {
                 coupled.holds.push((i, hold_force_n));
                 speed
             } else {
-                unboost(rb, body);
                 coupled.holds.push((i, 0.0));
                 couple_free(rb, body, &loads[i], params).map_err(|fault| {
                     unstable(
@@ -268,11 +277,14 @@ fn couple_in_contact(
 ) -> (f64, f64) {
     let (dt_s, g) = (params.dt_s, params.gravity_m_s2);
     let m = body.mass_kg;
+    // The inertia m_p + C_m m_f (added mass) carries the momentum and takes the drag's slope.
+    let added = loads.added_mass_kg;
+    let inertia = m + added;
     let m_rapier = body.rapier_mass_kg();
     let v0 = to_na(rb.linvel());
     let c = coupling::in_contact(
         &loads.drag,
-        m,
+        inertia,
         &loads.body_force_n,
         &v0,
         dt_s,
@@ -301,11 +313,12 @@ fn couple_in_contact(
         coupling::effective_mass_factors(c.damping, spin_damping),
     ) {
         (ContactDrag::EffectiveMass, Some(factors)) => {
-            // Backward-Euler drag inside the solve: mass m + k dt carrying the momentum m v₀, so
-            // (m + k dt) v₁ = m v₀ + F dt + contact impulses; the same for the spin with the
-            // rotational drag.
+            // Backward-Euler drag inside the solve: mass M + k dt carrying the momentum M v₀
+            // (M = m + C_m m_f, the inertia), so (M + k dt) v₁ = M v₀ + F dt + contact impulses;
+            // the same for the spin with the rotational drag (no added moment of inertia).
+            let extra = added / m + c.damping * (inertia / m);
             let mut boost = body.rapier_mprops;
-            boost.inv_mass /= c.damping;
+            boost.inv_mass /= extra;
             boost.inv_principal_inertia /= spin_damping;
             rb.set_additional_mass_properties(boost, false);
             body.boosted = true;
@@ -314,10 +327,13 @@ fn couple_in_contact(
             rb.set_linear_damping(0.0);
             rb.set_angular_damping(0.0);
             // Rapier pulls the boosted mass down with g: only m g is real.
-            force_rapier -= g * (m_rapier * c.damping);
+            force_rapier -= g * (m_rapier * extra);
         }
         _ => {
-            unboost(rb, body);
+            let m_boosted = boost_added_mass(rb, body, added);
+            if added > 0.0 {
+                force_rapier -= g * (m_boosted - m_rapier);
+            }
             rb.set_linear_damping(c.damping / dt_s);
             rb.set_angular_damping(spin_rate);
         }
@@ -339,10 +355,11 @@ fn couple_free(
     let (dt_s, g) = (params.dt_s, params.gravity_m_s2);
     let m = body.mass_kg;
     let v0 = to_na(rb.linvel());
+    // The integrator's inertia is m + C_m m_f (added mass); the weight stays m g.
     let flight = coupling::free_flight(
         params.integrator,
         &loads.drag,
-        m,
+        m + loads.added_mass_kg,
         &(g * m + loads.body_force_n),
         &v0,
         dt_s,
@@ -356,10 +373,12 @@ fn couple_free(
             suggested_dt_s: suggested_dt_s(params.integrator, body, v0.norm(), dt_s),
         });
     }
+    // Rapier's mass carries the added mass too, so that a contact met within the step sees it.
+    let m_rapier = boost_added_mass(rb, body, loads.added_mass_kg);
     rb.set_linear_damping(0.0);
     rb.set_angular_damping(loads.spin_drag_rate_hz);
     rb.add_force(
-        to_rapier(&((flight.acceleration_m_s2 - g) * body.rapier_mass_kg())),
+        to_rapier(&((flight.acceleration_m_s2 - g) * m_rapier)),
         false,
     );
     body.correction_m_s = Some(flight.correction_m_s());

@@ -32,11 +32,11 @@ impl World {
         self.surface = Some(surface);
     }
 
-    /// Fluid forces on a body at the start of a step: (drag, body force, spin-drag rate), with the
-    /// free surface's immersed fractions applied if one is set.
-    pub(super) fn fluid_now(&self, body: &Body) -> (SphereDrag, Vector, f64) {
+    /// Fluid forces on a body at the start of a step: (drag, body force, spin-drag rate, immersed
+    /// volume fraction), with the free surface's immersed fractions applied if one is set.
+    pub(super) fn fluid_now(&self, body: &Body) -> (SphereDrag, Vector, f64, f64) {
         let Some(fs) = self.surface else {
-            return (body.drag, body.body_force_n, body.spin_drag_rate_hz);
+            return (body.drag, body.body_force_n, body.spin_drag_rate_hz, 1.0);
         };
         let x = to_na(self.physics.bodies[body.handle].translation());
         let mut horizontal = x;
@@ -55,6 +55,7 @@ impl World {
             body.drag.scaled(fa),
             body.body_force_n * fv,
             body.spin_drag_rate_hz * fa,
+            fv,
         )
     }
 }

@@ -104,7 +104,8 @@ pub struct Scenario {
     #[serde(default)]
     pub instruments: Option<InstrumentsSpec>,
     /// Transient forces: added mass, history force, wall correction (kinds `free_settling`,
-    /// `drop`; absent: all off, the quasi-steady forces).
+    /// `drop`; the added mass alone in `restitution_drop` and `funnel_pour`; absent: all off,
+    /// the quasi-steady forces).
     #[serde(default)]
     pub transient: Option<Transient>,
 }

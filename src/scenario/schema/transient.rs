@@ -1,5 +1,6 @@
-//! Transient forces: `[transient]` (kinds `free_settling` and `drop`). Every key defaults to off,
-//! so a scenario without the table keeps the quasi-steady forces of f-EDEM and seed 000.
+//! Transient forces: `[transient]` (kinds `free_settling` and `drop`; added mass alone in the
+//! Rapier scenes `restitution_drop` and `funnel_pour`). Every key defaults to off, so a scenario
+//! without the table keeps the quasi-steady forces of f-EDEM and seed 000.
 
 use super::super::check::{cc, Check};
 use super::super::load::ScenarioError;
@@ -90,7 +91,17 @@ impl Transient {
         self.added_mass || self.history != History::Off || self.wall != Wall::Off
     }
 
-    /// `added_mass_coefficient` in [0, 2]; the history force only in a Newtonian fluid, for kind
+    /// C_m when the added mass is on, else 0.
+    pub fn added_mass_coefficient_on(&self) -> f64 {
+        if self.added_mass {
+            self.added_mass_coefficient
+        } else {
+            0.0
+        }
+    }
+
+    /// `added_mass_coefficient` in [0, 2]; in the Rapier scenes (`restitution_drop`,
+    /// `funnel_pour`) the added mass only; the history force only in a Newtonian fluid, for kind
     /// `free_settling`, on the free engine, with the exponential integrator; the wall only with a
     /// `[container]`, for kind `free_settling`.
     pub(crate) fn check(&self, c: &Check, s: &Scenario) -> Result<(), ScenarioError> {
@@ -99,7 +110,11 @@ impl Transient {
             self.added_mass_coefficient,
             cc(0.0, 2.0, ""),
         )?;
-        if self.any() && s.engine == EngineChoice::Rapier {
+        let rapier_scene = matches!(s.kind, Kind::RestitutionDrop | Kind::FunnelPour);
+        if rapier_scene && self.history != History::Off {
+            return Err(c.err("transient.history", format!("the history force is not implemented in the Rapier scenes (kind = \"{}\"): use history = \"off\" (allowed there: added_mass, added_mass_coefficient)", s.kind.name())));
+        }
+        if self.any() && !rapier_scene && s.engine == EngineChoice::Rapier {
             return Err(c.err(
                 "transient",
                 "the transient forces run on the free engine only: use engine = \"auto\" or \"free\"",

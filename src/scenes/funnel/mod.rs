@@ -23,6 +23,9 @@
 //!   passes the surface (`fluid.submergence = "full"`, f-EDEM) or on the immersed cap
 //!   (`"partial"`). A ball at rest in paste is held by the yield stress until pushed harder than
 //!   its static resistance (see [`crate::engine::dim3::World::set_yield_hold`]).
+//! - With `transient.added_mass`, a ball's inertia is m_p + C_m m_f of its immersed volume, in
+//!   free flight and in its contacts, gravity staying m_p g
+//!   ([`crate::engine::dim3::World::set_added_mass_coefficient`]).
 //!
 //! # Run of one repeat
 //! Ball i (diameter and density of `[[spheres]]` entry i mod n) is placed at random (ChaCha8,

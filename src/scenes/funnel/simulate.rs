@@ -104,6 +104,7 @@ fn initial_repeat(p: &Prepared, f: &FunnelPourSpec, seed: u64) -> Result<RepeatS
         .collect();
     world.set_restitution_law(ct.restitution_law());
     world.set_rolling_resistance(ct.rolling_resistance);
+    world.set_added_mass_coefficient(crate::scenes::added_mass_coefficient(s));
     world.set_free_surface(dim3::FreeSurface {
         height_m: geo.paste_height_m,
         radius_m: Some(geo.cylinder_radius_m),

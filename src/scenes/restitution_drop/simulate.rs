@@ -25,10 +25,9 @@ pub struct DropOutcome {
 }
 
 /// Drops the ball of `setup` from `drop_height_m` (lowest point above the plate) in the
-/// scenario's fluid with the setup's restitution law and the scenario's time step and
-/// integrator, and returns the first rebound. Errors
-/// with the engine's [`Unstable`], or with a message when no apex is reached within
-/// `time.end_s`.
+/// scenario's fluid with the setup's restitution law, the scenario's added mass (`[transient]`)
+/// and the scenario's time step and integrator, and returns the first rebound. Errors with the
+/// engine's [`Unstable`], or with a message when no apex is reached within `time.end_s`.
 pub fn simulate_drop(
     s: &Scenario,
     setup: &Setup,
@@ -51,6 +50,7 @@ pub fn simulate_drop(
         g,
     ));
     world.set_restitution_law(restitution);
+    world.set_added_mass_coefficient(crate::scenes::added_mass_coefficient(s));
 
     let max_steps = (s.time.end_s / dt).ceil() as u64;
     let mut steps = 0u64;
