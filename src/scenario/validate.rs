@@ -43,6 +43,7 @@ const TABLE_KINDS: &[(&str, &[Kind])] = {
         ("sample", &[Sedimentation]),
         ("instruments", &[Sedimentation]),
         ("transient", &[FreeSettling, Drop]),
+        ("reference", &[FreeSettling]),
     ]
 };
 
