@@ -278,7 +278,10 @@ fn a_categorical_axis_compares_history_off_and_basset_on_ten_cate() {
     }
     let out = dir.path().join("ten_cate_e1_vary");
     let (h, rows) = read_csv(&out.join("vary.csv"));
-    assert_eq!(h[..3], ["transient.history", "body", "terminal_velocity_m_s"]);
+    assert_eq!(
+        h[..3],
+        ["transient.history", "body", "terminal_velocity_m_s"]
+    );
     let cells: Vec<&str> = rows.iter().map(|r| r[0].as_str()).collect();
     assert_eq!(cells, ["basset", "off"]);
     let v = |r: &[String]| col(&h, r, "terminal_velocity_m_s");
@@ -310,7 +313,10 @@ fn a_categorical_axis_compares_history_off_and_basset_on_ten_cate() {
         &["transient.history [-]", "terminal_velocity_m_s [m/s]"],
     );
     for tick in ["basset", "off"] {
-        assert!(texts.iter().any(|t| t == tick), "tick `{tick}` in {texts:?}");
+        assert!(
+            texts.iter().any(|t| t == tick),
+            "tick `{tick}` in {texts:?}"
+        );
     }
     let report = std::fs::read_to_string(out.join("report.html")).unwrap();
     assert!(report.contains("vary.csv") && report.contains("basset"));
@@ -325,7 +331,12 @@ fn a_categorical_value_the_key_does_not_take_is_refused() {
     let cases: [(&str, &[&str]); 2] = [
         (
             "transient.history=off,foo",
-            &["ten_cate_e1.toml", "transient.history", "foo", "`off`, `basset`, `mei-adrian`"],
+            &[
+                "ten_cate_e1.toml",
+                "transient.history",
+                "foo",
+                "`off`, `basset`, `mei-adrian`",
+            ],
         ),
         (
             "transient.added_mass=false,maybe",
@@ -385,7 +396,12 @@ fn a_categorical_grid_with_a_numeric_key_shards_and_merges() {
     let keys: Vec<(&str, &str)> = a.1.iter().map(|r| (r[0].as_str(), r[1].as_str())).collect();
     assert_eq!(
         keys,
-        [("false", "0.2"), ("false", "0.373"), ("true", "0.2"), ("true", "0.373")]
+        [
+            ("false", "0.2"),
+            ("false", "0.373"),
+            ("true", "0.2"),
+            ("true", "0.373")
+        ]
     );
     assert_eq!(a, b);
     assert_readable_chart(

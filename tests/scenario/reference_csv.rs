@@ -40,6 +40,10 @@ fn write(dir: &Path, v: &str, gap: &str, replace: (&str, &str)) -> std::path::Pa
     toml
 }
 
+/// A bad case: the velocity CSV, the gap CSV, a (from, to) replacement in the scenario text, and
+/// the words the error must hold.
+type Case<'a> = (&'a str, &'a str, (&'a str, &'a str), &'a [&'a str]);
+
 const GOOD_V: &str = "time_s,velocity_m_s\n0.1,0.01\n0.2,0.02\n";
 const GOOD_GAP: &str = "time_s,gap_over_diameter,gap_m\n-0.01,8.1,0.1215\n0.5,7,0.105\n";
 
@@ -67,12 +71,16 @@ fn the_curves_are_read_relative_to_the_scenario_with_extra_columns_ignored() {
 /// naming the key, the file and where in it.
 #[test]
 fn a_bad_reference_file_is_refused_naming_file_row_and_column() {
-    let cases: [(&str, &str, (&str, &str), &[&str]); 6] = [
+    let cases: [Case; 6] = [
         (
             "time_s,speed\n0.1,0.01\n",
             GOOD_GAP,
             ("", ""),
-            &["reference.velocity_csv", "v.csv", "missing column `velocity_m_s`"],
+            &[
+                "reference.velocity_csv",
+                "v.csv",
+                "missing column `velocity_m_s`",
+            ],
         ),
         (
             "time_s,velocity_m_s\n0.1,0.01\n0.2,fast\n",
@@ -88,7 +96,12 @@ fn a_bad_reference_file_is_refused_naming_file_row_and_column() {
             GOOD_V,
             "time_s,gap_m\n0.1,inf\n",
             ("", ""),
-            &["reference.gap_csv", "gap.csv", "line 2 (data row 1), column 2", "finite"],
+            &[
+                "reference.gap_csv",
+                "gap.csv",
+                "line 2 (data row 1), column 2",
+                "finite",
+            ],
         ),
         (
             GOOD_V,
@@ -100,7 +113,11 @@ fn a_bad_reference_file_is_refused_naming_file_row_and_column() {
             GOOD_V,
             GOOD_GAP,
             ("data/v.csv", "data/none.csv"),
-            &["reference.velocity_csv", "none.csv", "relative to the scenario file"],
+            &[
+                "reference.velocity_csv",
+                "none.csv",
+                "relative to the scenario file",
+            ],
         ),
         (
             GOOD_V,

@@ -289,7 +289,11 @@ fn ten_cate_charts_overlay_the_measured_curves() {
             .lines()
             .filter(|l| l.starts_with("<polyline") && l.contains("stroke=\"#FF7F0E\""))
             .count();
-        assert_eq!(markers, n + 1, "{svg}: {n} measured markers and the legend's");
+        assert_eq!(
+            markers,
+            n + 1,
+            "{svg}: {n} measured markers and the legend's"
+        );
     }
     // Without the table: no measured series, no gap chart.
     let bare = tmp();
@@ -297,7 +301,11 @@ fn ten_cate_charts_overlay_the_measured_curves() {
     let text = std::fs::read_to_string("scenarios/ten_cate_e1.toml").unwrap();
     let cut = text.find("[reference]").unwrap();
     std::fs::write(&toml, &text[..cut]).unwrap();
-    run(bare.path(), &[toml.to_str().unwrap()], &["--set", "time.end_s=0.5"]);
+    run(
+        bare.path(),
+        &[toml.to_str().unwrap()],
+        &["--set", "time.end_s=0.5"],
+    );
     let dir = bare.path().join("ten_cate_e1");
     assert!(!dir.join("gap.svg").exists());
     let texts = crate::common::chart::svg_texts(&dir.join("velocity.svg"));

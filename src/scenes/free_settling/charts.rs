@@ -165,7 +165,12 @@ pub fn write_gap_chart(
             .iter()
             .step_by(every)
             .chain(r.samples.last())
-            .map(|s| (s.time_s, height_m - s.depth_m - 0.5 * r.case.spec.diameter_m))
+            .map(|s| {
+                (
+                    s.time_s,
+                    height_m - s.depth_m - 0.5 * r.case.spec.diameter_m,
+                )
+            })
             .collect();
         if points.is_empty() {
             continue;

@@ -5,8 +5,8 @@
 //! force-balance reference), then `status`, `steps`, `wall_time_s`, `reason`.
 
 use super::super::table::{Row, Status};
-use super::grid::Level;
 use super::super::targets::has_reference;
+use super::grid::Level;
 use crate::io::num;
 use std::io;
 use std::path::Path;
