@@ -98,7 +98,9 @@ enum Command {
     /// With --vary KEY=GRID (repeatable), a parameter sweep of any scenario key instead, at the
     /// scenario's own dt: OUT/<name>_vary/vary.csv (the varied keys, body, each result with its
     /// unit, status) and a chart <quantity>_vs_<key>.svg of each result against the first key.
-    /// Every case is validated first: a bad key or value exits 2 with nothing written.
+    /// A list of words or booleans is a categorical axis, each value passed as --set passes it
+    /// (e.g. --vary transient.history=off,basset,mei-adrian compares quasi-steady and history
+    /// forces). Every case is validated first: a bad key or value exits 2 with nothing written.
     Sweep(crate::sweep::Args),
     /// Reduce laboratory hydrometer readings by ASTM D422 or D7928, or pipette and
     /// buoyancy-sphere readings by seed 000's eqs. 17 and 22 (percent finer vs diameter).

@@ -102,6 +102,7 @@ pub fn prepare(
         SceneSpec::Sedimentation(sd) => Some(spheres::read_sample(&sd.sample, path)?),
         _ => None,
     };
+    let reference = spheres::read_reference(&scenario, path)?;
     Ok(Prepared {
         path: path.to_path_buf(),
         scenario,
@@ -109,6 +110,7 @@ pub fn prepare(
         sample,
         scene,
         rheology,
+        reference,
         overrides: scenario::Overrides {
             set: overrides.to_vec(),
             dt_s,

@@ -1,12 +1,12 @@
 //! The input files a scenario names, read and checked while the scenario is prepared, so that a
 //! bad file is refused (exit 2) before anything runs: the spheres of `[spheres_csv]` (with the
-//! inline `[[spheres]]`, [`spheres`]) and the sample distribution of a sedimentation run
-//! ([`read_sample`]). Every error names the scenario file, the key that names the input file,
+//! inline `[[spheres]]`, [`spheres`]), the sample distribution of a sedimentation run
+//! ([`read_sample`]) and the measured curves of `[reference]` ([`read_reference`]). Every error names the scenario file, the key that names the input file,
 //! the input file, the line of the file and the data row (both 1-based: line 1 is the header,
 //! data row 1 the first line of data), the column (1-based) and what is allowed.
 
 use super::load::ScenarioError;
-use super::schema::{SampleSpec, Scenario, SphereSpec};
+use super::schema::{ReferenceSpec, SampleSpec, Scenario, SphereSpec};
 use crate::sample::Distribution;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -405,6 +405,102 @@ pub fn spheres(
                     })
             })
             .collect();
+    }
+    Ok(out)
+}
+
+/// The measured curves of a scenario's `[reference]`, read and checked while it is prepared.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct MeasuredCurves {
+    /// Where they come from (`reference.source`), for the legends.
+    pub source: String,
+    /// (time_s, velocity_m_s) of `reference.velocity_csv`, in file order (empty if not given).
+    pub velocity: Vec<(f64, f64)>,
+    /// (time_s, gap_m) of `reference.gap_csv`, in file order (empty if not given).
+    pub gap: Vec<(f64, f64)>,
+}
+
+/// Reads the curves of `scenario`'s `[reference]` (None without one): a non-empty `source` and
+/// at least one of `velocity_csv` (columns `time_s`, `velocity_m_s`) and `gap_csv` (columns
+/// `time_s`, `gap_m`), each relative to `scenario_path`'s folder, other columns ignored, every
+/// row a finite number in both columns, at least one row. Errors name the scenario file, the
+/// key, the CSV and its line, data row and column (1-based).
+pub fn read_reference(
+    scenario: &Scenario,
+    scenario_path: &Path,
+) -> Result<Option<MeasuredCurves>, ScenarioError> {
+    let Some(r) = &scenario.reference else {
+        return Ok(None);
+    };
+    let ReferenceSpec {
+        source,
+        velocity_csv,
+        gap_csv,
+    } = r;
+    if source.trim().is_empty() {
+        return Err(ScenarioError::new(
+            scenario_path,
+            Some("reference.source"),
+            "empty: name where the measured curves come from (it labels them in the charts)",
+        ));
+    }
+    if velocity_csv.is_none() && gap_csv.is_none() {
+        return Err(ScenarioError::new(
+            scenario_path,
+            Some("reference"),
+            "names no file: give velocity_csv, gap_csv or both",
+        ));
+    }
+    let base = scenario_path.parent().unwrap_or(Path::new("."));
+    let read = |key: &'static str, file: &Option<String>, column: &str| match file {
+        None => Ok(Vec::new()),
+        Some(f) => curve(
+            &CsvInput {
+                scenario_path,
+                key,
+                csv_path: base.join(f),
+            },
+            column,
+        ),
+    };
+    Ok(Some(MeasuredCurves {
+        source: source.trim().to_string(),
+        velocity: read("reference.velocity_csv", velocity_csv, "velocity_m_s")?,
+        gap: read("reference.gap_csv", gap_csv, "gap_m")?,
+    }))
+}
+
+/// The (time_s, `column`) pairs of a measured curve's CSV (see [`read_reference`]).
+fn curve(input: &CsvInput, column: &str) -> Result<Vec<(f64, f64)>, ScenarioError> {
+    let (mut rdr, header) = input.open()?;
+    let find = |name: &str| {
+        header.iter().position(|h| h == name).ok_or_else(|| {
+            input.err(format!(
+                "missing column `{name}` (required: time_s, {column}; other columns are ignored)"
+            ))
+        })
+    };
+    let (ct, cv) = (find("time_s")?, find(column)?);
+    let mut out = Vec::new();
+    for rec in rdr.records() {
+        let rec = rec.map_err(|e| read_error(input, e))?;
+        let mut pair = [0.0; 2];
+        for (k, c) in [ct, cv].into_iter().enumerate() {
+            let x = input.required(&rec, &header, c)?;
+            if !x.is_finite() {
+                return Err(input.err(format!(
+                    "{}, column {} (`{}`): {x} is out of range: allowed a finite number",
+                    row_of(&rec),
+                    c + 1,
+                    header[c]
+                )));
+            }
+            pair[k] = x;
+        }
+        out.push((pair[0], pair[1]));
+    }
+    if out.is_empty() {
+        return Err(input.err("has no data row: allowed at least one"));
     }
     Ok(out)
 }

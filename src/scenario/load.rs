@@ -118,8 +118,9 @@ fn scenario_of_record(mut table: toml::Table, path: &Path) -> Result<toml::Table
 
 /// The effective scenario `s` (read from `file`) as written to `run.toml`, so that the record
 /// runs again anywhere: the tables its kind does not use are left out (they hold only defaults:
-/// validation refuses them when given), and the input files (`spheres_csv.path`, `sample.csv`),
-/// relative to `file`'s folder, become absolute paths.
+/// validation refuses them when given), and the input files (`spheres_csv.path`, `sample.csv`,
+/// `reference.velocity_csv`, `reference.gap_csv`), relative to `file`'s folder, become absolute
+/// paths.
 pub fn record_table(s: &Scenario, file: &Path) -> Result<toml::Table, toml::ser::Error> {
     let mut t = match toml::Value::try_from(s)? {
         toml::Value::Table(t) => t,
@@ -145,6 +146,8 @@ pub fn record_table(s: &Scenario, file: &Path) -> Result<toml::Table, toml::ser:
     };
     resolve("spheres_csv", "path");
     resolve("sample", "csv");
+    resolve("reference", "velocity_csv");
+    resolve("reference", "gap_csv");
     Ok(t)
 }
 

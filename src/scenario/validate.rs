@@ -46,6 +46,7 @@ const TABLE_KINDS: &[(&str, &[Kind])] = {
             "transient",
             &[FreeSettling, Drop, RestitutionDrop, FunnelPour],
         ),
+        ("reference", &[FreeSettling]),
     ]
 };
 

@@ -28,6 +28,9 @@ pub struct Prepared {
     pub scene: SceneSpec,
     /// The fluid's rheology with its parameters ([`crate::scenario::Parsed::rheology`]).
     pub rheology: RheologyModel,
+    /// The measured curves of `[reference]`, read while the scenario is prepared (None
+    /// without one).
+    pub reference: Option<crate::scenario::inputs::MeasuredCurves>,
     /// The overrides as given on the command line (`--set`, `--dt`), recorded in `run.toml`;
     /// already applied to `scenario`.
     pub overrides: crate::scenario::Overrides,

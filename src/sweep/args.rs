@@ -38,7 +38,8 @@ pub struct Args {
     #[arg(long, value_name = "I/N", value_parser = parse_shard)]
     pub shard: Option<Shard>,
     /// Vary a scenario key instead of dt (a parameter sweep into OUT/<name>_vary/): KEY=LO:HI:N
-    /// (N values from LO to HI), KEY=log:LO:HI:N (log-spaced) or KEY=V1,V2,…; each value is
+    /// (N values from LO to HI), KEY=log:LO:HI:N (log-spaced) or KEY=V1,V2,… (numbers, or words
+    /// and booleans: a categorical axis, e.g. transient.history=off,basset); each value is
     /// applied as --set KEY=VALUE at the scenario's own dt and integrator. Repeat for a full grid
     /// of several keys (the first key is the charts' x axis).
     #[arg(long, value_name = "KEY=GRID", allow_hyphen_values = true, value_parser = parse_vary,

@@ -2,13 +2,18 @@
 //! one case per point of the grid and writes `OUT/<name>_vary/vary.csv` (the keys, then the
 //! results with units) and a chart of each result against the first key; every case is
 //! validated before any runs; shards merge to the unsharded table; a signal stops it with
-//! nothing written.
+//! nothing written. Words and booleans make a categorical axis (issue 16: `settle sweep`
+//! compares quasi-steady and transient forces, `--vary transient.history=off,basset`).
 
 use crate::common::chart::assert_readable_chart;
 use crate::common::{assert_exit, col, read_csv, settle, tmp};
 use std::path::Path;
 
 const STOKES: &str = "scenarios/stokes_single.toml";
+const TEN_CATE: &str = "scenarios/ten_cate_e1.toml";
+/// Half a second of ten Cate E1: the sphere still accelerating (u∞ = 0.038 m/s), where the
+/// history force matters most; 5000 steps a case.
+const HALF_SECOND: &str = "time.end_s=0.5";
 
 /// Runs `settle sweep ARGS --quiet --out OUT` and returns its output.
 fn sweep(args: &[&str], out: &Path) -> std::process::Output {
@@ -245,4 +250,163 @@ fn sigterm_stops_a_parameter_sweep_and_writes_nothing() {
         .map(|d| d.flatten().map(|e| e.file_name()).collect())
         .unwrap_or_default();
     assert!(left.is_empty(), "an interrupted sweep wrote {left:?}");
+}
+
+/// `--vary transient.history=off,basset` on ten Cate E1 (0.5 s): a categorical axis whose
+/// `vary.csv` cells hold the words, one row per value in canonical (byte) order. The history-off
+/// case is the plain `settle run` with history off, to the last digit; the Basset history force
+/// resists the acceleration, so at 0.5 s the sphere is at least 10 % slower (0.0299 against
+/// 0.0381 m/s). The chart has one x position per value, labelled with it; the console prints one
+/// line per value; the report page lists the table.
+#[test]
+fn a_categorical_axis_compares_history_off_and_basset_on_ten_cate() {
+    let dir = tmp();
+    let o = settle()
+        .args(["sweep", TEN_CATE, "--set", HALF_SECOND])
+        .args(["--vary", "transient.history=off,basset", "--out"])
+        .arg(dir.path())
+        .output()
+        .unwrap();
+    assert_exit(&o, 0);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    for line in [
+        "2 cases varying transient.history",
+        "transient.history = basset: terminal_velocity_m_s 0.0",
+        "transient.history = off: terminal_velocity_m_s 0.0",
+    ] {
+        assert!(stdout.contains(line), "`{line}` not in {stdout}");
+    }
+    let out = dir.path().join("ten_cate_e1_vary");
+    let (h, rows) = read_csv(&out.join("vary.csv"));
+    assert_eq!(
+        h[..3],
+        ["transient.history", "body", "terminal_velocity_m_s"]
+    );
+    let cells: Vec<&str> = rows.iter().map(|r| r[0].as_str()).collect();
+    assert_eq!(cells, ["basset", "off"]);
+    let v = |r: &[String]| col(&h, r, "terminal_velocity_m_s");
+    let (basset, off) = (v(&rows[0]), v(&rows[1]));
+
+    let run = dir.path().join("run");
+    let o = settle()
+        .args(["run", "-q", TEN_CATE, "--set", HALF_SECOND])
+        .args(["--set", "transient.history=off", "--out"])
+        .arg(&run)
+        .output()
+        .unwrap();
+    assert_exit(&o, 0);
+    let (sh, srows) = read_csv(&run.join("ten_cate_e1/summary.csv"));
+    let plain = col(&sh, &srows[0], "v_simulated_m_s");
+    assert_eq!(off, plain, "history off in the sweep against a plain run");
+    assert!(
+        (0.030..0.045).contains(&off),
+        "v(0.5 s), history off: {off} m/s"
+    );
+    assert!(
+        basset < 0.9 * off,
+        "v(0.5 s): Basset {basset} m/s is not 10 % below history off {off} m/s"
+    );
+
+    let texts = assert_readable_chart(
+        &out.join("terminal_velocity_m_s_vs_transient.history.svg"),
+        "terminal_velocity_m_s against transient.history",
+        &["transient.history [-]", "terminal_velocity_m_s [m/s]"],
+    );
+    for tick in ["basset", "off"] {
+        assert!(
+            texts.iter().any(|t| t == tick),
+            "tick `{tick}` in {texts:?}"
+        );
+    }
+    let report = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(report.contains("vary.csv") && report.contains("basset"));
+}
+
+/// A word the key does not take (`history=foo`, `added_mass=maybe`) is refused as `--set`
+/// refuses it (the key, the value and the allowed values), exit 2, before any case runs and
+/// with nothing written.
+#[test]
+fn a_categorical_value_the_key_does_not_take_is_refused() {
+    let dir = tmp();
+    let cases: [(&str, &[&str]); 2] = [
+        (
+            "transient.history=off,foo",
+            &[
+                "ten_cate_e1.toml",
+                "transient.history",
+                "foo",
+                "`off`, `basset`, `mei-adrian`",
+            ],
+        ),
+        (
+            "transient.added_mass=false,maybe",
+            &["transient.added_mass", "maybe", "expected a boolean"],
+        ),
+    ];
+    for (vary, words) in cases {
+        let o = sweep(&[TEN_CATE, "--vary", vary], dir.path());
+        assert_exit(&o, 2);
+        let err = String::from_utf8_lossy(&o.stderr);
+        for w in words {
+            assert!(err.contains(w), "{vary}: `{w}` not in {err}");
+        }
+        assert!(!err.contains("panicked"), "{err}");
+        assert!(
+            !dir.path().exists() || std::fs::read_dir(dir.path()).unwrap().next().is_none(),
+            "{vary} wrote something"
+        );
+    }
+}
+
+/// A categorical axis with a numeric one (2 × 2 cases) runs its full grid, and its shards merge
+/// into the same table as the unsharded sweep (the words survive the part files).
+#[test]
+fn a_categorical_grid_with_a_numeric_key_shards_and_merges() {
+    let dir = tmp();
+    let args = [
+        TEN_CATE,
+        "--set",
+        "time.end_s=0.2",
+        "--vary",
+        "transient.added_mass=true,false",
+        "--vary",
+        "fluid.viscosity_pa_s=0.2,0.373",
+    ];
+    let whole = dir.path().join("whole");
+    assert_exit(&sweep(&args, &whole), 0);
+    let parts = dir.path().join("parts");
+    for s in ["1/3", "2/3", "3/3"] {
+        assert_exit(&sweep(&[&args[..], &["--shard", s]].concat(), &parts), 0);
+    }
+    let folder = parts.join("ten_cate_e1_vary");
+    let o = settle()
+        .args(["sweep", "--quiet", "--merge"])
+        .arg(&folder)
+        .output()
+        .unwrap();
+    assert_exit(&o, 0);
+    let strip = |p: &Path| {
+        let (h, mut rows) = read_csv(p);
+        let w = h.iter().position(|c| c == "wall_time_s").unwrap();
+        rows.iter_mut().for_each(|r| r[w].clear());
+        (h, rows)
+    };
+    let a = strip(&whole.join("ten_cate_e1_vary/vary.csv"));
+    let b = strip(&folder.join("vary.csv"));
+    let keys: Vec<(&str, &str)> = a.1.iter().map(|r| (r[0].as_str(), r[1].as_str())).collect();
+    assert_eq!(
+        keys,
+        [
+            ("false", "0.2"),
+            ("false", "0.373"),
+            ("true", "0.2"),
+            ("true", "0.373")
+        ]
+    );
+    assert_eq!(a, b);
+    assert_readable_chart(
+        &folder.join("terminal_velocity_m_s_vs_transient.added_mass.svg"),
+        "terminal_velocity_m_s against transient.added_mass",
+        &["transient.added_mass [-]"],
+    );
 }

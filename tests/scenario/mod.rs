@@ -2,5 +2,6 @@
 
 mod bad_input;
 mod outputs_docs;
+mod reference_csv;
 mod schema_docs;
 mod spheres_csv;

@@ -86,6 +86,11 @@ fn the_reader_recognises_the_pages_phrasings() {
 fn free_settling_outputs_are_documented() {
     check("scenarios/stokes_single.toml", &[], "free_settling");
     check("scenarios/valentik_susp1.toml", &[], "free_settling");
+    check(
+        "scenarios/ten_cate_e1.toml",
+        &["time.end_s=0.5"],
+        "free_settling",
+    );
 }
 
 #[test]

@@ -2,7 +2,8 @@
 //! ticks of at most 6 significant digits, legend outside the data), and show what they claim:
 //! the analytic Stokes curve of the run's own constants (f-EDEM Figs. 5–6), Table 3's Re′–C_d
 //! points with eq. 19 (Fig. 1), one parity chart of several files with ±10 % and ±25 % bands
-//! (Figs. 9–11), and the drop's settling distance (Fig. 16).
+//! (Figs. 9–11), and the drop's settling distance (Fig. 16); the measured v(t) and gap of ten
+//! Cate et al. (2002) beside the simulated ones (`[reference]`, issue 16).
 
 use crate::common::chart::{assert_readable_chart, tick_value};
 use crate::common::{read_csv_records, settle, tmp};
@@ -248,4 +249,65 @@ fn drop_charts_are_readable() {
         "settling velocity against time",
         &["time t (s)", "settling velocity v"],
     );
+}
+
+/// The `[reference]` of ten Cate E1 (the digitised Fig. 5 of ten Cate et al. 2002): `velocity.svg`
+/// and `gap.svg` show every measured point as a hollow marker (one polyline per marker in the
+/// series' colour, plus its legend sample) under a legend entry naming the source, and read as
+/// issue 13 asks.
+#[test]
+fn ten_cate_charts_overlay_the_measured_curves() {
+    let out = tmp();
+    run(out.path(), &["scenarios/ten_cate_e1.toml"], &[]);
+    let dir = out.path().join("ten_cate_e1");
+    let rows = |f: &str| read_csv_records(Path::new(&format!("data/ten_cate_2002/{f}"))).len();
+    for (svg, title, y, n) in [
+        (
+            "velocity.svg",
+            "settling velocity against time",
+            "settling velocity v",
+            rows("ten_cate_e1_velocity.csv"),
+        ),
+        (
+            "gap.svg",
+            "gap between sphere and bottom against time",
+            "gap between sphere and bottom (m)",
+            rows("ten_cate_e1_gap.csv"),
+        ),
+    ] {
+        let path = dir.join(svg);
+        let texts = assert_readable_chart(&path, title, &["time t (s)", y]);
+        let label = format!("measured ({n} points): ten Cate et al. (2002)");
+        assert!(
+            texts.iter().any(|t| t.contains(&label)),
+            "{svg}: `{label}` in {texts:?}"
+        );
+        assert!(texts.iter().any(|t| t.contains("nylon-15mm, simulated")));
+        // The measured series takes the second colour (orange, #FF7F0E), hollow squares.
+        let text = std::fs::read_to_string(&path).unwrap();
+        let markers = text
+            .lines()
+            .filter(|l| l.starts_with("<polyline") && l.contains("stroke=\"#FF7F0E\""))
+            .count();
+        assert_eq!(
+            markers,
+            n + 1,
+            "{svg}: {n} measured markers and the legend's"
+        );
+    }
+    // Without the table: no measured series, no gap chart.
+    let bare = tmp();
+    let toml = bare.path().join("e1.toml");
+    let text = std::fs::read_to_string("scenarios/ten_cate_e1.toml").unwrap();
+    let cut = text.find("[reference]").unwrap();
+    std::fs::write(&toml, &text[..cut]).unwrap();
+    run(
+        bare.path(),
+        &[toml.to_str().unwrap()],
+        &["--set", "time.end_s=0.5"],
+    );
+    let dir = bare.path().join("ten_cate_e1");
+    assert!(!dir.join("gap.svg").exists());
+    let texts = crate::common::chart::svg_texts(&dir.join("velocity.svg"));
+    assert!(!texts.iter().any(|t| t.contains("measured")), "{texts:?}");
 }

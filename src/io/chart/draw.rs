@@ -1,6 +1,6 @@
 //! Drawing a [`Chart`] with plotters: title, data area with axes, legend panel on the right.
 
-use super::ticks::{layout, AxisLayout};
+use super::ticks::{categorical, layout, AxisLayout};
 use super::{Chart, Item, Marker, Plotted, Scale};
 use plotters::coord::ranged1d::{DefaultFormatting, KeyPointHint};
 use plotters::coord::types::RangedCoordf64;
@@ -155,13 +155,17 @@ fn axes(c: &Chart) -> (AxisLayout, AxisLayout) {
         }
     }
     let lin = |s: Scale| s == Scale::Linear;
-    (
-        layout(
+    let x = match &c.x.categories {
+        Some(names) => categorical(names),
+        None => layout(
             xs.into_iter(),
             c.x.scale,
             c.x.range,
             c.x.from_zero && lin(c.x.scale),
         ),
+    };
+    (
+        x,
         layout(
             ys.into_iter(),
             c.y.scale,

@@ -173,12 +173,14 @@ enum Item {
     Band(Band),
 }
 
-/// One axis: label (with unit), scale, optional fixed range, start at zero when reasonable.
+/// One axis: label (with unit), scale, optional fixed range, start at zero when reasonable, and
+/// the names of its categories (a categorical axis: category i at x = i).
 struct AxisSpec {
     label: String,
     scale: Scale,
     range: Option<(f64, f64)>,
     from_zero: bool,
+    categories: Option<Vec<String>>,
 }
 
 /// A chart under construction; [`Chart::svg`] draws it.
@@ -199,6 +201,7 @@ impl Chart {
             scale: Scale::Linear,
             range: None,
             from_zero,
+            categories: None,
         };
         Self {
             title: title.into(),
@@ -213,6 +216,19 @@ impl Chart {
     pub fn x(mut self, label: impl Into<String>, scale: Scale) -> Self {
         self.x.label = label.into();
         self.x.scale = scale;
+        self
+    }
+
+    /// A categorical x axis: label with its unit in brackets, and the names of the categories,
+    /// category i drawn at x = i and labelled with its name (the x range is −0.5 … n − 0.5).
+    pub fn x_categories(
+        mut self,
+        label: impl Into<String>,
+        names: impl IntoIterator<Item = String>,
+    ) -> Self {
+        self.x.label = label.into();
+        self.x.scale = Scale::Linear;
+        self.x.categories = Some(names.into_iter().collect());
         self
     }
 

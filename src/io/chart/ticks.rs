@@ -102,6 +102,20 @@ pub fn layout(
     }
 }
 
+/// The layout of a categorical axis: category i at i, labelled with its name, the range half a
+/// position beyond the first and the last (one category: −0.5 … 0.5).
+pub fn categorical(names: &[String]) -> AxisLayout {
+    let n = names.len().max(1);
+    AxisLayout {
+        lo: -0.5,
+        hi: n as f64 - 0.5,
+        ticks: (0..names.len()).map(|i| i as f64).collect(),
+        labels: names.to_vec(),
+        minor: Vec::new(),
+        log: false,
+    }
+}
+
 /// `(lo, hi)` widened about its centre to at least `span`.
 fn widen(lo: f64, hi: f64, span: f64) -> (f64, f64) {
     if hi - lo >= span {

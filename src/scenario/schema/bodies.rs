@@ -62,6 +62,26 @@ pub struct SphereSpec {
     pub suspension: Option<u32>,
 }
 
+/// Measured curves a free-settling run draws beside its own (`velocity.svg`, `gap.svg`):
+/// `[reference]`. The files are read and checked while the scenario is prepared
+/// ([`crate::scenario::inputs::read_reference`]).
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ReferenceSpec {
+    /// Where the curves come from, named in the charts' legends (e.g. `ten Cate et al. (2002),
+    /// Fig. 5, digitised`).
+    pub source: String,
+    /// CSV of the measured settling velocity against time, relative to the scenario file's
+    /// folder: columns `time_s` and `velocity_m_s` (downward speed), others ignored.
+    #[serde(default)]
+    pub velocity_csv: Option<String>,
+    /// CSV of the measured gap between the sphere's lowest point and the container bottom
+    /// against time, relative to the scenario file's folder: columns `time_s` and `gap_m`,
+    /// others ignored.
+    #[serde(default)]
+    pub gap_csv: Option<String>,
+}
+
 /// Spheres from a CSV file, as `data/valentik_whitmore_1965_spheres.csv`. Its columns are named
 /// like the keys of `[[spheres]]`: `id`, `suspension`, `diameter_m`, `density_kg_m3`,
 /// `youngs_modulus_pa`, `poisson_ratio`, `v_measured_m_s`; the old names `sphere_id` and

@@ -10,7 +10,7 @@ mod measure;
 mod time;
 mod transient;
 
-pub use bodies::{Container, Release, SphereSpec, SpheresCsv};
+pub use bodies::{Container, ReferenceSpec, Release, SphereSpec, SpheresCsv};
 pub use contacts::Contacts;
 pub use fluid::{Drag, DragLawName, Fluid, Rheology, RheologyModel, StaticCriterion, Submergence};
 pub use kinds::funnel::{FunnelSpec, Repeats};
@@ -108,6 +108,10 @@ pub struct Scenario {
     /// the quasi-steady forces).
     #[serde(default)]
     pub transient: Option<Transient>,
+    /// Measured curves drawn beside the simulated v(t) and gap (kind `free_settling`; absent:
+    /// none).
+    #[serde(default)]
+    pub reference: Option<ReferenceSpec>,
 }
 
 fn default_dimension() -> Dim {

@@ -2,7 +2,11 @@
 //!
 //! - `velocity.svg`: v(t) of every sphere from the recorded time series, with the analytic
 //!   Stokes curve v(t) = v_t + (v₀ − v_t) e^(−t/τ) where the law is Stokes (f-EDEM Figs. 5–6;
-//!   the constants are the run's own: v_t from the force balance, τ = m/(3π μ d), no added mass);
+//!   the constants are the run's own: v_t from the force balance, τ = m/(3π μ d), no added mass),
+//!   and the measured v(t) of `[reference]` as hollow markers;
+//! - `gap.svg` (with `reference.gap_csv` and a container): the gap between each sphere's lowest
+//!   point and the container bottom against time, with the measured gap (ten Cate et al. 2002,
+//!   Fig. 5a);
 //! - `cd_re.svg` and `cd_re.csv`: drag coefficient against the Bingham Reynolds number Re′, the
 //!   points of the measured velocities (f-EDEM Table 3, by eqs. 17–18), the simulated ones and
 //!   eq. 19 (f-EDEM Fig. 1);
@@ -17,6 +21,7 @@ use crate::fluid::bingham::{cd_fedem, cd_from_terminal_velocity, reynolds_bingha
 use crate::io::chart::ticks::significant;
 use crate::io::chart::{grid_svg, Band, Chart, Curve, Marker, Scale, Series};
 use crate::io::{opt, write_csv};
+use crate::scenario::inputs::MeasuredCurves;
 use crate::scenario::{Rheology, Scenario};
 use std::collections::BTreeMap;
 use std::io;
@@ -32,13 +37,16 @@ const MARKERS_PER_LINE: usize = 12;
 /// analytic Stokes curve of each sphere that has one (released at `v0_m_s`). With transient forces
 /// (`exact` = Some(name of the solution)), the analytic curve is the recorded exact column
 /// (`velocity_analytic_m_s`: the Boussinesq–Basset closed form, or the exponential approach with
-/// added mass) instead. Writes nothing and returns false when no sphere has samples.
+/// added mass) instead. The measured v(t) of `measured` (`[reference]`), if any, is drawn as
+/// hollow markers named by its source. Writes nothing and returns false when no sphere has
+/// samples.
 pub fn write_velocity_chart(
     path: &Path,
     title: &str,
     results: &[SphereResult],
     v0_m_s: f64,
     exact: Option<&str>,
+    measured: Option<&MeasuredCurves>,
 ) -> io::Result<bool> {
     let mut chart = Chart::new(title)
         .x("time t (s)", Scale::Linear)
@@ -111,10 +119,73 @@ pub fn write_velocity_chart(
             );
         }
     }
+    if let Some(m) = measured.filter(|m| !m.velocity.is_empty()) {
+        chart = chart.series(measured_series(&m.source, &m.velocity, results.len()));
+    }
     if any {
         chart.svg(path)?;
     }
     Ok(any)
+}
+
+/// The measured points of a `[reference]` curve: hollow markers without a line, labelled with
+/// the source and the number of points.
+fn measured_series(source: &str, points: &[(f64, f64)], colour: usize) -> Series {
+    Series {
+        label: format!("measured ({} points): {source}", points.len()),
+        points: points.to_vec(),
+        colour,
+        filled: false,
+        line: false,
+    }
+}
+
+/// Writes `gap.svg`: the gap between each sphere's lowest point and the bottom of a container of
+/// fluid height `height_m` (h − depth − d/2, as `gap_to_bottom_m` of `timeseries.csv`) against
+/// time, with the measured gap of `measured` as hollow markers (like ten Cate et al. 2002,
+/// Fig. 5a). Writes nothing and returns false without a measured gap or recorded samples.
+pub fn write_gap_chart(
+    path: &Path,
+    title: &str,
+    results: &[SphereResult],
+    height_m: f64,
+    measured: &MeasuredCurves,
+) -> io::Result<bool> {
+    if measured.gap.is_empty() || results.iter().all(|r| r.samples.is_empty()) {
+        return Ok(false);
+    }
+    let mut chart = Chart::new(title)
+        .x("time t (s)", Scale::Linear)
+        .x_from_zero(true)
+        .y("gap between sphere and bottom (m)", Scale::Linear);
+    for (i, r) in results.iter().enumerate() {
+        let every = r.samples.len().div_ceil(LINE_POINTS).max(1);
+        let points: Vec<(f64, f64)> = r
+            .samples
+            .iter()
+            .step_by(every)
+            .chain(r.samples.last())
+            .map(|s| {
+                (
+                    s.time_s,
+                    height_m - s.depth_m - 0.5 * r.case.spec.diameter_m,
+                )
+            })
+            .collect();
+        if points.is_empty() {
+            continue;
+        }
+        let label = format!("{}, simulated", r.case.id);
+        let line = Series::sorted_line(label, points, i);
+        chart = chart.series_thinned(line, MARKERS_PER_LINE);
+    }
+    chart = chart.series(measured_series(
+        &measured.source,
+        &measured.gap,
+        results.len(),
+    ));
+    chart.svg(path)?;
+    Ok(true)
 }
 
 /// Re′ and C_d of one sphere, from its measured and its simulated terminal velocity.

@@ -7,8 +7,9 @@
 //!   `settling_distance.svg` (settling distance against fall height, one series per diameter,
 //!   like f-EDEM Fig. 16);
 //! - both: `timeseries.csv` and `velocity.svg` (v(t), with the analytic Stokes curve under
-//!   Stokes drag, like f-EDEM Figs. 5–6) when `record.timeseries`, `probes.csv` when probe times
-//!   are set.
+//!   Stokes drag, like f-EDEM Figs. 5–6, and the measured v(t) of `[reference]`) when
+//!   `record.timeseries`, with `gap.svg` when `[reference]` gives a measured gap and there is a
+//!   container; `probes.csv` when probe times are set.
 //!
 //! A several-file run also gets the charts of [`write_combined_charts`] in `OUT/combined/`.
 //!
@@ -95,8 +96,20 @@ pub fn write_all(
                 "exact Stokes solution with the added mass"
             }
         });
-        charts::write_velocity_chart(&stage.path("velocity.svg"), &title, results, v0, exact)
-            .map_err(io)?;
+        let measured = p.reference.as_ref();
+        charts::write_velocity_chart(
+            &stage.path("velocity.svg"),
+            &title,
+            results,
+            v0,
+            exact,
+            measured,
+        )
+        .map_err(io)?;
+        if let (Some(h), Some(m)) = (height, measured) {
+            let title = format!("{}: gap between sphere and bottom against time", s.name);
+            charts::write_gap_chart(&stage.path("gap.svg"), &title, results, h, m).map_err(io)?;
+        }
     }
     if results.iter().any(|r| !r.probes.is_empty()) {
         write_probes(&stage.path("probes.csv"), results).map_err(io)?;

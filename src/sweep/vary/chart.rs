@@ -1,10 +1,12 @@
 //! What a person reads of a parameter sweep: one chart per result quantity against the first
 //! varied key (one series per body, and per value of the other keys), and one console line per
-//! case.
+//! case. A categorical first key (words such as `off`, `basset`) gets one x position per value,
+//! labelled with it, and markers without lines, the series side by side at each position.
 
+use super::grid::Level;
 use super::table::VaryTable;
 use crate::error::Error;
-use crate::io::chart::{scatter_svg, Scale, Series};
+use crate::io::chart::{Chart, Scale, Series};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -92,6 +94,37 @@ fn file_safe(key: &str) -> String {
         .collect()
 }
 
+/// Where the first key's values go on the x axis: at the number itself, or, when any value is a
+/// text (a categorical axis), at the value's index among the distinct values in canonical order.
+enum XAxis {
+    /// Numbers on a linear or log scale.
+    Numeric(Scale),
+    /// The distinct values, one x position (0, 1, …) each.
+    Categories(Vec<Level>),
+}
+
+impl XAxis {
+    fn of(t: &VaryTable) -> Self {
+        let mut levels: Vec<Level> = t.rows.iter().map(|r| r.point[0].clone()).collect();
+        levels.sort_by(Level::order);
+        levels.dedup();
+        if levels.iter().all(|l| l.num().is_some()) {
+            let xs: Vec<f64> = levels.iter().filter_map(Level::num).collect();
+            XAxis::Numeric(scale_of(&xs))
+        } else {
+            XAxis::Categories(levels)
+        }
+    }
+
+    /// The x of a value (NaN if not on the axis).
+    fn x(&self, l: &Level) -> f64 {
+        match self {
+            XAxis::Numeric(_) => l.num().unwrap_or(f64::NAN),
+            XAxis::Categories(c) => c.iter().position(|v| v == l).map_or(f64::NAN, |i| i as f64),
+        }
+    }
+}
+
 /// Draws `<quantity>_vs_<first key>.svg` for every result quantity of `t` into `dir` (the
 /// references `reference_…` are drawn as hollow markers beside a single series) and returns
 /// their paths.
@@ -99,8 +132,7 @@ pub fn charts(dir: &Path, title: &str, t: &VaryTable) -> Result<Vec<PathBuf>, Er
     let Some(key) = t.keys.first() else {
         return Ok(Vec::new());
     };
-    let xs: Vec<f64> = t.rows.iter().map(|r| r.point[0]).collect();
-    let x_scale = scale_of(&xs);
+    let axis = XAxis::of(t);
     let mut written = Vec::new();
     for (qi, q) in t.results.iter().enumerate() {
         if q.starts_with("reference_") {
@@ -116,22 +148,32 @@ pub fn charts(dir: &Path, title: &str, t: &VaryTable) -> Result<Vec<PathBuf>, Er
         for r in &t.rows {
             let mut label = r.body.clone();
             for (k, v) in t.keys.iter().zip(&r.point).skip(1) {
-                label.push_str(&format!(", {k} = {}", crate::io::num(*v)));
+                label.push_str(&format!(", {k} = {v}"));
             }
             if !pts.contains_key(&label) {
                 order.push(label.clone());
             }
+            let x = axis.x(&r.point[0]);
             let e = pts.entry(label).or_default();
-            e.0.push((r.point[0], r.results[qi]));
+            e.0.push((x, r.results[qi]));
             if let Some(i) = refi {
-                e.1.push((r.point[0], r.results[i]));
+                e.1.push((x, r.results[i]));
             }
         }
         let single = order.len() == 1;
+        // On a categorical axis the series stand side by side about each position.
+        let n = order.len() as f64;
+        let width = (0.5 / n).min(0.12);
         let mut series = Vec::new();
         for (i, label) in order.iter().enumerate() {
             let (sim, reference) = &pts[label];
-            series.push(Series::sorted_line(label.clone(), sim.clone(), i));
+            let mut s = Series::sorted_line(label.clone(), sim.clone(), i);
+            if let XAxis::Categories(_) = axis {
+                let dx = (i as f64 - 0.5 * (n - 1.0)) * width;
+                s.points.iter_mut().for_each(|p| p.0 += dx);
+                s.line = false;
+            }
+            series.push(s);
             if single && reference.iter().any(|p| p.1.is_finite()) {
                 let mut r =
                     Series::sorted_line(format!("{label} (reference)"), reference.clone(), 1);
@@ -141,16 +183,17 @@ pub fn charts(dir: &Path, title: &str, t: &VaryTable) -> Result<Vec<PathBuf>, Er
             }
         }
         let path = dir.join(format!("{}_vs_{}.svg", file_safe(q), file_safe(key)));
-        scatter_svg(
-            &path,
-            &format!("{title}: {q} against {key}"),
-            &format!("{key} [{}]", unit_of(key)),
-            &format!("{q} [{}]", unit_of(q)),
-            x_scale,
-            Scale::Linear,
-            &series,
-        )
-        .map_err(|e| Error::Io(path.clone(), e))?;
+        let x_label = format!("{key} [{}]", unit_of(key));
+        let chart = Chart::new(format!("{title}: {q} against {key}"))
+            .y(format!("{q} [{}]", unit_of(q)), Scale::Linear);
+        let chart = match &axis {
+            XAxis::Numeric(scale) => chart.x(x_label, *scale),
+            XAxis::Categories(c) => chart.x_categories(x_label, c.iter().map(Level::to_string)),
+        };
+        chart
+            .all_series(series)
+            .svg(&path)
+            .map_err(|e| Error::Io(path.clone(), e))?;
         written.push(path);
     }
     Ok(written)
@@ -159,7 +202,7 @@ pub fn charts(dir: &Path, title: &str, t: &VaryTable) -> Result<Vec<PathBuf>, Er
 /// The console lines of a parameter sweep: a heading, then one line per case with its key
 /// values, its status and each quantity (its value for one body, its range over several).
 pub fn console_lines(title: &str, t: &VaryTable) -> Vec<String> {
-    let mut cases: Vec<(&[f64], Vec<usize>)> = Vec::new();
+    let mut cases: Vec<(&[Level], Vec<usize>)> = Vec::new();
     for (i, r) in t.rows.iter().enumerate() {
         match cases.last_mut() {
             Some((p, rows)) if *p == r.point.as_slice() => rows.push(i),
@@ -176,7 +219,7 @@ pub fn console_lines(title: &str, t: &VaryTable) -> Vec<String> {
             .keys
             .iter()
             .zip(point.iter())
-            .map(|(k, v)| format!("{k} = {}", crate::io::num(*v)))
+            .map(|(k, v)| format!("{k} = {v}"))
             .collect();
         let mut line = format!("  {}:", keys.join(", "));
         if let Some(r) = rows

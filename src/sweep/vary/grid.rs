@@ -1,7 +1,11 @@
 //! The grid of a parameter sweep (`--vary KEY=GRID`): each axis is a scenario key and its
-//! values; several axes make the full grid (the first key outermost). Pure: no I/O.
+//! values; several axes make the full grid (the first key outermost). A value is a number or,
+//! for a categorical axis (`transient.history=off,basset`), a text passed as `--set` passes it.
+//! Pure: no I/O.
 
 use super::super::args::BadValue;
+use std::cmp::Ordering;
+use std::fmt;
 
 /// Most values on one axis, and most cases in a whole grid: a larger grid is a typo more often
 /// than a plan (each case is a whole run).
@@ -9,25 +13,86 @@ pub const MAX_CASES: usize = 10_000;
 
 /// What `--vary` accepts.
 pub const VARY_ALLOWED: &str = "KEY=LO:HI:N (N ≥ 2 values from LO to HI, LO < HI, linear), \
-    KEY=log:LO:HI:N (log-spaced, 0 < LO < HI) or KEY=V1,V2,… (numbers), with N ≤ 10000; \
-    e.g. fluid.yield_stress_pa=10:40:13";
+    KEY=log:LO:HI:N (log-spaced, 0 < LO < HI) or KEY=V1,V2,… (numbers, or words and booleans \
+    taken as --set takes them), with N ≤ 10000; e.g. fluid.yield_stress_pa=10:40:13 or \
+    transient.history=off,basset";
 
 /// How an axis's values are spaced (the chart's x scale follows it).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Spacing {
-    /// `LO:HI:N` or a list: a linear axis.
+    /// `LO:HI:N` or a list: a linear axis (a categorical one when a value is a text).
     Linear,
     /// `log:LO:HI:N`: a log axis.
     Log,
 }
 
-/// One `--vary` axis: a scenario key (as `--set` takes it) and its values, ascending.
+/// One value of a varied key: a number, or a text (a word such as `basset`, a boolean `true`)
+/// that `--set` reads as TOML (a boolean, a number) or else as a string.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Level {
+    /// A number, in the key's unit.
+    Num(f64),
+    /// Any other value, as written (trimmed).
+    Text(String),
+}
+
+impl Level {
+    /// The value of a cell or a list item: a number if it reads as one, else the text.
+    pub fn parse(s: &str) -> Level {
+        let s = s.trim();
+        match s.parse::<f64>() {
+            Ok(x) => Level::Num(x),
+            Err(_) => Level::Text(s.to_string()),
+        }
+    }
+
+    /// The number, if the value is one.
+    pub fn num(&self) -> Option<f64> {
+        match self {
+            Level::Num(x) => Some(*x),
+            Level::Text(_) => None,
+        }
+    }
+
+    /// The value as `--set KEY=VALUE` takes it ([`override_text`] for a number).
+    pub fn override_text(&self) -> String {
+        match self {
+            Level::Num(x) => override_text(*x),
+            Level::Text(t) => t.clone(),
+        }
+    }
+
+    /// Canonical order: numbers ascending (total order), then texts in byte order.
+    pub fn order(&self, other: &Level) -> Ordering {
+        match (self, other) {
+            (Level::Num(a), Level::Num(b)) => a.total_cmp(b),
+            (Level::Num(_), Level::Text(_)) => Ordering::Less,
+            (Level::Text(_), Level::Num(_)) => Ordering::Greater,
+            (Level::Text(a), Level::Text(b)) => a.cmp(b),
+        }
+    }
+}
+
+/// As written to `vary.csv` and the console: a number as [`crate::io::num`] writes it, a text
+/// as is.
+impl fmt::Display for Level {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Level::Num(x) => f.write_str(&crate::io::num(*x)),
+            Level::Text(t) => f.write_str(t),
+        }
+    }
+}
+
+/// One `--vary` axis: a scenario key (as `--set` takes it) and its values, ascending
+/// ([`Level::order`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Axis {
     /// The key, e.g. `fluid.yield_stress_pa` or `spheres[0].diameter_m`.
     pub key: String,
-    /// Its values, ascending, without repeats, in the key's unit.
-    pub values: Vec<f64>,
+    /// Its values, ascending, without repeats, in the key's unit; a categorical axis holds
+    /// texts (and may hold numbers beside them).
+    pub values: Vec<Level>,
     /// Linear or log spacing.
     pub spacing: Spacing,
 }
@@ -83,7 +148,7 @@ pub fn parse_vary(s: &str) -> Result<Axis, BadValue> {
         }
         let r = (hi / lo).ln();
         let v = (0..n)
-            .map(|i| round12(lo * (r * i as f64 / (n - 1) as f64).exp()))
+            .map(|i| Level::Num(round12(lo * (r * i as f64 / (n - 1) as f64).exp())))
             .collect();
         (Spacing::Log, v)
     } else if grid.contains(':') {
@@ -98,19 +163,25 @@ pub fn parse_vary(s: &str) -> Result<Axis, BadValue> {
             return Err(bad);
         }
         let v = (0..n)
-            .map(|i| round12(lo + (hi - lo) * i as f64 / (n - 1) as f64))
+            .map(|i| Level::Num(round12(lo + (hi - lo) * i as f64 / (n - 1) as f64)))
             .collect();
         (Spacing::Linear, v)
     } else {
-        let v: Option<Vec<f64>> = grid.split(',').map(number).collect();
+        // A number, or a word --set takes (a text that is not a number, nor NaN or ±inf).
+        let level = |t: &str| match Level::parse(t) {
+            Level::Num(x) if !x.is_finite() => None,
+            Level::Text(w) if w.is_empty() => None,
+            l => Some(l),
+        };
+        let v: Option<Vec<Level>> = grid.split(',').map(level).collect();
         let v = v.ok_or(bad)?;
         if v.is_empty() || v.len() > MAX_CASES {
             return Err(bad);
         }
         (Spacing::Linear, v)
     };
-    let mut values = values;
-    values.sort_by(f64::total_cmp);
+    let mut values: Vec<Level> = values;
+    values.sort_by(Level::order);
     values.dedup();
     Ok(Axis {
         key: key.to_string(),
@@ -121,18 +192,18 @@ pub fn parse_vary(s: &str) -> Result<Axis, BadValue> {
 
 /// Every point of the full grid of `axes` (one value per axis, in axis order), the first axis
 /// outermost; empty for no axes.
-pub fn points(axes: &[Axis]) -> Vec<Vec<f64>> {
+pub fn points(axes: &[Axis]) -> Vec<Vec<Level>> {
     if axes.is_empty() {
         return Vec::new();
     }
-    let mut out: Vec<Vec<f64>> = vec![Vec::new()];
+    let mut out: Vec<Vec<Level>> = vec![Vec::new()];
     for a in axes {
         out = out
             .into_iter()
             .flat_map(|p| {
-                a.values.iter().map(move |&v| {
+                a.values.iter().map(move |v| {
                     let mut q = p.clone();
-                    q.push(v);
+                    q.push(v.clone());
                     q
                 })
             })
@@ -151,17 +222,43 @@ pub fn count(axes: &[Axis]) -> usize {
 mod tests {
     use super::*;
 
+    fn nums(x: &[f64]) -> Vec<Level> {
+        x.iter().map(|&v| Level::Num(v)).collect()
+    }
+
+    fn text(x: &str) -> Level {
+        Level::Text(x.to_string())
+    }
+
+    #[test]
+    fn a_list_of_words_is_a_categorical_axis_passed_as_set_passes_it() {
+        let a = parse_vary("transient.history=off, basset,mei-adrian,off").unwrap();
+        assert_eq!(a.key, "transient.history");
+        assert_eq!(a.values, [text("basset"), text("mei-adrian"), text("off")]);
+        assert_eq!(a.values[1].override_text(), "mei-adrian");
+        let b = parse_vary("transient.added_mass=true,false").unwrap();
+        assert_eq!(b.values, [text("false"), text("true")]);
+        assert_eq!(b.values[0].to_string(), "false");
+        // Numbers beside words stay numbers, first.
+        let c = parse_vary("k=auto,2,1.5").unwrap();
+        assert_eq!(c.values, [Level::Num(1.5), Level::Num(2.0), text("auto")]);
+        assert_eq!(c.values[0].override_text(), "1.5e0");
+        assert_eq!(c.values[0].to_string(), "1.5");
+        assert_eq!(Level::parse(" 2e-3 "), Level::Num(2e-3));
+        assert_eq!(Level::parse("basset"), text("basset"));
+    }
+
     #[test]
     fn a_linear_grid_has_n_round_values_from_lo_to_hi() {
         let a = parse_vary("fluid.yield_stress_pa=10:40:13").unwrap();
         assert_eq!(a.key, "fluid.yield_stress_pa");
         assert_eq!(a.spacing, Spacing::Linear);
         assert_eq!(a.values.len(), 13);
-        assert_eq!(a.values[0], 10.0);
-        assert_eq!(a.values[1], 12.5);
-        assert_eq!(a.values[12], 40.0);
+        assert_eq!(a.values[0], Level::Num(10.0));
+        assert_eq!(a.values[1], Level::Num(12.5));
+        assert_eq!(a.values[12], Level::Num(40.0));
         let a = parse_vary("x=0:0.3:4").unwrap();
-        assert_eq!(a.values, [0.0, 0.1, 0.2, 0.3]);
+        assert_eq!(a.values, nums(&[0.0, 0.1, 0.2, 0.3]));
     }
 
     #[test]
@@ -169,16 +266,16 @@ mod tests {
         let a = parse_vary("fluid.viscosity_pa_s=log:1e-4:1e-2:5").unwrap();
         assert_eq!(a.spacing, Spacing::Log);
         assert_eq!(a.values.len(), 5);
-        assert_eq!(a.values[0], 1e-4);
-        assert_eq!(a.values[2], 1e-3);
-        assert_eq!(a.values[4], 1e-2);
-        assert_eq!(override_text(a.values[2]), "1e-3");
+        assert_eq!(a.values[0], Level::Num(1e-4));
+        assert_eq!(a.values[2], Level::Num(1e-3));
+        assert_eq!(a.values[4], Level::Num(1e-2));
+        assert_eq!(a.values[2].override_text(), "1e-3");
     }
 
     #[test]
     fn a_list_is_sorted_and_deduplicated() {
         let a = parse_vary("sample.particles=3000,1000,2000,1000").unwrap();
-        assert_eq!(a.values, [1000.0, 2000.0, 3000.0]);
+        assert_eq!(a.values, nums(&[1000.0, 2000.0, 3000.0]));
         assert_eq!(override_text(2000.0), "2000");
         assert_eq!(override_text(12.5), "1.25e1");
         assert_eq!(override_text(-0.5), "-5e-1");
@@ -195,8 +292,9 @@ mod tests {
             "k=1:2:100001",
             "k=log:0:1:3",
             "k=log:1:1:3",
-            "k=a,b",
+            "k=a,,b",
             "k=1,,2",
+            "k=inf,1",
             "k=1:2:x",
             "k=nan,1",
             "bad key=1,2",
@@ -213,9 +311,9 @@ mod tests {
         let p = points(&[a.clone(), b.clone()]);
         assert_eq!(p.len(), 6);
         assert_eq!(count(&[a, b]), 6);
-        assert_eq!(p[0], [1.0, 10.0]);
-        assert_eq!(p[1], [1.0, 20.0]);
-        assert_eq!(p[5], [2.0, 30.0]);
+        assert_eq!(p[0], nums(&[1.0, 10.0]));
+        assert_eq!(p[1], nums(&[1.0, 20.0]));
+        assert_eq!(p[5], nums(&[2.0, 30.0]));
         assert!(points(&[]).is_empty());
     }
 

@@ -2,7 +2,8 @@
 //! runs the scenario once per point of the full grid, each value applied as `--set KEY=VALUE`,
 //! at the scenario's own dt and integrator, and writes `OUT/<name>_vary/`: `vary.csv` (one row
 //! per case and body, [`VaryTable`]) and one chart per result quantity against the first key
-//! (`<quantity>_vs_<key>.svg`). Every case is loaded and validated before any runs (a bad key
+//! (`<quantity>_vs_<key>.svg`). A key may take words or booleans (`transient.history=off,basset`,
+//! a categorical axis: one x position per value on the charts). Every case is loaded and validated before any runs (a bad key
 //! or an out-of-range value exits 2 with nothing written); the kinds are those of the dt sweep
 //! ([`super::SWEEPABLE`]). `--shard I/N` runs a slice of the grid into
 //! `vary_part_I_of_N.csv`, and `--merge` joins the parts, as for dt sweeps.
@@ -19,7 +20,8 @@ mod table;
 
 pub use chart::{charts, console_lines, unit_of};
 pub use grid::{
-    count, override_text, parse_vary, points, round12, Axis, Spacing, MAX_CASES, VARY_ALLOWED,
+    count, override_text, parse_vary, points, round12, Axis, Level, Spacing, MAX_CASES,
+    VARY_ALLOWED,
 };
 pub use table::{VaryRow, VaryTable};
 
@@ -39,7 +41,7 @@ pub const PART_PREFIX: &str = "vary_part_";
 #[derive(Clone, Debug)]
 pub struct VaryCase {
     /// The value of each key, in the order of the axes.
-    pub point: Vec<f64>,
+    pub point: Vec<Level>,
     /// The scenario with `--set` and the point's values applied.
     pub prepared: Prepared,
 }
@@ -94,12 +96,12 @@ impl VaryPlan {
             ov.extend(
                 axes.iter()
                     .zip(&point)
-                    .map(|(a, v)| format!("{}={}", a.key, override_text(*v))),
+                    .map(|(a, v)| format!("{}={}", a.key, v.override_text())),
             );
             let text: Vec<String> = axes
                 .iter()
                 .zip(&point)
-                .map(|(a, v)| format!("{} = {}", a.key, crate::io::num(*v)))
+                .map(|(a, v)| format!("{} = {v}", a.key))
                 .collect();
             let prepared = prepare(file, None, &ov).map_err(|e| {
                 Error::BadInput(BadInput {
@@ -135,7 +137,7 @@ impl VaryPlan {
 /// run with nothing to write.
 pub fn run(plan: &VaryPlan, done: &(dyn Fn() + Sync)) -> Result<VaryTable, Error> {
     use rayon::prelude::*;
-    let cases: Vec<(Vec<f64>, Vec<super::Row>)> = plan
+    let cases: Vec<(Vec<Level>, Vec<super::Row>)> = plan
         .cases
         .par_iter()
         .map(|c| {

@@ -1,10 +1,12 @@
 //! The table of a parameter sweep (`vary.csv`, `vary_part_I_of_N.csv`): one row per case and
-//! body. Columns: the varied keys (named as `--vary` gave them), `body`, the result quantities
+//! body. Columns: the varied keys (named as `--vary` gave them; a categorical key's cells hold
+//! the value's text), `body`, the result quantities
 //! (units in their names; `reference_<quantity>` beside a quantity that has an analytic or
 //! force-balance reference), then `status`, `steps`, `wall_time_s`, `reason`.
 
 use super::super::table::{Row, Status};
 use super::super::targets::has_reference;
+use super::grid::Level;
 use crate::io::num;
 use std::io;
 use std::path::Path;
@@ -16,7 +18,7 @@ const TAIL: [&str; 4] = ["status", "steps", "wall_time_s", "reason"];
 #[derive(Clone, Debug, PartialEq)]
 pub struct VaryRow {
     /// The values of the varied keys, in the order of [`VaryTable::keys`].
-    pub point: Vec<f64>,
+    pub point: Vec<Level>,
     /// Body identifier (`all` for a quantity of the whole scene).
     pub body: String,
     /// The results, in the order of [`VaryTable::results`] (NaN: none, or unstable).
@@ -45,7 +47,7 @@ pub struct VaryTable {
 impl VaryTable {
     /// The table of `cases` (the point of each case and the rows its run gave, as a dt sweep's
     /// [`Row`]s), in canonical order.
-    pub fn from_cases(keys: &[String], cases: Vec<(Vec<f64>, Vec<Row>)>) -> Self {
+    pub fn from_cases(keys: &[String], cases: Vec<(Vec<Level>, Vec<Row>)>) -> Self {
         let mut t = Self {
             keys: keys.to_vec(),
             ..Self::default()
@@ -93,7 +95,8 @@ impl VaryTable {
         t
     }
 
-    /// Canonical order: cases by their key values (first key first, ascending); within a case
+    /// Canonical order: cases by their key values (first key first, ascending by
+    /// [`Level::order`]); within a case
     /// the bodies keep the scenario's order. A case's rows are never split between shards, so
     /// merged parts equal the unsharded table row for row.
     pub fn sort(&mut self) {
@@ -101,7 +104,7 @@ impl VaryTable {
             a.point
                 .iter()
                 .zip(&b.point)
-                .map(|(x, y)| x.total_cmp(y))
+                .map(|(x, y)| x.order(y))
                 .find(|o| o.is_ne())
                 .unwrap_or(std::cmp::Ordering::Equal)
         });
@@ -164,7 +167,7 @@ impl VaryTable {
             .rows
             .iter()
             .map(|r| {
-                let mut v: Vec<String> = r.point.iter().map(|x| num(*x)).collect();
+                let mut v: Vec<String> = r.point.iter().map(Level::to_string).collect();
                 v.push(r.body.clone());
                 v.extend(r.results.iter().map(|x| num(*x)));
                 v.push(
@@ -218,7 +221,7 @@ impl VaryTable {
                 s => return Err(format!("status `{s}`: allowed stable, unstable")),
             };
             t.rows.push(VaryRow {
-                point: (0..body).map(|i| f(cell(i))).collect(),
+                point: (0..body).map(|i| Level::parse(cell(i))).collect(),
                 body: cell(body).to_string(),
                 results: (body + 1..tail).map(|i| f(cell(i))).collect(),
                 status,
