@@ -349,6 +349,14 @@ fn sedimentation(
         if let (Some(c0), Some(c1)) = (cpu0, cpu1) {
             // On a shared machine the wall time counts the other processes too.
             out.push(fig(&name, "cpu_time_1440min_s", c1 - c0, "s"));
+            // The suspended grain-steps per CPU second of the whole run (every stage, all
+            // threads): what load on a shared machine changes least.
+            out.push(fig(
+                &name,
+                "run_grain_steps_per_cpu_s",
+                st.stages.grain_steps as f64 / (c1 - c0).max(1e-9),
+                "grain-steps/CPU-s",
+            ));
         }
         out.push(fig(&name, "steps", st.steps as f64, "steps"));
         // N × steps: the grain-steps of an update that visits every grain at every step (the

@@ -16,6 +16,7 @@
 //!   (the Bingham law below Re' = 1), exact steady states, unconditionally stable.
 
 pub mod stability;
+pub mod terminal;
 pub mod transient;
 
 use crate::fluid::SphereDrag;
@@ -149,9 +150,18 @@ fn backward_euler<const D: usize>(
     }
 }
 
+/// Below this z, e^z − 1 rounds to −1 in double precision (e^z < 2⁻⁵⁷ ≈ 6.9e-18, under half
+/// an ulp of 1), so `z.exp_m1()` is exactly −1 and [`phi12`] needs no exponential.
+pub const PHI_SATURATED: f64 = -40.0;
+
 /// φ₁(z) = (e^z − 1)/z and φ₂(z) = (e^z − 1 − z)/z², accurate for small |z| (z ≤ 0 here): the
 /// factors of the exponential update (Hochbruck & Ostermann 2010, Acta Numerica 19, §2.1).
 pub fn phi12(z: f64) -> (f64, f64) {
+    if z < PHI_SATURATED {
+        // e^z − 1 rounds to −1 (e^z < 2⁻⁵⁷): the general branch's result bit for bit, without
+        // the exponential.
+        return (-1.0 / z, (-1.0 - z) / (z * z));
+    }
     if z.abs() < 1e-3 {
         let phi1 = 1.0 + z / 2.0 + z * z / 6.0 + z * z * z / 24.0;
         let phi2 = 0.5 + z / 6.0 + z * z / 24.0 + z * z * z / 120.0;
@@ -232,6 +242,133 @@ fn exponential<const D: usize>(
             }
         }
     }
+}
+
+/// One grain of [`exponential_dallavalle_1d`]: its drag law (Dallavalle with the Di Felice
+/// factor, [`crate::fluid::DragLaw::Dallavalle`]) at one voidage, its mass and body force. SI.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DallavalleGrain {
+    /// Diameter d, m.
+    pub diameter_m: f64,
+    /// Fluid density ρ_f, kg/m³.
+    pub fluid_density_kg_m3: f64,
+    /// Viscosity η, Pa s.
+    pub viscosity_pa_s: f64,
+    /// Voidage ε ∈ (0, 1].
+    pub voidage: f64,
+    /// ln ε.
+    pub ln_voidage: f64,
+    /// Mass m, kg.
+    pub mass_kg: f64,
+    /// Body force W (gravity + buoyancy), N, along the one axis.
+    pub body_force_n: f64,
+}
+
+/// The exponential step of [`advance`] ([`Integrator::Exponential`]) in one dimension for
+/// Dallavalle drag with the Di Felice factor, from velocity `v0_m_s` over `dt_s`: (velocity, m/s;
+/// displacement, m). None when the sphere stops within the step (backward-Euler speed 0, or a
+/// non-finite input): the caller then uses [`advance`].
+///
+/// The same scheme as [`advance`]: the backward-Euler speed s₁ solves
+/// h(s) = s + (dt/m) F(s) = |p|, p = v₀ + W dt/m, by safeguarded Newton from |v₀| on [0, |p|];
+/// the drag is linearised about s₁, F(v) ≈ F₀ + k v, k = dF/dv(s₁), and
+/// v₁ = v₀ + a₀ dt φ₁(−λdt), dx = v₀ dt + a₀ dt² φ₂(−λdt), a₀ = (W − F₀ p̂ − k v₀)/m, λ = k/m
+/// (Hochbruck & Ostermann 2010, §2.1). It differs from [`advance`] only in rounding, because:
+/// - F, F' and F'' come together from
+///   [`crate::fluid::newtonian::dallavalle_di_felice_derivatives`] (one set of transcendentals;
+///   exact slope, where [`advance`] takes a central difference of relative step 1e-6, itself
+///   accurate to about 1e-10);
+/// - Newton stops when the error left after its step, h''/(2h') c² for a correction c
+///   (quadratic convergence), is below 1e-18 |s| (and c below 1e-6 |s|), or when the correction
+///   is below four ulps as in [`advance`]. Near steady settling the evaluation at |v₀| is then
+///   the only one;
+/// - F and k at s₁ are the last evaluation carried to s₁ by Taylor to second order when
+///   |s₁ − s| ≤ 1e-6 s (the rest is of order F''' (s₁ − s)³, 1e-18 relatively), evaluated
+///   afresh otherwise.
+///
+/// The differences are of the order of the rounding of F itself (about 1e-15 relative; the unit
+/// test `exponential_dallavalle_matches_advance` bounds them).
+pub fn exponential_dallavalle_1d(
+    g: &DallavalleGrain,
+    v0_m_s: f64,
+    dt_s: f64,
+) -> Option<(f64, f64)> {
+    let m = g.mass_kg;
+    let w = g.body_force_n;
+    let v0 = v0_m_s;
+    let dt = dt_s;
+    let law = |s: f64| {
+        crate::fluid::newtonian::dallavalle_di_felice_derivatives(
+            s,
+            g.voidage,
+            g.ln_voidage,
+            g.diameter_m,
+            g.fluid_density_kg_m3,
+            g.viscosity_pa_s,
+        )
+    };
+    let kk = dt / m;
+    let p = v0 + w * kk;
+    let target = p.abs();
+    if !(target > 0.0 && target.is_finite()) {
+        return None;
+    }
+    // Safeguarded Newton on h(s) = s + kk F(s) − |p| over [0, |p|] (h(s) ≥ s).
+    let (mut lo, mut hi) = (0.0, target);
+    let guess = v0.abs();
+    let mut s = if guess > lo && guess < hi {
+        guess
+    } else {
+        0.5 * (lo + hi)
+    };
+    let (mut at, mut f, mut k, mut k2) = (s, 0.0, 0.0, 0.0);
+    for _ in 0..200 {
+        (f, k, k2) = law(s);
+        at = s;
+        let r = s + kk * f - target;
+        if r == 0.0 {
+            break;
+        }
+        if r > 0.0 {
+            hi = s;
+        } else {
+            lo = s;
+        }
+        let slope = 1.0 + kk * k;
+        let mut next = s - r / slope;
+        let newton = next > lo && next < hi && next.is_finite();
+        if !newton {
+            next = 0.5 * (lo + hi);
+        }
+        let c = (next - s).abs();
+        let left = (kk * k2).abs() / (2.0 * slope) * c * c;
+        let done = (newton && c <= 1e-6 * s && left <= 1e-18 * s)
+            || c <= 4.0 * f64::EPSILON * s.abs().max(f64::MIN_POSITIVE)
+            || hi - lo <= 4.0 * f64::EPSILON * hi;
+        s = next;
+        if done {
+            break;
+        }
+    }
+    if !(s > 0.0 && s.is_finite()) {
+        return None;
+    }
+    if (s - at).abs() > 1e-6 * s {
+        (f, k, k2) = law(s);
+        at = s;
+    }
+    // F and its slope at s (Taylor from the evaluation at `at`).
+    let ds = s - at;
+    let f = f + (k + 0.5 * k2 * ds) * ds;
+    let k = k + k2 * ds;
+    // As `advance`: the end velocity p s/|p|, its speed s₁ and direction; F(s₁) − k s₁.
+    let vel = p * (s / target);
+    let s1 = vel.abs();
+    let dir = vel / s1;
+    let f0 = f + k * (s1 - s) - k * s1;
+    let a0 = (w - dir * f0 - v0 * k) / m;
+    let (phi1, phi2) = phi12(-k / m * dt);
+    Some((v0 + a0 * (dt * phi1), v0 * dt + a0 * (dt * dt * phi2)))
 }
 
 /// Largest dt for which the explicit drag update is stable at drag stiffness `slope_n_s_m`:

@@ -148,6 +148,55 @@ pub fn di_felice_factor(voidage: f64, re: f64) -> f64 {
     voidage.powf(1.0 - di_felice_chi(re))
 }
 
+/// Dallavalle drag with the Di Felice voidage factor and its first two derivatives in the speed
+/// at one speed: (F, dF/dv, d²F/dv²), N, N s/m and N s²/m², for a sphere of diameter `d_m`
+/// moving at `speed_m_s` > 0 through a fluid of density `fluid_density_kg_m3` and viscosity
+/// `viscosity_pa_s` at local voidage `voidage` ε ∈ (0, 1], given `ln_voidage` = ln ε (computed
+/// once per voidage cell).
+///
+/// F = S G with S = ½ C_d(Re) ρ_f A v², G = ε^(1−χ(Re)), Re = ρ_f ε v d / η,
+/// C_d = (0.63 + 4.8/√Re)², χ = 3.7 − 0.65 exp(−(1.5 − log₁₀ Re)²/2) (seed 000 eqs. 7–9;
+/// Dallavalle 1948, Di Felice 1994), as [`crate::fluid::SphereDrag::force_n`] computes it
+/// ([`cd_dallavalle`], [`di_felice_factor`]), with G = exp((1−χ) ln ε). The derivatives are exact
+/// (not difference quotients). With a = 0.63 + 4.8/√Re, b = 1.26 + 4.8/√Re
+/// (a' = b' = −2.4/(v√Re)), L = 1.5 − log₁₀ Re, E = exp(−L²/2) and q = 0.65 E L ln ε / ln 10:
+/// S' = ½ ρ_f A v a b, S'' = ½ ρ_f A (a b − 2.4 (a + b)/√Re), G' = G q / v,
+/// G'' = G (q² − q + 0.65 E (L² − 1) ln ε / ln² 10) / v², F' = S'G + S G',
+/// F'' = S''G + 2S'G' + S G''. One square root, one logarithm and two exponentials, against
+/// three transcendentals for the force alone and six more for a central-difference slope.
+pub fn dallavalle_di_felice_derivatives(
+    speed_m_s: f64,
+    voidage: f64,
+    ln_voidage: f64,
+    d_m: f64,
+    fluid_density_kg_m3: f64,
+    viscosity_pa_s: f64,
+) -> (f64, f64, f64) {
+    use std::f64::consts::LN_10;
+    let v = speed_m_s;
+    let rho = fluid_density_kg_m3;
+    let re = reynolds(rho, voidage * v, d_m, viscosity_pa_s);
+    let root = re.sqrt();
+    let a = 0.63 + 4.8 / root;
+    let b = 1.26 + 4.8 / root;
+    let half_rho_area = 0.5 * rho * sphere_area_m2(d_m);
+    let s0 = half_rho_area * (a * a) * v * v;
+    let s1 = half_rho_area * v * a * b;
+    let s2 = half_rho_area * (a * b - 2.4 * (a + b) / root);
+    let l = 1.5 - re.log10();
+    let e = (-0.5 * l * l).exp();
+    let chi = 3.7 - 0.65 * e;
+    let g0 = ((1.0 - chi) * ln_voidage).exp();
+    let q = 0.65 * e * l * ln_voidage / LN_10;
+    let g1 = g0 * q / v;
+    let g2 = g0 * (q * q - q + 0.65 * e * (l * l - 1.0) * ln_voidage / (LN_10 * LN_10)) / (v * v);
+    (
+        s0 * g0,
+        s1 * g0 + s0 * g1,
+        s2 * g0 + 2.0 * s1 * g1 + s0 * g2,
+    )
+}
+
 /// Stokes terminal velocity, m/s: v_t = d² (ρ_p − ρ_f) g / (18 η) (f-EDEM eq. 21).
 pub fn stokes_terminal_velocity_m_s(
     d_m: f64,

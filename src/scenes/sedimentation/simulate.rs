@@ -45,7 +45,8 @@ pub fn simulate(
         stepper.ideal,
         stepper.fluid_density_kg_m3,
     )
-    .with_hindered(sm.hindered);
+    .with_hindered(sm.hindered)
+    .with_terminal_tables(&st, stepper.grain_density_kg_m3, stepper.gravity_m_s2);
     let with_contacts = !stepper.ideal && sm.contacts;
     let mut contacts = ContactStage::new(sm, setup, &stepper);
     let mut start = StepStart::default();

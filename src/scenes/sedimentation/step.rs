@@ -4,7 +4,10 @@
 use super::setup::Setup;
 use super::state::State;
 use super::voidage::VoidageGrid;
-use crate::dynamics::{advance, phi12, DtBasis, Integrator, Unstable};
+use crate::dynamics::terminal::exponential_near_terminal;
+use crate::dynamics::{
+    advance, exponential_dallavalle_1d, phi12, DallavalleGrain, DtBasis, Integrator, Unstable,
+};
 use crate::fluid::newtonian::{stokes_response_time_s, stokes_terminal_velocity_m_s};
 use crate::fluid::{sphere_mass_kg, sphere_volume_m3, DragLaw, SphereDrag};
 use crate::scenario::{Physics, SampleSpec, Scenario};
@@ -203,6 +206,8 @@ impl Stepper {
             self.fluid_density_kg_m3,
         );
         let integrator = self.integrator;
+        let fast = integrator == Integrator::Exponential && grid.is_di_felice();
+        let mu = self.viscosity_pa_s;
         let n = INTERRUPT_CHECK_GRAINS;
         let stopped = AtomicBool::new(false);
         let moved = st
@@ -223,12 +228,36 @@ impl Stepper {
                         continue;
                     }
                     let d = gr.diameter_m;
-                    let drag = grid.drag_at(d, gr.x_m, gr.y_m);
                     let m = sphere_mass_kg(d, rho_p);
-                    let w = SVector::<f64, 1>::new(-(m - sphere_mass_kg(d, rho_f)) * g);
-                    let step = advance(integrator, &drag, m, &w, &SVector::<f64, 1>::new(*v), dt_s);
-                    *v = step.velocity_m_s[0];
-                    gr.y_m += step.displacement_m[0];
+                    let w = -(m - sphere_mass_kg(d, rho_f)) * g;
+                    let cell = grid.cell_of(gr.x_m, gr.y_m);
+                    let quick = fast.then(|| {
+                        let (voidage, ln_voidage) = grid.voidage_ln(cell);
+                        let grain = DallavalleGrain {
+                            diameter_m: d,
+                            fluid_density_kg_m3: rho_f,
+                            viscosity_pa_s: mu,
+                            voidage,
+                            ln_voidage,
+                            mass_kg: m,
+                            body_force_n: w,
+                        };
+                        grid.terminal_table(gr.class, d)
+                            .and_then(|t| exponential_near_terminal(t, &grain, *v, dt_s))
+                            .or_else(|| exponential_dallavalle_1d(&grain, *v, dt_s))
+                    });
+                    let (v1, dx) = match quick.flatten() {
+                        Some(step) => step,
+                        None => {
+                            let drag = grid.drag(d, cell);
+                            let w = SVector::<f64, 1>::new(w);
+                            let v0 = SVector::<f64, 1>::new(*v);
+                            let step = advance(integrator, &drag, m, &w, &v0, dt_s);
+                            (step.velocity_m_s[0], step.displacement_m[0])
+                        }
+                    };
+                    *v = v1;
+                    gr.y_m += dx;
                     if gr.y_m - 0.5 * d <= floor {
                         gr.y_m = floor + 0.5 * d;
                     }

@@ -5,8 +5,11 @@
 
 use super::setup::Setup;
 use super::state::State;
+use crate::dynamics::terminal::TerminalTable;
+use crate::dynamics::DallavalleGrain;
 use crate::fluid::hindered::richardson_zaki_drag_factor;
-use crate::fluid::{sphere_volume_m3, DragLaw, HinderedLaw, SphereDrag};
+use crate::fluid::{sphere_mass_kg, sphere_volume_m3, DragLaw, HinderedLaw, SphereDrag};
+use rayon::prelude::*;
 
 /// The grid of solid volume per cell (real units, m³) and the drag it gives.
 #[derive(Clone, Debug)]
@@ -20,12 +23,20 @@ pub struct VoidageGrid {
     cell_volume_m3: f64,
     /// Solid volume of the suspended grains per cell, m³ (row-major, bottom row first).
     solid_m3: Vec<f64>,
+    /// Voidage ε of every cell as [`VoidageGrid::drag`] takes it, and ln ε (full physics with
+    /// the Di Felice factor: the fast path of the free update), set by [`VoidageGrid::fill`].
+    voidage: Vec<f64>,
+    ln_voidage: Vec<f64>,
     /// Stokes drag only (`ideal-stokes`): the grid is not used.
     ideal: bool,
     viscosity_pa_s: f64,
     fluid_density_kg_m3: f64,
     /// The hindered-settling factor (`sample.hindered`).
     hindered: HinderedLaw,
+    /// The terminal state of each size class against the voidage (full physics with the Di
+    /// Felice factor; [`VoidageGrid::with_terminal_tables`]), None for a class whose grains do
+    /// not all have one diameter.
+    tables: Vec<Option<TerminalTable>>,
 }
 
 impl VoidageGrid {
@@ -45,11 +56,65 @@ impl VoidageGrid {
                 * (setup.height_m / ncy as f64)
                 * setup.thickness_m,
             solid_m3: vec![0.0; ncx * ncy],
+            voidage: vec![1.0; ncx * ncy],
+            ln_voidage: vec![0.0; ncx * ncy],
             ideal,
             viscosity_pa_s: setup.viscosity_pa_s,
             fluid_density_kg_m3,
             hindered: HinderedLaw::DiFelice,
+            tables: Vec::new(),
         }
+    }
+
+    /// The same grid with the terminal-state table ([`TerminalTable`]) of every size class of
+    /// the grains of `st` (full physics with the Di Felice factor; otherwise none), for grains
+    /// of density `grain_density_kg_m3` under gravity `gravity_m_s2`: built once per run, in
+    /// parallel (each class is independent).
+    pub fn with_terminal_tables(
+        self,
+        st: &State,
+        grain_density_kg_m3: f64,
+        gravity_m_s2: f64,
+    ) -> Self {
+        if !self.is_di_felice() {
+            return self;
+        }
+        let classes = st.grains.iter().map(|g| g.class + 1).max().unwrap_or(0);
+        let mut diameter: Vec<Option<f64>> = vec![None; classes];
+        let mut single = vec![true; classes];
+        for g in &st.grains {
+            match diameter[g.class] {
+                None => diameter[g.class] = Some(g.diameter_m),
+                Some(d) => single[g.class] &= d.to_bits() == g.diameter_m.to_bits(),
+            }
+        }
+        let (rho_f, mu) = (self.fluid_density_kg_m3, self.viscosity_pa_s);
+        let tables = diameter
+            .par_iter()
+            .zip(&single)
+            .map(|(d, &one)| {
+                let d = (*d).filter(|_| one)?;
+                let m = sphere_mass_kg(d, grain_density_kg_m3);
+                Some(TerminalTable::new(&DallavalleGrain {
+                    diameter_m: d,
+                    fluid_density_kg_m3: rho_f,
+                    viscosity_pa_s: mu,
+                    voidage: 1.0,
+                    ln_voidage: 0.0,
+                    mass_kg: m,
+                    body_force_n: -(m - sphere_mass_kg(d, rho_f)) * gravity_m_s2,
+                }))
+            })
+            .collect();
+        Self { tables, ..self }
+    }
+
+    /// The terminal-state table of size class `class` if its grains have diameter `d_m`.
+    pub fn terminal_table(&self, class: usize, d_m: f64) -> Option<&TerminalTable> {
+        self.tables
+            .get(class)?
+            .as_ref()
+            .filter(|t| t.diameter_m.to_bits() == d_m.to_bits())
     }
 
     /// The same grid with hindered-settling law `law` (default Di Felice).
@@ -86,6 +151,30 @@ impl VoidageGrid {
                 self.solid_m3[c] += vol;
             }
         }
+        if !self.ideal {
+            let cell_volume_m3 = self.cell_volume_m3;
+            for ((e, l), &solid) in self
+                .voidage
+                .iter_mut()
+                .zip(self.ln_voidage.iter_mut())
+                .zip(&self.solid_m3)
+            {
+                *e = voidage_of(solid, cell_volume_m3);
+                *l = e.ln();
+            }
+        }
+    }
+
+    /// The voidage ε of cell `cell` as [`VoidageGrid::drag`] takes it, and ln ε (full physics;
+    /// valid after [`VoidageGrid::fill`]).
+    pub fn voidage_ln(&self, cell: usize) -> (f64, f64) {
+        (self.voidage[cell], self.ln_voidage[cell])
+    }
+
+    /// Whether every cell's drag is Dallavalle's with the Di Felice factor (full physics,
+    /// `hindered = "di-felice"`).
+    pub fn is_di_felice(&self) -> bool {
+        !self.ideal && self.hindered == HinderedLaw::DiFelice
     }
 
     /// The drag of a grain of diameter `d_m` in cell `cell`: Stokes (ideal) or Dallavalle with
@@ -96,7 +185,7 @@ impl VoidageGrid {
         let law = if self.ideal {
             DragLaw::Stokes { viscosity_pa_s: mu }
         } else {
-            let eps = (1.0 - self.solid_m3[cell] / self.cell_volume_m3).clamp(0.3, 1.0);
+            let eps = voidage_of(self.solid_m3[cell], self.cell_volume_m3);
             if self.hindered == HinderedLaw::RichardsonZaki {
                 let lone = DragLaw::Dallavalle {
                     viscosity_pa_s: mu,
@@ -117,4 +206,10 @@ impl VoidageGrid {
     pub fn drag_at(&self, d_m: f64, x_m: f64, y_m: f64) -> SphereDrag {
         self.drag(d_m, self.cell_of(x_m, y_m))
     }
+}
+
+/// The voidage ε = 1 − solid/cell volume of a cell of `cell_volume_m3` holding `solid_m3` of
+/// grains, clamped to [0.3, 1].
+fn voidage_of(solid_m3: f64, cell_volume_m3: f64) -> f64 {
+    (1.0 - solid_m3 / cell_volume_m3).clamp(0.3, 1.0)
 }

@@ -1,0 +1,247 @@
+//! The terminal state of a settling sphere under Dallavalle drag with the Di Felice factor as a
+//! function of the voidage, tabulated once per run and diameter, and the exponential step near
+//! terminal settling that uses it without a single transcendental function.
+//!
+//! The terminal speed u_t(ε) solves F(u; ε) = W (drag = submerged weight; seed 000 eqs. 7–9,
+//! F as [`crate::fluid::newtonian::dallavalle_di_felice_derivatives`]). It is analytic in ε on
+//! (0, 1] (its only singularity is at ε = 0), so a Chebyshev series on [ε_min, 1] converges
+//! geometrically, as ρ⁻ⁿ with ρ = |τ| + √(τ² − 1), τ = (1 + ε_min)/(1 − ε_min) the image of
+//! ε = 0 (Trefethen 2013, *Approximation Theory and Approximation Practice*, ch. 8): ρ ≈ 17.9
+//! for ε_min = 0.8, so 15 terms reach 1e-18. The slope k_t = F'(u_t) and curvature
+//! c_t = F''(u_t) are tabulated the same way (they need far less accuracy, see
+//! [`exponential_near_terminal`]).
+
+use super::{phi12, DallavalleGrain, PHI_SATURATED};
+use crate::fluid::newtonian::dallavalle_di_felice_derivatives;
+
+/// Lowest voidage tabulated: below it the step falls back to the Newton solve.
+pub const TABLE_VOIDAGE_MIN: f64 = 0.8;
+
+/// Chebyshev terms of u_t, k_t and c_t (u_t: 17.9⁻¹⁴ ≈ 3e-18; k_t: 17.9⁻¹⁰ ≈ 3e-13; c_t:
+/// 17.9⁻⁶ ≈ 3e-8, relative to their first terms).
+const NU: usize = 14;
+const NK: usize = 10;
+const NC: usize = 6;
+
+/// u_t, k_t = F'(u_t) and c_t = F''(u_t) of one sphere (diameter, densities, viscosity,
+/// gravity) as Chebyshev series in the voidage on [[`TABLE_VOIDAGE_MIN`], 1], kept as
+/// polynomials in the Chebyshev variable t (power basis: Horner's rule is a chain of one
+/// multiply-add per term, where Clenshaw's recurrence needs three). SI units.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TerminalTable {
+    /// Diameter it is for, m.
+    pub diameter_m: f64,
+    u: [f64; NU],
+    k: [f64; NK],
+    c: [f64; NC],
+}
+
+/// The terminal speed of `g` (its voidage and body force) to full precision, m/s, with F' and
+/// F'' there: safeguarded Newton on F(u) = |W| from a bracket found by doubling.
+pub fn terminal_state(g: &DallavalleGrain) -> (f64, f64, f64) {
+    let w = g.body_force_n.abs();
+    let law = |u: f64| {
+        dallavalle_di_felice_derivatives(
+            u,
+            g.voidage,
+            g.ln_voidage,
+            g.diameter_m,
+            g.fluid_density_kg_m3,
+            g.viscosity_pa_s,
+        )
+    };
+    let mut hi = 1e-9;
+    while law(hi).0 < w {
+        hi *= 2.0;
+    }
+    let mut lo = 0.0;
+    let mut u = hi;
+    for _ in 0..200 {
+        let (f, k, _) = law(u);
+        let r = f - w;
+        if r == 0.0 {
+            break;
+        }
+        if r > 0.0 {
+            hi = u;
+        } else {
+            lo = u;
+        }
+        let mut next = u - r / k;
+        if !(next > lo && next < hi) {
+            next = 0.5 * (lo + hi);
+        }
+        let done = (next - u).abs() <= f64::EPSILON * u || hi - lo <= 2.0 * f64::EPSILON * hi;
+        u = next;
+        if done {
+            break;
+        }
+    }
+    let (_, k, c) = law(u);
+    (u, k, c)
+}
+
+/// The Chebyshev variable of voidage `eps`: t ∈ [−1, 1] on [[`TABLE_VOIDAGE_MIN`], 1].
+fn cheb_t(eps: f64) -> f64 {
+    (2.0 * eps - (1.0 + TABLE_VOIDAGE_MIN)) * (1.0 / (1.0 - TABLE_VOIDAGE_MIN))
+}
+
+/// The point t of Chebyshev node m of n, tₘ = cos(π(m + ½)/n), and its voidage.
+fn node(m: usize, n: usize) -> (f64, f64) {
+    let t = (std::f64::consts::PI * (m as f64 + 0.5) / n as f64).cos();
+    (
+        t,
+        0.5 * ((1.0 - TABLE_VOIDAGE_MIN) * t + 1.0 + TABLE_VOIDAGE_MIN),
+    )
+}
+
+/// Σ aⱼ tʲ by Horner's rule.
+fn horner(a: &[f64], t: f64) -> f64 {
+    a.iter().rev().fold(0.0, |acc, &x| acc * t + x)
+}
+
+/// The power-basis coefficients of Σ′ cⱼ Tⱼ(t) (first term halved), from
+/// T₀ = 1, T₁ = t, Tⱼ₊₁ = 2t Tⱼ − Tⱼ₋₁.
+fn power_basis<const N: usize>(c: &[f64; N]) -> [f64; N] {
+    let mut a = [0.0; N];
+    let (mut prev, mut cur) = ([0.0; N], [0.0; N]);
+    cur[0] = 1.0;
+    for (j, &cj) in c.iter().enumerate() {
+        let w = if j == 0 { 0.5 * cj } else { cj };
+        for (ai, ti) in a.iter_mut().zip(&cur) {
+            *ai += w * ti;
+        }
+        let mut next = [0.0; N];
+        for i in 0..N {
+            next[i] = -prev[i];
+            if j == 0 {
+                // T₁ = t.
+                next[i] = 0.0;
+            }
+        }
+        for i in 0..N - 1 {
+            next[i + 1] += if j == 0 { cur[i] } else { 2.0 * cur[i] };
+        }
+        prev = cur;
+        cur = next;
+    }
+    a
+}
+
+/// Chebyshev coefficients (first halved in [`clenshaw`]) of `n` terms from the values `f` at the
+/// n Chebyshev points tₘ = cos(π(m + ½)/n).
+fn coefficients<const N: usize>(f: &[f64]) -> [f64; N] {
+    let n = f.len();
+    let mut c = [0.0; N];
+    for (j, cj) in c.iter_mut().enumerate() {
+        let mut s = 0.0;
+        for (m, fm) in f.iter().enumerate() {
+            s += fm * (std::f64::consts::PI * j as f64 * (m as f64 + 0.5) / n as f64).cos();
+        }
+        *cj = 2.0 * s / n as f64;
+    }
+    c
+}
+
+impl TerminalTable {
+    /// The table of a sphere `g` (its voidage is ignored: the table spans
+    /// [[`TABLE_VOIDAGE_MIN`], 1]).
+    pub fn new(g: &DallavalleGrain) -> Self {
+        let at = |n: usize| -> Vec<(f64, f64, f64)> {
+            (0..n)
+                .map(|m| {
+                    let eps = node(m, n).1;
+                    terminal_state(&DallavalleGrain {
+                        voidage: eps,
+                        ln_voidage: eps.ln(),
+                        ..*g
+                    })
+                })
+                .collect()
+        };
+        let su = at(NU);
+        let sk = at(NK);
+        let sc = at(NC);
+        Self {
+            diameter_m: g.diameter_m,
+            u: power_basis(&coefficients::<NU>(
+                &su.iter().map(|x| x.0).collect::<Vec<_>>(),
+            )),
+            k: power_basis(&coefficients::<NK>(
+                &sk.iter().map(|x| x.1).collect::<Vec<_>>(),
+            )),
+            c: power_basis(&coefficients::<NC>(
+                &sc.iter().map(|x| x.2).collect::<Vec<_>>(),
+            )),
+        }
+    }
+
+    /// (u_t, k_t, c_t) at voidage `eps` ∈ [[`TABLE_VOIDAGE_MIN`], 1], else None.
+    pub fn at(&self, eps: f64) -> Option<(f64, f64, f64)> {
+        if !(TABLE_VOIDAGE_MIN..=1.0).contains(&eps) {
+            return None;
+        }
+        let t = cheb_t(eps);
+        Some((horner(&self.u, t), horner(&self.k, t), horner(&self.c, t)))
+    }
+}
+
+/// Largest |s₁ − u_t|/u_t of [`exponential_near_terminal`]: the neglected F''' (s₁ − u_t)³/6 is
+/// then below 1e-15 F relatively (F''' u_t³/F is of order (p − 1), p ≈ 1 + 0.13 √Re the drag's
+/// exponent).
+pub const NEAR_TERMINAL: f64 = 3e-5;
+
+/// The exponential step of [`super::exponential_dallavalle_1d`] (the scheme of
+/// [`super::advance`]) for a sphere near its terminal state, from `table` instead of a Newton
+/// solve: (velocity, m/s; displacement, m), or None (the caller then solves) when the voidage is
+/// outside the table, the body force and p = v₀ + W dt/m point opposite ways, or the
+/// backward-Euler speed s₁ is farther than [`NEAR_TERMINAL`] from u_t.
+///
+/// With δ = s₁ − u_t and F(u_t + δ) = W + k_t δ + c_t δ²/2 + O(δ³), the backward-Euler equation
+/// s₁ + (dt/m) F(s₁) = |p| becomes (1 + λdt) δ + (dt/m) c_t δ²/2 = |p| − u_t − |W| dt/m
+/// (λ = k_t/m), solved by one fixed-point correction of its linear root; then F(s₁) and
+/// k = F'(s₁) = k_t + c_t δ by the same expansion, and the exponential update as in
+/// [`super::advance`]. The step's result depends on s₁ only to second order (v₁ → s₁ + (W −
+/// F(s₁))/k is a Newton step towards u_t), and on k only through (v₀ − s₁)/(λdt), so its error
+/// is that of u_t (the table's, 1e-16 relative) plus O(δ³).
+pub fn exponential_near_terminal(
+    table: &TerminalTable,
+    g: &DallavalleGrain,
+    v0_m_s: f64,
+    dt_s: f64,
+) -> Option<(f64, f64)> {
+    let (ut, kt, ct) = table.at(g.voidage)?;
+    let m = g.mass_kg;
+    let w = g.body_force_n;
+    let v0 = v0_m_s;
+    let dt = dt_s;
+    let kk = dt / m;
+    let p = v0 + w * kk;
+    let same_way = p * w > 0.0;
+    if !same_way {
+        return None;
+    }
+    let target = p.abs();
+    let inv_h1 = 1.0 / (1.0 + kk * kt);
+    let d0 = (target - ut - w.abs() * kk) * inv_h1;
+    let delta = d0 - 0.5 * kk * ct * d0 * d0 * inv_h1;
+    let near = delta.abs() <= NEAR_TERMINAL * ut;
+    if !near {
+        return None;
+    }
+    // s₁ = u_t + δ along p; F(s₁) − k s₁ with k = F'(s₁).
+    let s = ut + delta;
+    let k = kt + ct * delta;
+    let f0 = w.abs() + (kt + 0.5 * ct * delta) * delta - k * s;
+    // a₀ dt φ₁ = (W − F₀ p̂ − k v₀)(dt/m) φ₁, a₀ dt² φ₂ likewise, with λdt = k dt/m.
+    let num = (w - p.signum() * f0 - v0 * k) * kk;
+    let z = -k * kk;
+    let (phi1, phi2) = if z < PHI_SATURATED {
+        // φ₁ = −1/z, φ₂ = (−1 − z)/z² with one division.
+        let inv = 1.0 / z;
+        (-inv, (-1.0 - z) * (inv * inv))
+    } else {
+        phi12(z)
+    };
+    Some((v0 + num * phi1, v0 * dt + num * (dt * phi2)))
+}
