@@ -169,3 +169,49 @@ fn unsupported_combinations_are_refused() {
         "mei-adrian",
     );
 }
+
+/// The side walls (issue 16, `transient.confinement = "haberman-sayre"`): f-EDEM's 0.1 mm
+/// sphere on the axis of a 1 mm tube (λ = 0.1, Re ≈ 0.9) reaches v_t/K, K from Faxén's series
+/// for a sphere on a cylinder's axis (Happel & Brenner 1965, §7-4; computed here, independently
+/// of the code's Haberman–Sayre formula) within 2e-4; without the factor it reaches v_t (the
+/// two differ by 21 %, so the test fails if the factor is lost or doubled). A square box is
+/// refused: the factor is for a circular cylinder.
+#[test]
+fn the_confinement_factor_slows_the_sphere_by_faxens_k() {
+    let tube = [
+        "container.height_m=0.5",
+        "container.diameter_m=1e-3",
+        "transient.confinement=haberman-sayre",
+    ];
+    let free = run_with(1e-5, &tube[..2]);
+    let walled = run_with(1e-5, &tube);
+    let l: f64 = 0.1;
+    let k = 1.0
+        / (1.0 - 2.10444 * l + 2.08877 * l.powi(3) - 0.94813 * l.powi(5) - 1.372 * l.powi(6)
+            + 3.87 * l.powi(8)
+            - 4.19 * l.powi(10));
+    let vt = free.v_simulated_m_s;
+    assert!((vt / free.v_force_balance_m_s - 1.0).abs() < 1e-6, "{vt}");
+    let ratio = walled.v_simulated_m_s / (vt / k);
+    assert!(
+        (ratio - 1.0).abs() < 2e-4,
+        "v = {} vs v_t/K = {}",
+        walled.v_simulated_m_s,
+        vt / k
+    );
+    let set: Vec<String> = [
+        "container.height_m=0.5",
+        "container.width_m=1e-3",
+        "transient.confinement=haberman-sayre",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    let msg = prepare(Path::new(SCENARIO), None, &set)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        msg.contains("transient.confinement") && msg.contains("container.diameter_m"),
+        "{msg}"
+    );
+}

@@ -20,7 +20,7 @@ pub use kinds::sedimentation::{InstrumentsSpec, SampleSpec};
 pub use kinds::tilt::TiltSpec;
 pub use measure::Measure;
 pub use time::Time;
-pub use transient::{History, HistoryReynolds, Transient, Wall};
+pub use transient::{Confinement, History, HistoryReynolds, Transient, Wall};
 
 use super::check::{oc, Check, Range};
 use super::load::ScenarioError;

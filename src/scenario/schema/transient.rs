@@ -29,6 +29,22 @@ pub struct Transient {
     /// `terminal`.
     #[serde(default)]
     pub history_reynolds: HistoryReynolds,
+    /// The side walls' confinement factor on the drag (a cylindrical `[container]` with
+    /// `diameter_m`, kind `free_settling`). Default `off`.
+    #[serde(default)]
+    pub confinement: Confinement,
+}
+
+/// Which confinement (side-wall) factor multiplies the drag.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Confinement {
+    /// None: the side walls are not modelled.
+    #[default]
+    Off,
+    /// Haberman & Sayre (1958): a sphere on the axis of a circular cylinder in creeping flow,
+    /// d/D ≤ 0.8 ([`crate::fluid::transient::wall::haberman_sayre_factor`]).
+    HabermanSayre,
 }
 
 /// Which Reynolds number Mei & Adrian's kernel takes.
@@ -55,6 +71,7 @@ impl Default for Transient {
             history: History::Off,
             wall: Wall::Off,
             history_reynolds: HistoryReynolds::Terminal,
+            confinement: Confinement::Off,
         }
     }
 }
@@ -88,7 +105,10 @@ pub enum Wall {
 impl Transient {
     /// Whether any transient force is on.
     pub fn any(&self) -> bool {
-        self.added_mass || self.history != History::Off || self.wall != Wall::Off
+        self.added_mass
+            || self.history != History::Off
+            || self.wall != Wall::Off
+            || self.confinement != Confinement::Off
     }
 
     /// C_m when the added mass is on, else 0.
@@ -147,6 +167,29 @@ impl Transient {
                     "transient.wall",
                     "the wall correction needs a [container] (its bottom is the wall)",
                 ));
+            }
+        }
+        if self.confinement != Confinement::Off {
+            self.check_confinement(c, s)?;
+        }
+        Ok(())
+    }
+
+    /// Haberman & Sayre's factor: kind `free_settling`, a cylindrical container
+    /// (`container.diameter_m`), every sphere's d/D in (0, 0.8].
+    fn check_confinement(&self, c: &Check, s: &Scenario) -> Result<(), ScenarioError> {
+        const KEY: &str = "transient.confinement";
+        if s.kind != Kind::FreeSettling {
+            return Err(c.err(KEY, format!("the confinement factor is implemented for kind = \"free_settling\" only, not \"{}\"", s.kind.name())));
+        }
+        let Some(big_d) = s.container.as_ref().and_then(|k| k.diameter_m) else {
+            return Err(c.err(KEY, "Haberman & Sayre's factor is for a sphere on the axis of a circular cylinder: give container.diameter_m (no factor is implemented for a square section)"));
+        };
+        for (i, sp) in s.spheres.iter().enumerate() {
+            let ratio = sp.diameter_m / big_d;
+            let name = sp.id.clone().unwrap_or_else(|| format!("#{}", i + 1));
+            if !(ratio > 0.0 && ratio <= crate::fluid::transient::wall::HABERMAN_SAYRE_MAX_RATIO) {
+                return Err(c.err(KEY, format!("sphere \"{name}\": d/D = {ratio:.4} is outside Haberman & Sayre's range (0, {}]", crate::fluid::transient::wall::HABERMAN_SAYRE_MAX_RATIO)));
             }
         }
         Ok(())

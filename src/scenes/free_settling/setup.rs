@@ -135,7 +135,10 @@ impl<const D: usize> SphereSetup<D> {
         // with the history force or the wall it is replaced ([`super::transient::analytic_at`]).
         let added = transient.as_ref().map_or(0.0, |t| t.added_mass_kg);
         let plain = transient.as_ref().is_none_or(|t| {
-            t.basset.is_some() || (t.history.is_none() && t.wall == crate::scenario::Wall::Off)
+            t.basset.is_some()
+                || (t.history.is_none()
+                    && t.wall == crate::scenario::Wall::Off
+                    && t.confinement == 1.0)
         });
         let analytic = match drag.law {
             DragLaw::Stokes { .. } if plain => Some((

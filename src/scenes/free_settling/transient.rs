@@ -22,10 +22,10 @@ use crate::dynamics::transient::{
     TransientModel,
 };
 use crate::dynamics::{advance, Integrator, Motion, Step};
-use crate::fluid::transient::wall::brenner_factor;
+use crate::fluid::transient::wall::{brenner_factor, haberman_sayre_factor};
 use crate::fluid::transient::BassetProblem;
 use crate::fluid::{DragLaw, SphereDrag};
-use crate::scenario::{History, HistoryReynolds, Scenario, Wall};
+use crate::scenario::{Confinement, History, HistoryReynolds, Scenario, Wall};
 use nalgebra::SVector;
 
 /// The transient forces of one sphere, fixed at release.
@@ -37,6 +37,8 @@ pub(super) struct TransientSetup {
     pub history: Option<TransientModel>,
     /// The wall correction.
     pub wall: Wall,
+    /// The side walls' factor on the drag (Haberman & Sayre), 1 when off.
+    pub confinement: f64,
     /// The closed form (Stokes drag, history on, from rest, no wall).
     pub basset: Option<BassetProblem>,
     /// Mei & Adrian's kernel at the current Re: the fits and d/ν, s/m (Re = |v| d/ν).
@@ -87,6 +89,7 @@ impl TransientSetup {
         let basset = (stokes
             && t.history == History::Basset
             && t.wall == Wall::Off
+            && t.confinement == Confinement::Off
             && s.release.velocity_m_s == 0.0)
             .then(|| {
                 let rho_p = m_kg / (std::f64::consts::PI * d_m.powi(3) / 6.0);
@@ -97,6 +100,14 @@ impl TransientSetup {
             added_mass_kg: added,
             history,
             wall: t.wall,
+            confinement: match t.confinement {
+                Confinement::Off => 1.0,
+                Confinement::HabermanSayre => s
+                    .container
+                    .as_ref()
+                    .and_then(|c| c.diameter_m)
+                    .map_or(1.0, |big_d| haberman_sayre_factor(d_m / big_d)),
+            },
             basset,
         })
     }
@@ -114,13 +125,19 @@ pub(super) fn added_mass_kg<const D: usize>(su: &SphereSetup<D>) -> f64 {
     su.transient.as_ref().map_or(0.0, |t| t.added_mass_kg)
 }
 
-/// The drag of `su` with the wall factor at centre depth `depth_m`.
+/// The drag of `su` with the wall factors (bottom and side walls) at centre depth `depth_m`.
 fn walled_drag<const D: usize>(su: &SphereSetup<D>, depth_m: f64) -> SphereDrag {
-    match su.transient.as_ref().map(|t| t.wall) {
-        Some(Wall::Brenner) => su
-            .drag
-            .scaled(brenner_factor(su.bottom_m - depth_m, 0.5 * su.d_m).min(1e12)),
-        _ => su.drag,
+    let Some(t) = su.transient.as_ref() else {
+        return su.drag;
+    };
+    let bottom = match t.wall {
+        Wall::Brenner => brenner_factor(su.bottom_m - depth_m, 0.5 * su.d_m).min(1e12),
+        Wall::Off => 1.0,
+    };
+    if bottom == 1.0 && t.confinement == 1.0 {
+        su.drag
+    } else {
+        su.drag.scaled(bottom * t.confinement)
     }
 }
 
@@ -177,7 +194,7 @@ pub(super) fn analytic_at<const D: usize>(su: &SphereSetup<D>, t: f64) -> Option
         if let Some(p) = &tr.basset {
             return Some((p.velocity_m_s(t), p.displacement_m(t)));
         }
-        if tr.history.is_some() || tr.wall != Wall::Off {
+        if tr.history.is_some() || tr.wall != Wall::Off || tr.confinement != 1.0 {
             return None;
         }
     }
