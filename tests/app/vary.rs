@@ -158,15 +158,11 @@ fn a_bad_key_or_value_is_refused_before_anything_runs() {
         ),
     ];
     for (args, words) in cases {
-        let o = sweep(args, dir.path());
-        assert_exit(&o, 2);
-        let err = String::from_utf8_lossy(&o.stderr);
-        for w in words {
-            assert!(err.contains(w), "{args:?}: `{w}` not in {err}");
-        }
-        assert!(
-            !dir.path().exists() || std::fs::read_dir(dir.path()).unwrap().next().is_none(),
-            "{args:?} wrote something"
+        refused(
+            &sweep(args, dir.path()),
+            &format!("{args:?}"),
+            words,
+            dir.path(),
         );
     }
 }
@@ -345,16 +341,7 @@ fn a_categorical_value_the_key_does_not_take_is_refused() {
     ];
     for (vary, words) in cases {
         let o = sweep(&[TEN_CATE, "--vary", vary], dir.path());
-        assert_exit(&o, 2);
-        let err = String::from_utf8_lossy(&o.stderr);
-        for w in words {
-            assert!(err.contains(w), "{vary}: `{w}` not in {err}");
-        }
-        assert!(!err.contains("panicked"), "{err}");
-        assert!(
-            !dir.path().exists() || std::fs::read_dir(dir.path()).unwrap().next().is_none(),
-            "{vary} wrote something"
-        );
+        refused(&o, vary, words, dir.path());
     }
 }
 
@@ -408,5 +395,20 @@ fn a_categorical_grid_with_a_numeric_key_shards_and_merges() {
         &folder.join("terminal_velocity_m_s_vs_transient.added_mass.svg"),
         "terminal_velocity_m_s against transient.added_mass",
         &["transient.added_mass [-]"],
+    );
+}
+
+/// `o` exited 2 without a panic, its stderr names every word of `words`, and `out` holds
+/// nothing (`what` labels the failure).
+fn refused(o: &std::process::Output, what: &str, words: &[&str], out: &std::path::Path) {
+    assert_exit(o, 2);
+    let err = String::from_utf8_lossy(&o.stderr);
+    for w in words {
+        assert!(err.contains(w), "{what}: `{w}` not in {err}");
+    }
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(
+        !out.exists() || std::fs::read_dir(out).unwrap().next().is_none(),
+        "{what} wrote something"
     );
 }
