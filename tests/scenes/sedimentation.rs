@@ -216,12 +216,15 @@ fn ideal_stokes_intervals_give_the_step_loop_bit_for_bit() {
     let stepper = Stepper::new(s, sm, &su, &st);
     let grid = VoidageGrid::new(&su, sm.voidage_cell_m, true, stepper.fluid_density_kg_m3);
     let schedule = Schedule::new(s, sm, &[]);
+    let every: Vec<usize> = (0..st.grains.len()).collect();
     while schedule.running(&st) {
         let next = schedule.next_event_s(&st);
         let dt = stepper.step_size_s(&st, next, &[]);
-        let (_, suspect) = stepper.free_update(&mut st, &su, &grid, dt).unwrap();
+        let (_, suspect) = stepper
+            .free_update(&mut st, &su, &grid, dt, &every)
+            .unwrap();
         assert!(!suspect);
-        stepper.deposit(&mut st);
+        stepper.deposit(&mut st, &every);
         advance_clock(&mut st, dt, next);
         schedule.dispatch(&mut st, &mut ());
     }

@@ -188,7 +188,9 @@ impl Observer for RunObserver<'_> {
     fn snapshot(&mut self, st: &State) {
         let bands = band_mass_fractions(st, self.setup, PICTURE_BANDS);
         self.rec.pictures.push((st.time_s, bands));
-        self.rec.snapshots.push(st.clone());
+        self.rec
+            .snapshots
+            .push(output::Snapshot::of(st, self.setup));
     }
 
     fn reading(&mut self, st: &State) {

@@ -67,6 +67,9 @@ pub fn simulate(
         IdealCache::default()
     };
     let mut runs: Vec<(f64, u64)> = Vec::new();
+    // The grains the per-step passes visit, ascending: every grain at first; without contacts,
+    // a settled grain leaves the list once a free update has tested it ([`Stepper::retire`]).
+    let mut active: Vec<usize> = (0..st.grains.len()).collect();
     // The largest suspended speed after the last deposition (full physics), for the next step.
     let mut vmax: Option<f64> = None;
     while schedule.running(&st) {
@@ -115,12 +118,12 @@ pub fn simulate(
         let t1 = Instant::now();
         st.stages.step_size_s += (t1 - t0).as_secs_f64();
         if !stepper.ideal {
-            grid.fill(&st, &volumes);
+            grid.fill(&st, &volumes, &active);
         }
-        start.capture(&st);
+        start.capture(&st, &active);
         let t2 = Instant::now();
         st.stages.voidage_s += (t2 - t1).as_secs_f64();
-        let Some((moved, suspect)) = stepper.free_update(&mut st, setup, &grid, dt) else {
+        let Some((moved, suspect)) = stepper.free_update(&mut st, setup, &grid, dt, &active) else {
             // Interrupted within the step: back to its start, which stays resumable.
             start.rewind(&mut st);
             st.interrupted = true;
@@ -136,6 +139,9 @@ pub fn simulate(
                 st.fault = Some(u);
                 break;
             }
+        }
+        if !with_contacts {
+            Stepper::retire(&st, &mut active);
         }
         let t4 = Instant::now();
         st.stages.fault_scan_s += (t4 - t3).as_secs_f64();
@@ -159,9 +165,9 @@ pub fn simulate(
         let t5 = Instant::now();
         st.stages.contacts_s += (t5 - t4).as_secs_f64();
         if stepper.ideal {
-            stepper.deposit(&mut st);
+            stepper.deposit(&mut st, &active);
         } else {
-            vmax = Some(stepper.deposit_vmax(&mut st, &speeds));
+            vmax = Some(stepper.deposit_vmax(&mut st, &speeds, &active));
         }
         advance_clock(&mut st, dt, next_event);
         schedule.dispatch(&mut st, obs);

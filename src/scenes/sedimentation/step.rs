@@ -20,32 +20,52 @@ use std::sync::atomic::{AtomicBool, Ordering};
 /// grains within about a second.
 pub const INTERRUPT_CHECK_GRAINS: usize = 4096;
 
-/// The heights and vertical speeds of every grain at the start of a step: what the contact
-/// stage re-does its clusters from, and what an interrupted step goes back to (the free update
-/// and the contact stage change nothing else before deposition).
+/// The heights and vertical speeds of the grains a step can change, at its start: what the
+/// contact stage re-does its clusters from, and what an interrupted step goes back to (the free
+/// update and the contact stage change nothing else before deposition).
 #[derive(Clone, Debug, Default)]
 pub struct StepStart {
-    /// Height of each grain's centre, m.
+    /// Height of each kept grain's centre, m.
     pub y_m: Vec<f64>,
-    /// Vertical velocity of each grain, m/s.
+    /// Vertical velocity of each kept grain, m/s.
     pub v_m_s: Vec<f64>,
     /// Settled flag of each grain (kept only by [`StepStart::capture_all`]).
     pub settled: Vec<bool>,
+    /// The grains kept, ascending (empty: every grain, entry i of `y_m` and `v_m_s` being
+    /// grain i, as the contact stage reads them).
+    pub index: Vec<usize>,
 }
 
 impl StepStart {
-    /// Keeps the heights and speeds of `st`.
-    pub fn capture(&mut self, st: &State) {
+    /// Keeps the heights and speeds of the grains `active` of `st` (ascending indices, as
+    /// [`Stepper::free_update`] takes them); when `active` lists every grain, entry i is grain i.
+    pub fn capture(&mut self, st: &State, active: &[usize]) {
+        if active.len() == st.grains.len() {
+            self.capture_every(st);
+            return;
+        }
+        self.index.clear();
+        self.index.extend_from_slice(active);
+        self.y_m.clear();
+        self.y_m.extend(active.iter().map(|&i| st.grains[i].y_m));
+        self.v_m_s.clear();
+        self.v_m_s
+            .extend(active.iter().map(|&i| st.velocity_m_s[i]));
+    }
+
+    /// Keeps the heights and speeds of every grain of `st`.
+    fn capture_every(&mut self, st: &State) {
+        self.index.clear();
         self.y_m.clear();
         self.y_m.extend(st.grains.iter().map(|g| g.y_m));
         self.v_m_s.clear();
         self.v_m_s.extend_from_slice(&st.velocity_m_s);
     }
 
-    /// Keeps the heights, speeds and settled flags of `st` (before an ideal-Stokes interval,
-    /// which deposits grains as it goes).
+    /// Keeps the heights, speeds and settled flags of every grain of `st` (before an
+    /// ideal-Stokes interval, which deposits grains as it goes).
     pub fn capture_all(&mut self, st: &State) {
-        self.capture(st);
+        self.capture_every(st);
         self.settled.clear();
         self.settled.extend_from_slice(&st.settled);
     }
@@ -57,8 +77,15 @@ impl StepStart {
         st.settled.copy_from_slice(&self.settled);
     }
 
-    /// Puts every grain of `st` back at the captured heights and speeds.
+    /// Puts the kept grains of `st` back at their captured heights and speeds.
     pub fn rewind(&self, st: &mut State) {
+        if !self.index.is_empty() {
+            for (&i, (&y0, &v0)) in self.index.iter().zip(self.y_m.iter().zip(&self.v_m_s)) {
+                st.grains[i].y_m = y0;
+                st.velocity_m_s[i] = v0;
+            }
+            return;
+        }
         for ((g, v), (&y0, &v0)) in st
             .grains
             .iter_mut()
@@ -179,22 +206,25 @@ impl Stepper {
         dt.max(1e-12)
     }
 
-    /// Advances every suspended grain of `st` by `dt_s` with the exact (exponential) or chosen
-    /// integrator of [`crate::dynamics`], vertically, under gravity, buoyancy and the drag of
-    /// its voidage cell; a grain reaching the bed surface stops on it (flagged by
-    /// [`Stepper::deposit`]). In parallel, by chunks of [`INTERRUPT_CHECK_GRAINS`] grains: every
-    /// grain's update is independent. Returns false if an interrupt was requested
-    /// ([`crate::interrupt::requested`], checked before each chunk): the update is then
-    /// incomplete and the caller must rewind the step ([`StepStart::rewind`]). Otherwise returns
-    /// the number of grains advanced, and whether any grain (suspended or not) now fails the
-    /// test of [`Stepper::grain_fault`] with the bound `speed_bound_m_s` in the cylinder of
-    /// `setup` (checked here as the grains are updated; `grain_fault` then names the first).
+    /// Advances every suspended grain of `active` (ascending grain indices of `st`) by `dt_s`
+    /// with the exact (exponential) or chosen integrator of [`crate::dynamics`], vertically,
+    /// under gravity, buoyancy and the drag of its voidage cell; a grain reaching the bed surface
+    /// stops on it (flagged by [`Stepper::deposit`]). In parallel, by chunks of
+    /// [`INTERRUPT_CHECK_GRAINS`] grains: every grain's update is independent. Returns None if
+    /// an interrupt was requested ([`crate::interrupt::requested`], checked before each chunk):
+    /// the update is then incomplete and the caller must rewind the step ([`StepStart::rewind`]).
+    /// Otherwise returns the number of grains advanced, and whether any grain of `active`
+    /// (suspended or not) now fails the test of [`Stepper::grain_fault`] with the bound
+    /// `speed_bound_m_s` in the cylinder of `setup` (checked here as the grains are updated;
+    /// `grain_fault` then names the first). `active` lists every suspended grain and the settled
+    /// ones not yet tested since they settled ([`Stepper::retire`]); other grains are left alone.
     pub fn free_update(
         &self,
         st: &mut State,
         setup: &Setup,
         grid: &VoidageGrid,
         dt_s: f64,
+        active: &[usize],
     ) -> Option<(u64, bool)> {
         let (width, height) = (setup.width_m, setup.height_m);
         let bound = self.speed_bound_m_s;
@@ -215,15 +245,24 @@ impl Stepper {
             .par_chunks_mut(n)
             .zip(st.velocity_m_s.par_chunks_mut(n))
             .zip(st.settled.par_chunks(n))
-            .map(|((grains, speeds), settled)| {
+            .enumerate()
+            .map(|(ci, ((grains, speeds), settled))| {
+                let base = ci * n;
+                let lo = active.partition_point(|&i| i < base);
+                let hi = active.partition_point(|&i| i < base + grains.len());
+                if lo == hi {
+                    return 0;
+                }
                 if stopped.load(Ordering::Relaxed) || crate::interrupt::requested() {
                     stopped.store(true, Ordering::Relaxed);
                     return 0;
                 }
                 let mut moved = 0u64;
                 let mut bad = false;
-                for ((gr, v), &s) in grains.iter_mut().zip(speeds.iter_mut()).zip(settled) {
-                    if s {
+                for &i in &active[lo..hi] {
+                    let k = i - base;
+                    let (gr, v) = (&mut grains[k], &mut speeds[k]);
+                    if settled[k] {
                         bad |= Self::faulty(gr, *v, width, height, bound);
                         continue;
                     }
@@ -433,16 +472,27 @@ impl Stepper {
         (end, moved)
     }
 
-    /// Deposition (serial: the bed grows as grains join it): every suspended grain touching the
-    /// bed surface joins the bed, at rest on it; with full physics the bed rises by the grain's
-    /// real volume over `bed_area_m2`.
-    pub fn deposit(&self, st: &mut State) {
-        for ((gr, v), settled) in st
-            .grains
-            .iter_mut()
-            .zip(st.velocity_m_s.iter_mut())
-            .zip(st.settled.iter_mut())
-        {
+    /// Drops from `active` the grains of `st` that are settled, after a [`Stepper::free_update`]
+    /// over `active` has tested them: without contacts nothing moves a settled grain again (its
+    /// height, speed and horizontal position stay as deposition left them), so its fault test
+    /// would give the same answer at every later step, and it adds nothing to the voidage grid,
+    /// the deposition or the step size. The order of the others is kept (the sums over them keep
+    /// their order).
+    pub fn retire(st: &State, active: &mut Vec<usize>) {
+        active.retain(|&i| !st.settled[i]);
+    }
+
+    /// Deposition (serial, in ascending grain order: the bed grows as grains join it): every
+    /// suspended grain of `active` (ascending grain indices, every suspended grain among them)
+    /// touching the bed surface joins the bed, at rest on it; with full physics the bed rises by
+    /// the grain's real volume over `bed_area_m2`.
+    pub fn deposit(&self, st: &mut State, active: &[usize]) {
+        for &i in active {
+            let (gr, v, settled) = (
+                &mut st.grains[i],
+                &mut st.velocity_m_s[i],
+                &mut st.settled[i],
+            );
             if !*settled && gr.y_m - 0.5 * gr.diameter_m <= st.bed_height_m + 1e-15 {
                 *settled = true;
                 *v = 0.0;
@@ -458,16 +508,16 @@ impl Stepper {
     /// [`Stepper::deposit`], returning the largest speed of the grains still suspended after it
     /// (each the larger of its speed and its Stokes terminal speed, `stokes_speeds_m_s`), m/s,
     /// 0 if none: the bound of the next step ([`Stepper::step_with_vmax_s`]), found in the same
-    /// pass.
-    pub fn deposit_vmax(&self, st: &mut State, stokes_speeds_m_s: &[f64]) -> f64 {
+    /// pass. `active` as for [`Stepper::deposit`].
+    pub fn deposit_vmax(&self, st: &mut State, stokes_speeds_m_s: &[f64], active: &[usize]) -> f64 {
         let mut vmax = 0.0f64;
-        for (((gr, v), settled), &vs) in st
-            .grains
-            .iter_mut()
-            .zip(st.velocity_m_s.iter_mut())
-            .zip(st.settled.iter_mut())
-            .zip(stokes_speeds_m_s)
-        {
+        for &i in active {
+            let (gr, v, settled, vs) = (
+                &mut st.grains[i],
+                &mut st.velocity_m_s[i],
+                &mut st.settled[i],
+                stokes_speeds_m_s[i],
+            );
             if *settled {
                 continue;
             }

@@ -141,14 +141,16 @@ impl VoidageGrid {
             .collect()
     }
 
-    /// Refills the grid with the solid volume of the suspended grains of `st`, given the real
-    /// solid volume of each grain ([`VoidageGrid::grain_volumes_m3`]), summed in grain order.
-    pub fn fill(&mut self, st: &State, volumes_m3: &[f64]) {
+    /// Refills the grid with the solid volume of the suspended grains of `st` among `active`
+    /// (ascending grain indices, every suspended grain among them), given the real solid volume
+    /// of each grain ([`VoidageGrid::grain_volumes_m3`]), summed in grain order.
+    pub fn fill(&mut self, st: &State, volumes_m3: &[f64], active: &[usize]) {
         self.solid_m3.iter_mut().for_each(|x| *x = 0.0);
-        for ((gr, &settled), &vol) in st.grains.iter().zip(&st.settled).zip(volumes_m3) {
-            if !settled {
+        for &i in active {
+            if !st.settled[i] {
+                let gr = &st.grains[i];
                 let c = self.cell_of(gr.x_m, gr.y_m);
-                self.solid_m3[c] += vol;
+                self.solid_m3[c] += volumes_m3[i];
             }
         }
         if !self.ideal {

@@ -5,6 +5,7 @@
 //! apart, in brown, to its height, with its own mass fraction.
 
 use super::plot::{err, sig, time_text};
+use super::Snapshot;
 use crate::fluid::sphere_volume_m3;
 use crate::io::num;
 use crate::scenes::sedimentation::setup::Setup;
@@ -53,11 +54,11 @@ impl CylinderPanel {
     }
 }
 
-/// The panels of the snapshot states, [`PICTURE_BANDS`] bands each.
-pub fn panels(snapshots: &[State], setup: &Setup) -> Vec<CylinderPanel> {
+/// The panels of the snapshots, [`PICTURE_BANDS`] bands each.
+pub fn panels(snapshots: &[Snapshot], setup: &Setup) -> Vec<CylinderPanel> {
     snapshots
         .iter()
-        .map(|st| CylinderPanel::of(st, setup, PICTURE_BANDS))
+        .map(|sn| CylinderPanel::of(&sn.state(setup), setup, PICTURE_BANDS))
         .collect()
 }
 

@@ -29,12 +29,71 @@ pub struct Recorded {
     /// (time, band mass fractions, bed included) of each snapshot (kept for checkpoints;
     /// `cylinder.svg` is drawn from the snapshots, the bed apart).
     pub pictures: Vec<(f64, Vec<f64>)>,
-    /// The states at the snapshot times (written to `snapshots/` at the end).
-    pub snapshots: Vec<State>,
+    /// The grains at the snapshot times (written to `snapshots/` at the end).
+    pub snapshots: Vec<Snapshot>,
     /// The instruments' readings.
     pub readings: Vec<InstrumentReading>,
     /// Suspension density along the hydrometer bulb at its readings.
     pub bulb: Vec<BulbRow>,
+}
+
+/// The state at a snapshot time, as much of it as the snapshot's outputs read
+/// ([`pictures::write_snapshot`], [`cylinder::panels`], the profiles of `max_diameter.csv` and
+/// `readings_d7928.csv`): each grain's height, settled flag and (if a contact moved it)
+/// horizontal position; its diameter, weight and class are those of the setup's grains, which
+/// never change. [`Snapshot::state`] gives the state back for those outputs.
+#[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
+pub struct Snapshot {
+    /// Time, s.
+    pub time_s: f64,
+    /// Bed height, m.
+    pub bed_height_m: f64,
+    /// Height of each grain's centre, m.
+    pub y_m: Vec<f64>,
+    /// Horizontal position of each grain, m; empty when every grain is still where the setup
+    /// put it (always without contacts).
+    pub x_m: Vec<f64>,
+    /// Whether each grain has joined the bed.
+    pub settled: Vec<bool>,
+}
+
+impl Snapshot {
+    /// The snapshot of `st`, a state of a run of `setup`.
+    pub fn of(st: &State, setup: &Setup) -> Self {
+        let moved = st.grains.len() != setup.grains.len()
+            || st
+                .grains
+                .iter()
+                .zip(&setup.grains)
+                .any(|(g, g0)| g.x_m.to_bits() != g0.x_m.to_bits());
+        Self {
+            time_s: st.time_s,
+            bed_height_m: st.bed_height_m,
+            y_m: st.grains.iter().map(|g| g.y_m).collect(),
+            x_m: if moved {
+                st.grains.iter().map(|g| g.x_m).collect()
+            } else {
+                Vec::new()
+            },
+            settled: st.settled.clone(),
+        }
+    }
+
+    /// The state the snapshot was taken of, as its outputs read it: grains, settled flags, time
+    /// and bed height (speeds zero, counters and statistics those of a new run).
+    pub fn state(&self, setup: &Setup) -> State {
+        let mut st = State::initial(setup);
+        for (i, (g, &y)) in st.grains.iter_mut().zip(&self.y_m).enumerate() {
+            g.y_m = y;
+            if let Some(&x) = self.x_m.get(i) {
+                g.x_m = x;
+            }
+        }
+        st.settled.copy_from_slice(&self.settled);
+        st.time_s = self.time_s;
+        st.bed_height_m = self.bed_height_m;
+        st
+    }
 }
 
 fn csv_err(e: csv::Error) -> io::Error {
@@ -64,7 +123,7 @@ pub fn write_all(
     } = rec;
     let snap_dir = stage.path("snapshots");
     for snap in &snapshots {
-        pictures::write_snapshot(&snap_dir, snap).map_err(io)?;
+        pictures::write_snapshot(&snap_dir, &snap.state(setup)).map_err(io)?;
     }
     let instrument_errors =
         granulometry::write_all(stage, s, sm, setup, &readings, &bulb).map_err(io)?;
@@ -109,8 +168,8 @@ pub fn write_all(
     // the default record times miss.
     let from_snapshots: Vec<Profile> = snapshots
         .iter()
-        .filter(|st| !profiles.iter().any(|p| p.time_s == st.time_s))
-        .map(|st| super::state::profile(st, setup, sm.layers, sm.density_kg_m3))
+        .filter(|sn| !profiles.iter().any(|p| p.time_s == sn.time_s))
+        .map(|sn| super::state::profile(&sn.state(setup), setup, sm.layers, sm.density_kg_m3))
         .collect();
     let mut at: Vec<&Profile> = profiles.iter().chain(&from_snapshots).collect();
     at.sort_by(|a, b| a.time_s.total_cmp(&b.time_s));

@@ -43,7 +43,7 @@ use crate::scenes::sedimentation::instruments::{
     layered_field, InstrumentKind, InstrumentReading, InstrumentSet,
 };
 use crate::scenes::sedimentation::setup::Setup;
-use crate::scenes::sedimentation::state::{profile, Profile, State};
+use crate::scenes::sedimentation::state::{profile, Profile};
 use std::io;
 
 /// `x` to 10 significant digits (and 0 below 1e-9 in magnitude: the bisection's noise of a
@@ -86,7 +86,7 @@ pub fn write_all(
     setup: &Setup,
     readings: &[InstrumentReading],
     profiles: &[Profile],
-    snapshots: &[State],
+    snapshots: &[super::Snapshot],
 ) -> io::Result<()> {
     let set = InstrumentSet::new(s, setup);
     let spec = set.hydrometer.spec;
@@ -222,7 +222,7 @@ fn d7928_readings(
     end_s: f64,
     hyd: &[(f64, HydrometerReading)],
     profiles: &[Profile],
-    snapshots: &[State],
+    snapshots: &[super::Snapshot],
 ) -> (Vec<(f64, HydrometerReading)>, Vec<f64>) {
     let (rho_p, rho_f) = (
         set.analysis.grain_density_kg_m3,
@@ -247,8 +247,8 @@ fn d7928_readings(
                 pr.and_then(read)
             })
             .or_else(|| {
-                let st = snapshots.iter().find(|st| same(st.time_s, t))?;
-                read(&profile(st, setup, set.layers, rho_p))
+                let sn = snapshots.iter().find(|sn| same(sn.time_s, t))?;
+                read(&profile(&sn.state(setup), setup, set.layers, rho_p))
             });
         match r {
             Some(r) => at.push((t, r)),
