@@ -184,12 +184,7 @@ fn merged_shards_equal_the_unsharded_parameter_sweep() {
     }
     let folder = parts.join("stokes_single_vary");
     assert!(folder.join("vary_part_2_of_3.csv").is_file());
-    let o = settle()
-        .args(["sweep", "--quiet", "--merge"])
-        .arg(&folder)
-        .output()
-        .unwrap();
-    assert_exit(&o, 0);
+    merge(&folder);
     let strip = |p: &Path| {
         let (h, rows) = read_csv(p);
         let w = h.iter().position(|c| c == "wall_time_s").unwrap();
@@ -366,12 +361,7 @@ fn a_categorical_grid_with_a_numeric_key_shards_and_merges() {
         assert_exit(&sweep(&[&args[..], &["--shard", s]].concat(), &parts), 0);
     }
     let folder = parts.join("ten_cate_e1_vary");
-    let o = settle()
-        .args(["sweep", "--quiet", "--merge"])
-        .arg(&folder)
-        .output()
-        .unwrap();
-    assert_exit(&o, 0);
+    merge(&folder);
     let strip = |p: &Path| {
         let (h, mut rows) = read_csv(p);
         let w = h.iter().position(|c| c == "wall_time_s").unwrap();
@@ -411,4 +401,14 @@ fn refused(o: &std::process::Output, what: &str, words: &[&str], out: &std::path
         !out.exists() || std::fs::read_dir(out).unwrap().next().is_none(),
         "{what} wrote something"
     );
+}
+
+/// `settle sweep --merge FOLDER` succeeds.
+fn merge(folder: &Path) {
+    let o = settle()
+        .args(["sweep", "--quiet", "--merge"])
+        .arg(folder)
+        .output()
+        .unwrap();
+    assert_exit(&o, 0);
 }
