@@ -175,7 +175,7 @@ fn unsupported_combinations_are_refused() {
 /// for a sphere on a cylinder's axis (Happel & Brenner 1965, §7-4; computed here, independently
 /// of the code's Haberman–Sayre formula) within 2e-4; without the factor it reaches v_t (the
 /// two differ by 21 %, so the test fails if the factor is lost or doubled). A square box is
-/// refused: the factor is for a circular cylinder.
+/// refused (the factor is for a circular cylinder), and so is a sphere with d/D above 0.8.
 #[test]
 fn the_confinement_factor_slows_the_sphere_by_faxens_k() {
     let tube = [
@@ -212,6 +212,21 @@ fn the_confinement_factor_slows_the_sphere_by_faxens_k() {
         .to_string();
     assert!(
         msg.contains("transient.confinement") && msg.contains("container.diameter_m"),
+        "{msg}"
+    ); // A sphere beyond Haberman & Sayre's range (d/D = 0.91 > 0.8) is refused with its key.
+    let set: Vec<String> = [
+        "container.height_m=0.5",
+        "container.diameter_m=1.1e-4",
+        "transient.confinement=haberman-sayre",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    let msg = prepare(Path::new(SCENARIO), None, &set)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        msg.contains("diameter_m") && msg.contains("Haberman") && msg.contains("0.8"),
         "{msg}"
     );
 }

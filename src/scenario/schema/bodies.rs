@@ -215,6 +215,9 @@ impl SphereSpec {
                     ),
                 ));
             }
+            if let Some(t) = &s.transient {
+                t.check_confined_sphere(c, key, d, s)?;
+            }
             if s.release.depth_m + 0.5 * d > ct.height_m {
                 return Err(c.err(
                     "release.depth_m",

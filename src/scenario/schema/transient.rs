@@ -176,22 +176,40 @@ impl Transient {
     }
 
     /// Haberman & Sayre's factor: kind `free_settling`, a cylindrical container
-    /// (`container.diameter_m`), every sphere's d/D in (0, 0.8].
+    /// (`container.diameter_m`). Each sphere's d/D is checked with the sphere
+    /// ([`Transient::check_confined_sphere`]), so that spheres read from CSV are too.
     fn check_confinement(&self, c: &Check, s: &Scenario) -> Result<(), ScenarioError> {
         const KEY: &str = "transient.confinement";
         if s.kind != Kind::FreeSettling {
             return Err(c.err(KEY, format!("the confinement factor is implemented for kind = \"free_settling\" only, not \"{}\"", s.kind.name())));
         }
-        let Some(big_d) = s.container.as_ref().and_then(|k| k.diameter_m) else {
+        if s.container.as_ref().and_then(|k| k.diameter_m).is_none() {
             return Err(c.err(KEY, "Haberman & Sayre's factor is for a sphere on the axis of a circular cylinder: give container.diameter_m (no factor is implemented for a square section)"));
-        };
-        for (i, sp) in s.spheres.iter().enumerate() {
-            let ratio = sp.diameter_m / big_d;
-            let name = sp.id.clone().unwrap_or_else(|| format!("#{}", i + 1));
-            if !(ratio > 0.0 && ratio <= crate::fluid::transient::wall::HABERMAN_SAYRE_MAX_RATIO) {
-                return Err(c.err(KEY, format!("sphere \"{name}\": d/D = {ratio:.4} is outside Haberman & Sayre's range (0, {}]", crate::fluid::transient::wall::HABERMAN_SAYRE_MAX_RATIO)));
-            }
         }
         Ok(())
+    }
+
+    /// With the confinement factor on, the sphere `key` of diameter `d_m` has d/D in Haberman &
+    /// Sayre's range (0, [`crate::fluid::transient::wall::HABERMAN_SAYRE_MAX_RATIO`]].
+    pub(crate) fn check_confined_sphere(
+        &self,
+        c: &Check,
+        key: &str,
+        d_m: f64,
+        s: &Scenario,
+    ) -> Result<(), ScenarioError> {
+        use crate::fluid::transient::wall::HABERMAN_SAYRE_MAX_RATIO as MAX;
+        let big_d = s.container.as_ref().and_then(|k| k.diameter_m);
+        let (Confinement::HabermanSayre, Some(big_d)) = (self.confinement, big_d) else {
+            return Ok(());
+        };
+        let ratio = d_m / big_d;
+        if ratio > 0.0 && ratio <= MAX {
+            return Ok(());
+        }
+        Err(c.err(
+            &format!("{key}.diameter_m"),
+            format!("d/D = {ratio:.4} with container.diameter_m = {big_d} m is outside Haberman & Sayre's range (0, {MAX}] (transient.confinement)"),
+        ))
     }
 }

@@ -23,8 +23,9 @@ pub struct VoidageGrid {
     cell_volume_m3: f64,
     /// Solid volume of the suspended grains per cell, m³ (row-major, bottom row first).
     solid_m3: Vec<f64>,
-    /// Voidage ε of every cell as [`VoidageGrid::drag`] takes it, and ln ε (full physics with
-    /// the Di Felice factor: the fast path of the free update), set by [`VoidageGrid::fill`].
+    /// Voidage ε of every cell as [`VoidageGrid::drag`] takes it, and ln ε, set by
+    /// [`VoidageGrid::fill`] only where the fast path of the free update reads them (full
+    /// physics with the Di Felice factor, [`VoidageGrid::is_di_felice`]).
     voidage: Vec<f64>,
     ln_voidage: Vec<f64>,
     /// Stokes drag only (`ideal-stokes`): the grid is not used.
@@ -153,7 +154,7 @@ impl VoidageGrid {
                 self.solid_m3[c] += volumes_m3[i];
             }
         }
-        if !self.ideal {
+        if self.is_di_felice() {
             let cell_volume_m3 = self.cell_volume_m3;
             for ((e, l), &solid) in self
                 .voidage
@@ -167,8 +168,8 @@ impl VoidageGrid {
         }
     }
 
-    /// The voidage ε of cell `cell` as [`VoidageGrid::drag`] takes it, and ln ε (full physics;
-    /// valid after [`VoidageGrid::fill`]).
+    /// The voidage ε of cell `cell` as [`VoidageGrid::drag`] takes it, and ln ε (valid after
+    /// [`VoidageGrid::fill`] when [`VoidageGrid::is_di_felice`]).
     pub fn voidage_ln(&self, cell: usize) -> (f64, f64) {
         (self.voidage[cell], self.ln_voidage[cell])
     }
