@@ -31,6 +31,10 @@ const NC: usize = 6;
 pub struct TerminalTable {
     /// Diameter it is for, m.
     pub diameter_m: f64,
+    /// The sphere's mass m, kg (as given to [`TerminalTable::new`]).
+    pub mass_kg: f64,
+    /// The body force W on the sphere, N (as given to [`TerminalTable::new`]).
+    pub body_force_n: f64,
     u: [f64; NU],
     k: [f64; NK],
     c: [f64; NC],
@@ -95,9 +99,18 @@ fn node(m: usize, n: usize) -> (f64, f64) {
     )
 }
 
-/// Σ aⱼ tʲ by Horner's rule.
-fn horner(a: &[f64], t: f64) -> f64 {
-    a.iter().rev().fold(0.0, |acc, &x| acc * t + x)
+/// Σ aⱼ tʲ by Horner's rule for `L` polynomials `a` at their points `t` at once: lane by lane
+/// the same operations as one polynomial alone (so the same bits), interleaved so that the
+/// processor overlaps the lanes' chains of multiply-adds.
+#[inline(always)]
+fn horner_lanes<const N: usize, const L: usize>(a: [&[f64; N]; L], t: [f64; L]) -> [f64; L] {
+    let mut acc = [0.0; L];
+    for j in (0..N).rev() {
+        for l in 0..L {
+            acc[l] = acc[l] * t[l] + a[l][j];
+        }
+    }
+    acc
 }
 
 /// The power-basis coefficients of Σ′ cⱼ Tⱼ(t) (first term halved), from
@@ -164,6 +177,8 @@ impl TerminalTable {
         let sc = at(NC);
         Self {
             diameter_m: g.diameter_m,
+            mass_kg: g.mass_kg,
+            body_force_n: g.body_force_n,
             u: power_basis(&coefficients::<NU>(
                 &su.iter().map(|x| x.0).collect::<Vec<_>>(),
             )),
@@ -181,8 +196,12 @@ impl TerminalTable {
         if !(TABLE_VOIDAGE_MIN..=1.0).contains(&eps) {
             return None;
         }
-        let t = cheb_t(eps);
-        Some((horner(&self.u, t), horner(&self.k, t), horner(&self.c, t)))
+        let t = [cheb_t(eps)];
+        Some((
+            horner_lanes([&self.u], t)[0],
+            horner_lanes([&self.k], t)[0],
+            horner_lanes([&self.c], t)[0],
+        ))
     }
 }
 
@@ -210,38 +229,73 @@ pub fn exponential_near_terminal(
     v0_m_s: f64,
     dt_s: f64,
 ) -> Option<(f64, f64)> {
-    let (ut, kt, ct) = table.at(g.voidage)?;
-    let m = g.mass_kg;
-    let w = g.body_force_n;
-    let v0 = v0_m_s;
-    let dt = dt_s;
-    let kk = dt / m;
-    let p = v0 + w * kk;
-    let same_way = p * w > 0.0;
-    if !same_way {
-        return None;
+    exponential_near_terminal_lanes(
+        [table],
+        [g.voidage],
+        [g.mass_kg],
+        [g.body_force_n],
+        [v0_m_s],
+        dt_s,
+    )[0]
+}
+
+/// [`exponential_near_terminal`] for `L` spheres at once, each with its table (`tables`), its
+/// voidage, mass (kg), body force (N) and velocity (m/s) over the same step `dt_s` (s). Each
+/// lane's result is the one-sphere result bit for bit (the same operations in the same order);
+/// the lanes go through each stage together (Horner's rule is a chain of 30 multiply-adds per
+/// sphere, and the step three divisions), so that the processor overlaps and pairs them.
+#[inline(always)]
+pub fn exponential_near_terminal_lanes<const L: usize>(
+    tables: [&TerminalTable; L],
+    voidage: [f64; L],
+    mass_kg: [f64; L],
+    body_force_n: [f64; L],
+    v0_m_s: [f64; L],
+    dt_s: f64,
+) -> [Option<(f64, f64)>; L] {
+    let t = voidage.map(cheb_t);
+    let ut = horner_lanes(tables.map(|x| &x.u), t);
+    let kt = horner_lanes(tables.map(|x| &x.k), t);
+    let ct = horner_lanes(tables.map(|x| &x.c), t);
+    let (w, v0, dt) = (body_force_n, v0_m_s, dt_s);
+    let (mut kk, mut p, mut inv_h1, mut d0, mut delta) =
+        ([0.0; L], [0.0; L], [0.0; L], [0.0; L], [0.0; L]);
+    let (mut k, mut f0, mut num, mut z, mut inv) =
+        ([0.0; L], [0.0; L], [0.0; L], [0.0; L], [0.0; L]);
+    for l in 0..L {
+        kk[l] = dt / mass_kg[l];
+        p[l] = v0[l] + w[l] * kk[l];
+        inv_h1[l] = 1.0 / (1.0 + kk[l] * kt[l]);
     }
-    let target = p.abs();
-    let inv_h1 = 1.0 / (1.0 + kk * kt);
-    let d0 = (target - ut - w.abs() * kk) * inv_h1;
-    let delta = d0 - 0.5 * kk * ct * d0 * d0 * inv_h1;
-    let near = delta.abs() <= NEAR_TERMINAL * ut;
-    if !near {
-        return None;
+    for l in 0..L {
+        d0[l] = (p[l].abs() - ut[l] - w[l].abs() * kk[l]) * inv_h1[l];
+        delta[l] = d0[l] - 0.5 * kk[l] * ct[l] * d0[l] * d0[l] * inv_h1[l];
+        // s₁ = u_t + δ along p; F(s₁) − k s₁ with k = F'(s₁).
+        k[l] = kt[l] + ct[l] * delta[l];
+        f0[l] =
+            w[l].abs() + (kt[l] + 0.5 * ct[l] * delta[l]) * delta[l] - k[l] * (ut[l] + delta[l]);
+        // a₀ dt φ₁ = (W − F₀ p̂ − k v₀)(dt/m) φ₁, a₀ dt² φ₂ likewise, with λdt = k dt/m.
+        num[l] = (w[l] - p[l].signum() * f0[l] - v0[l] * k[l]) * kk[l];
+        z[l] = -k[l] * kk[l];
     }
-    // s₁ = u_t + δ along p; F(s₁) − k s₁ with k = F'(s₁).
-    let s = ut + delta;
-    let k = kt + ct * delta;
-    let f0 = w.abs() + (kt + 0.5 * ct * delta) * delta - k * s;
-    // a₀ dt φ₁ = (W − F₀ p̂ − k v₀)(dt/m) φ₁, a₀ dt² φ₂ likewise, with λdt = k dt/m.
-    let num = (w - p.signum() * f0 - v0 * k) * kk;
-    let z = -k * kk;
-    let (phi1, phi2) = if z < PHI_SATURATED {
-        // φ₁ = −1/z, φ₂ = (−1 − z)/z² with one division.
-        let inv = 1.0 / z;
-        (-inv, (-1.0 - z) * (inv * inv))
-    } else {
-        phi12(z)
-    };
-    Some((v0 + num * phi1, v0 * dt + num * (dt * phi2)))
+    // φ₁ = −1/z, φ₂ = (−1 − z)/z² with one division where z < PHI_SATURATED.
+    for l in 0..L {
+        inv[l] = 1.0 / z[l];
+    }
+    let mut out = [None; L];
+    for l in 0..L {
+        let in_table = (TABLE_VOIDAGE_MIN..=1.0).contains(&voidage[l]);
+        let same_way = p[l] * w[l] > 0.0;
+        let near = delta[l].abs() <= NEAR_TERMINAL * ut[l];
+        if !(in_table && same_way && near) {
+            continue;
+        }
+        let (phi1, phi2) = if z[l] < PHI_SATURATED {
+            (-inv[l], (-1.0 - z[l]) * (inv[l] * inv[l]))
+        } else {
+            phi12(z[l])
+        };
+        out[l] = Some((v0[l] + num[l] * phi1, v0[l] * dt + num[l] * (dt * phi2)));
+    }
+    out
 }

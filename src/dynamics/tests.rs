@@ -349,3 +349,54 @@ fn exponential_dallavalle_matches_advance() {
     assert!(worst.2 < 1e-14, "tabulated terminal speed: {:e}", worst.2);
     assert!(near > 500, "the tabulated step applied {near} times");
 }
+
+/// The tabulated step of several spheres at once (`terminal::exponential_near_terminal_lanes`,
+/// what the cylinder's free update calls) gives each lane the one-sphere step bit for bit,
+/// whatever its neighbours: lanes mixing diameters, voidages inside and outside the table,
+/// spheres at, near and far from terminal settling and thrown upwards (those lanes must give
+/// None, as one sphere alone does).
+#[test]
+fn tabulated_step_lanes_match_one_sphere_bit_for_bit() {
+    use super::terminal::{
+        exponential_near_terminal, exponential_near_terminal_lanes, TerminalTable,
+    };
+    let mut cases = Vec::new();
+    for (k, (d, rho_p)) in DIAMETERS
+        .iter()
+        .flat_map(|d| DENSITIES.iter().map(move |r| (*d, *r)))
+        .enumerate()
+    {
+        let table = TerminalTable::new(&cylinder_grain(d, rho_p, VISCOSITIES[0], 1.0).0);
+        for (j, eps) in [0.5, 0.8, 0.83, 0.97, 1.0].into_iter().enumerate() {
+            let (g, _) = cylinder_grain(d, rho_p, VISCOSITIES[0], eps);
+            let ut = super::terminal::terminal_state(&g).0;
+            let v0 = [-ut, -ut * (1.0 + 1e-6), -0.5 * ut, 0.3 * ut, 0.0][(j + k) % 5];
+            cases.push((table.clone(), g, v0));
+        }
+    }
+    const L: usize = 16;
+    let (mut some, mut none) = (0, 0);
+    for dt in [1e-3, 0.5, 10.0] {
+        for group in cases.chunks(L).filter(|c| c.len() == L) {
+            let lanes = exponential_near_terminal_lanes::<L>(
+                std::array::from_fn(|l| &group[l].0),
+                std::array::from_fn(|l| group[l].1.voidage),
+                std::array::from_fn(|l| group[l].1.mass_kg),
+                std::array::from_fn(|l| group[l].1.body_force_n),
+                std::array::from_fn(|l| group[l].2),
+                dt,
+            );
+            for (l, (table, g, v0)) in group.iter().enumerate() {
+                let one = exponential_near_terminal(table, g, *v0, dt);
+                let bits = |x: Option<(f64, f64)>| x.map(|(a, b)| (a.to_bits(), b.to_bits()));
+                assert_eq!(bits(lanes[l]), bits(one), "lane {l}, dt {dt}");
+                if one.is_some() {
+                    some += 1;
+                } else {
+                    none += 1;
+                }
+            }
+        }
+    }
+    assert!(some > 50 && none > 50, "{some} steps, {none} refusals");
+}

@@ -70,6 +70,7 @@ pub mod setup;
 pub mod simulate;
 pub mod state;
 pub mod step;
+pub mod suspension;
 pub mod voidage;
 
 pub use instruments::{
@@ -135,6 +136,7 @@ pub fn run(
             ctx.quiet,
         ),
         t0,
+        save_due: false,
     };
     let st = simulate(s, &setup, start, &instruments.all_times_s(), &mut obs);
     obs.bar.finish_and_clear();
@@ -166,6 +168,8 @@ struct RunObserver<'a> {
     save_err: Option<std::io::Error>,
     bar: indicatif::ProgressBar,
     t0: std::time::Instant,
+    /// A checkpoint is due at the next [`Observer::step`] (set by [`Observer::wants_grains`]).
+    save_due: bool,
 }
 
 impl RunObserver<'_> {
@@ -209,8 +213,13 @@ impl Observer for RunObserver<'_> {
             self.bar
                 .set_message(crate::progress::step_message(st.steps, self.t0));
         }
-        if self.timer.as_mut().is_some_and(|t| t.due()) {
+        if std::mem::take(&mut self.save_due) {
             self.save(st);
         }
+    }
+
+    fn wants_grains(&mut self) -> bool {
+        self.save_due = self.timer.as_mut().is_some_and(|t| t.due());
+        self.save_due
     }
 }

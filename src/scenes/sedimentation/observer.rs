@@ -13,10 +13,23 @@ pub trait Observer {
     fn reading(&mut self, _st: &State) {}
     /// After every step, events included (decides itself whether to save a checkpoint).
     fn step(&mut self, _st: &State) {}
+    /// Asked before every [`Observer::step`]: whether that call reads the grains of the state
+    /// (e.g. to save a checkpoint). When it answers false, the heights and speeds of the grains
+    /// still suspended in the state passed to `step` may be those of an earlier step (a run
+    /// without contacts keeps them elsewhere, [`super::suspension::Suspension`]); its time, step
+    /// count and everything else are current. The records, snapshots and readings always get
+    /// current grains.
+    fn wants_grains(&mut self) -> bool {
+        true
+    }
 }
 
 /// Observes nothing.
-impl Observer for () {}
+impl Observer for () {
+    fn wants_grains(&mut self) -> bool {
+        false
+    }
+}
 
 /// Calls the closure at every record time, and does nothing else.
 pub struct OnRecord<F: FnMut(&State)>(pub F);
@@ -24,5 +37,9 @@ pub struct OnRecord<F: FnMut(&State)>(pub F);
 impl<F: FnMut(&State)> Observer for OnRecord<F> {
     fn record(&mut self, st: &State) {
         (self.0)(st)
+    }
+
+    fn wants_grains(&mut self) -> bool {
+        false
     }
 }

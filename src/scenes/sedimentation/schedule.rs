@@ -63,6 +63,12 @@ impl Schedule {
             .min(self.end_s)
     }
 
+    /// True when `st` has reached its next event ([`Schedule::next_event_s`], the end included):
+    /// [`Schedule::dispatch`] will hand it to the observer (or the run ends).
+    pub fn due(&self, st: &State) -> bool {
+        Self::reached(self.next_event_s(st), st.time_s)
+    }
+
     /// Hands `st` to `obs` for every event it has reached, in the order records, snapshots,
     /// readings, and advances the cursors of `st`.
     pub fn dispatch(&self, st: &mut State, obs: &mut impl Observer) {

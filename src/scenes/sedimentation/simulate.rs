@@ -6,6 +6,7 @@ use super::schedule::Schedule;
 use super::setup::Setup;
 use super::state::State;
 use super::step::{advance_clock, clock_after, IdealCache, Interval, StepStart, Stepper};
+use super::suspension::Suspension;
 use super::voidage::VoidageGrid;
 use crate::dynamics::Integrator;
 use crate::scenario::{SampleSpec, Scenario};
@@ -27,6 +28,11 @@ use std::time::Instant;
 /// size is known in advance, so the steps up to the next event are made at once, grain by grain
 /// ([`Stepper::ideal_interval`], the same arithmetic in the same order: the same result bit for
 /// bit); `obs` is then told once per interval, at its end.
+///
+/// In full physics without contacts (the default), the suspended grains are stepped packed
+/// apart from the state ([`Suspension`], the loop of `Packed::simulate`): the same steps, the
+/// same result bit for bit, with the grains' heights and speeds reaching the state only when
+/// something reads them there (events, checkpoints, a fault, the end).
 pub fn simulate(
     s: &Scenario,
     setup: &Setup,
@@ -48,6 +54,16 @@ pub fn simulate(
     .with_hindered(sm.hindered)
     .with_terminal_tables(&st, stepper.grain_density_kg_m3, stepper.gravity_m_s2);
     let with_contacts = !stepper.ideal && sm.contacts;
+    if !stepper.ideal && !with_contacts {
+        if let Some((suspension, suspect)) = Suspension::new(&st, &grid, &stepper, setup) {
+            let run = Packed {
+                setup,
+                schedule: &schedule,
+                stepper: &stepper,
+            };
+            return run.simulate(st, suspension, suspect, &mut grid, obs);
+        }
+    }
     let mut contacts = ContactStage::new(sm, setup, &stepper);
     let mut start = StepStart::default();
     let mut by_interval = stepper.ideal && stepper.integrator == Integrator::Exponential;
@@ -94,6 +110,7 @@ pub fn simulate(
                         }
                     }
                     schedule.dispatch(&mut st, obs);
+                    obs.wants_grains();
                     obs.step(&st);
                     st.stages.deposit_events_s += t0.elapsed().as_secs_f64();
                     continue;
@@ -171,10 +188,80 @@ pub fn simulate(
         }
         advance_clock(&mut st, dt, next_event);
         schedule.dispatch(&mut st, obs);
+        obs.wants_grains();
         obs.step(&st);
         st.stages.deposit_events_s += t5.elapsed().as_secs_f64();
     }
     st
+}
+
+/// The step loop of full physics without contacts, on the suspended grains packed in a
+/// [`Suspension`]: the same steps as the loop of [`simulate`], with the same arithmetic on the
+/// same grains in the same order (the same result, bit for bit), but each pass streams through
+/// the suspended grains only, and their heights and speeds reach the state only when something
+/// reads them there. One step of 10⁷ grains takes well under a second, so an interrupt request
+/// is honoured between steps (nothing to undo).
+struct Packed<'a> {
+    setup: &'a Setup,
+    schedule: &'a Schedule,
+    stepper: &'a Stepper,
+}
+
+impl Packed<'_> {
+    /// Runs from `st`, whose suspended grains are `sus` (`suspect`: a grain of `st` fails the
+    /// fault test already), with the voidage grid `grid`, telling `obs` as [`simulate`] does.
+    fn simulate(
+        &self,
+        mut st: State,
+        mut sus: Suspension,
+        suspect: bool,
+        grid: &mut VoidageGrid,
+        obs: &mut impl Observer,
+    ) -> State {
+        let (setup, schedule, stepper) = (self.setup, self.schedule, self.stepper);
+        let mut vmax = sus.vmax_m_s();
+        // A settled grain fails the fault test: the next free update's scan reports it.
+        let mut pending = suspect;
+        while schedule.running(&st) {
+            if crate::interrupt::requested() {
+                st.interrupted = true;
+                break;
+            }
+            let next_event = schedule.next_event_s(&st);
+            let t0 = Instant::now();
+            let dt = stepper.step_with_vmax_s(st.time_s, next_event, vmax);
+            sus.fill(grid);
+            let t1 = Instant::now();
+            st.stages.voidage_s += (t1 - t0).as_secs_f64();
+            let (moved, bad) = sus.free_update(stepper, grid, setup, st.bed_height_m, dt);
+            st.stages.grain_steps += moved;
+            let t2 = Instant::now();
+            st.stages.free_update_s += (t2 - t1).as_secs_f64();
+            if bad || pending {
+                sus.write_back(&mut st);
+                if let Some(u) = stepper.grain_fault(&st, setup, dt, Some(stepper.speed_bound_m_s))
+                {
+                    st.fault = Some(u);
+                    break;
+                }
+            }
+            let t3 = Instant::now();
+            st.stages.fault_scan_s += (t3 - t2).as_secs_f64();
+            (vmax, pending) = sus.deposit_vmax(&mut st, stepper, setup);
+            advance_clock(&mut st, dt, next_event);
+            if schedule.due(&st) {
+                sus.write_back(&mut st);
+            }
+            schedule.dispatch(&mut st, obs);
+            if obs.wants_grains() {
+                sus.write_back(&mut st);
+            }
+            obs.step(&st);
+            st.stages.deposit_events_s += t3.elapsed().as_secs_f64();
+        }
+        sus.write_back(&mut st);
+        st
+    }
 }
 
 /// The steps from `t_s` up to the event `next_event_s` (or the end of the run), as the step loop

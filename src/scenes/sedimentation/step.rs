@@ -230,14 +230,7 @@ impl Stepper {
         let bound = self.speed_bound_m_s;
         let suspect = AtomicBool::new(false);
         let floor = st.bed_height_m;
-        let (g, rho_p, rho_f) = (
-            self.gravity_m_s2,
-            self.grain_density_kg_m3,
-            self.fluid_density_kg_m3,
-        );
-        let integrator = self.integrator;
-        let fast = integrator == Integrator::Exponential && grid.is_di_felice();
-        let mu = self.viscosity_pa_s;
+        let fast = self.fast_path(grid);
         let n = INTERRUPT_CHECK_GRAINS;
         let stopped = AtomicBool::new(false);
         let moved = st
@@ -266,39 +259,13 @@ impl Stepper {
                         bad |= Self::faulty(gr, *v, width, height, bound);
                         continue;
                     }
-                    let d = gr.diameter_m;
-                    let m = sphere_mass_kg(d, rho_p);
-                    let w = -(m - sphere_mass_kg(d, rho_f)) * g;
                     let cell = grid.cell_of(gr.x_m, gr.y_m);
-                    let quick = fast.then(|| {
-                        let (voidage, ln_voidage) = grid.voidage_ln(cell);
-                        let grain = DallavalleGrain {
-                            diameter_m: d,
-                            fluid_density_kg_m3: rho_f,
-                            viscosity_pa_s: mu,
-                            voidage,
-                            ln_voidage,
-                            mass_kg: m,
-                            body_force_n: w,
-                        };
-                        grid.terminal_table(gr.class, d)
-                            .and_then(|t| exponential_near_terminal(t, &grain, *v, dt_s))
-                            .or_else(|| exponential_dallavalle_1d(&grain, *v, dt_s))
-                    });
-                    let (v1, dx) = match quick.flatten() {
-                        Some(step) => step,
-                        None => {
-                            let drag = grid.drag(d, cell);
-                            let w = SVector::<f64, 1>::new(w);
-                            let v0 = SVector::<f64, 1>::new(*v);
-                            let step = advance(integrator, &drag, m, &w, &v0, dt_s);
-                            (step.velocity_m_s[0], step.displacement_m[0])
-                        }
-                    };
+                    let (v1, dx) =
+                        self.grain_step(grid, fast, gr.diameter_m, gr.class, cell, *v, dt_s);
                     *v = v1;
                     gr.y_m += dx;
-                    if gr.y_m - 0.5 * d <= floor {
-                        gr.y_m = floor + 0.5 * d;
+                    if gr.y_m - 0.5 * gr.diameter_m <= floor {
+                        gr.y_m = floor + 0.5 * gr.diameter_m;
                     }
                     moved += 1;
                     bad |= Self::faulty(gr, *v, width, height, bound);
@@ -310,6 +277,77 @@ impl Stepper {
             })
             .sum::<u64>();
         (!stopped.into_inner()).then_some((moved, suspect.into_inner()))
+    }
+
+    /// Whether [`Stepper::grain_step`] takes the exponential step of Dallavalle's drag with the
+    /// Di Felice factor ([`exponential_near_terminal`], else [`exponential_dallavalle_1d`])
+    /// rather than [`advance`] with the cell's drag: the exponential integrator on a Di Felice
+    /// grid.
+    pub fn fast_path(&self, grid: &VoidageGrid) -> bool {
+        self.integrator == Integrator::Exponential && grid.is_di_felice()
+    }
+
+    /// The free update of one suspended grain over `dt_s`: diameter `d_m`, size class `class`,
+    /// in voidage cell `cell` of `grid`, vertical velocity `v_m_s` (m/s), under gravity,
+    /// buoyancy and its cell's drag, with `fast` = [`Stepper::fast_path`]. Returns its new
+    /// velocity (m/s) and its displacement (m), before any stop on the bed.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    pub fn grain_step(
+        &self,
+        grid: &VoidageGrid,
+        fast: bool,
+        d_m: f64,
+        class: usize,
+        cell: usize,
+        v_m_s: f64,
+        dt_s: f64,
+    ) -> (f64, f64) {
+        let d = d_m;
+        let (g, rho_f) = (self.gravity_m_s2, self.fluid_density_kg_m3);
+        let m = sphere_mass_kg(d, self.grain_density_kg_m3);
+        let w = -(m - sphere_mass_kg(d, rho_f)) * g;
+        let quick = fast.then(|| {
+            let voidage = grid.voidage(cell);
+            let mut grain = DallavalleGrain {
+                diameter_m: d,
+                fluid_density_kg_m3: rho_f,
+                viscosity_pa_s: self.viscosity_pa_s,
+                voidage,
+                // Read only by the solve below, which computes it.
+                ln_voidage: 0.0,
+                mass_kg: m,
+                body_force_n: w,
+            };
+            grid.terminal_table(class, d)
+                .and_then(|t| exponential_near_terminal(t, &grain, v_m_s, dt_s))
+                .or_else(|| {
+                    grain.ln_voidage = voidage.ln();
+                    exponential_dallavalle_1d(&grain, v_m_s, dt_s)
+                })
+        });
+        match quick.flatten() {
+            Some(step) => step,
+            None => {
+                let drag = grid.drag(d, cell);
+                let w = SVector::<f64, 1>::new(w);
+                let v0 = SVector::<f64, 1>::new(v_m_s);
+                let step = advance(self.integrator, &drag, m, &w, &v0, dt_s);
+                (step.velocity_m_s[0], step.displacement_m[0])
+            }
+        }
+    }
+
+    /// The test of [`Stepper::grain_fault`] (with the speed bound) on grain `gr` of speed `v_m_s`
+    /// (m/s) in the cylinder of `setup`.
+    pub fn is_faulty(&self, gr: &crate::sample::Grain, v_m_s: f64, setup: &Setup) -> bool {
+        Self::faulty(
+            gr,
+            v_m_s,
+            setup.width_m,
+            setup.height_m,
+            self.speed_bound_m_s,
+        )
     }
 
     /// The test of [`Stepper::grain_fault`] on one grain of speed `v` (m/s) in a cylinder of
@@ -345,7 +383,7 @@ impl Stepper {
     ) -> (Interval, u64) {
         const L: usize = 8;
         let floor = st.bed_height_m;
-        let (g, rho_p, rho_f) = (
+        let (g_acc, rho_p, rho_f) = (
             self.gravity_m_s2,
             self.grain_density_kg_m3,
             self.fluid_density_kg_m3,
@@ -374,73 +412,70 @@ impl Stepper {
                 }
                 let mut moved = 0u64;
                 let mut bad = false;
-                for (gi, ((grs, vs), sts)) in grains
-                    .chunks_mut(L)
-                    .zip(speeds.chunks_mut(L))
-                    .zip(settled.chunks_mut(L))
-                    .enumerate()
-                {
-                    let first = ci * n + gi * L;
-                    let l = grs.len();
+                let base = ci * n;
+                // The grains of the chunk still suspended, `L` at a time.
+                let mut live_in_chunk: Vec<usize> = Vec::with_capacity(grains.len());
+                for (k, (gr, &st)) in grains.iter().zip(settled.iter()).enumerate() {
+                    let x = gr.x_m;
+                    bad |= !x.is_finite() || x < -1e-12 || x > width + 1e-12;
+                    if !st {
+                        live_in_chunk.push(k);
+                    }
+                }
+                for lanes in live_in_chunk.chunks(L) {
+                    let l = lanes.len();
                     let mut live = [false; L];
-                    for i in 0..l {
-                        let x = grs[i].x_m;
-                        bad |= !x.is_finite() || x < -1e-12 || x > width + 1e-12;
-                        live[i] = !sts[i];
-                    }
-                    if !live.iter().any(|&x| x) {
-                        continue;
-                    }
-                    let was_live = live;
-                    let (mut y, mut v, mut d) = ([0.0; L], [0.0; L], [0.0; L]);
+                    let (mut y, mut v, mut d) = ([0.0; L], [0.0; L], [1.0; L]);
                     let (mut m, mut w, mut k) = ([1.0; L], [0.0; L], [0.0; L]);
-                    for i in (0..l).filter(|&i| live[i]) {
-                        let gr = &grs[i];
-                        (y[i], v[i], d[i]) = (gr.y_m, vs[i], gr.diameter_m);
+                    for (i, &g) in lanes.iter().enumerate() {
+                        let gr = &grains[g];
+                        live[i] = true;
+                        (y[i], v[i], d[i]) = (gr.y_m, speeds[g], gr.diameter_m);
                         m[i] = sphere_mass_kg(d[i], rho_p);
-                        w[i] = -(m[i] - sphere_mass_kg(d[i], rho_f)) * g;
+                        w[i] = -(m[i] - sphere_mass_kg(d[i], rho_f)) * g_acc;
                         k[i] = SphereDrag::new(stokes, d[i], rho_f).slope_n_s_m(0.0);
                     }
+                    let half = d.map(|x| 0.5 * x);
                     for &(dt, count) in runs {
                         if !live.iter().any(|&x| x) {
                             break;
                         }
                         let (mut c1, mut c2) = ([0.0; L], [0.0; L]);
-                        for i in (0..l).filter(|&i| live[i]) {
+                        for i in 0..l {
                             (c1[i], c2[i]) = if dt == cache.dt_s {
-                                cache.factors[first + i]
+                                cache.factors[base + lanes[i]]
                             } else {
                                 let (phi1, phi2) = phi12(-k[i] / m[i] * dt);
                                 (dt * phi1, dt * dt * phi2)
                             };
                         }
                         for _ in 0..count {
+                            // Every lane computes; only the live ones keep the result.
                             for i in 0..L {
-                                if !live[i] {
-                                    continue;
-                                }
                                 // As `crate::dynamics::exponential` for Stokes drag.
                                 let a0 = (w[i] - v[i] * k[i]) / m[i];
                                 let v1 = v[i] + a0 * c1[i];
                                 let dx = v[i] * dt + a0 * c2[i];
-                                v[i] = v1;
-                                y[i] += dx;
-                                let half = 0.5 * d[i];
-                                if y[i] - half <= floor {
-                                    y[i] = floor + half;
+                                let mut y1 = y[i] + dx;
+                                if y1 - half[i] <= floor {
+                                    y1 = floor + half[i];
                                 }
-                                moved += 1;
                                 // As `grain_fault` (the horizontal position is checked above).
-                                bad |= !(y[i].is_finite() && v[i].is_finite())
-                                    || v[i].abs() > bound
-                                    || y[i] > height + d[i];
+                                bad |= live[i]
+                                    && (!(y1.is_finite() && v1.is_finite())
+                                        || v1.abs() > bound
+                                        || y1 > height + d[i]);
                                 // As `deposit` (the bed does not rise in ideal-Stokes).
-                                if y[i] - half <= floor + 1e-15 {
-                                    sts[i] = true;
-                                    v[i] = 0.0;
-                                    y[i] = floor + half;
-                                    live[i] = false;
-                                }
+                                let lands = y1 - half[i] <= floor + 1e-15;
+                                let (y2, v2) = if lands {
+                                    (floor + half[i], 0.0)
+                                } else {
+                                    (y1, v1)
+                                };
+                                y[i] = if live[i] { y2 } else { y[i] };
+                                v[i] = if live[i] { v2 } else { v[i] };
+                                moved += live[i] as u64;
+                                live[i] &= !lands;
                             }
                             if bad {
                                 break;
@@ -450,14 +485,17 @@ impl Stepper {
                             break;
                         }
                     }
-                    for i in (0..l).filter(|&i| was_live[i]) {
-                        grs[i].y_m = y[i];
-                        vs[i] = v[i];
+                    for (i, &g) in lanes.iter().enumerate() {
+                        grains[g].y_m = y[i];
+                        speeds[g] = v[i];
+                        settled[g] = !live[i];
                     }
                     if bad {
-                        fault.store(true, Ordering::Relaxed);
                         break;
                     }
+                }
+                if bad {
+                    fault.store(true, Ordering::Relaxed);
                 }
                 moved
             })

@@ -23,11 +23,10 @@ pub struct VoidageGrid {
     cell_volume_m3: f64,
     /// Solid volume of the suspended grains per cell, m³ (row-major, bottom row first).
     solid_m3: Vec<f64>,
-    /// Voidage ε of every cell as [`VoidageGrid::drag`] takes it, and ln ε, set by
-    /// [`VoidageGrid::fill`] only where the fast path of the free update reads them (full
-    /// physics with the Di Felice factor, [`VoidageGrid::is_di_felice`]).
+    /// Voidage ε of every cell as [`VoidageGrid::drag`] takes it, set by [`VoidageGrid::fill`]
+    /// only where the fast path of the free update reads it (full physics with the Di Felice
+    /// factor, [`VoidageGrid::is_di_felice`]).
     voidage: Vec<f64>,
-    ln_voidage: Vec<f64>,
     /// Stokes drag only (`ideal-stokes`): the grid is not used.
     ideal: bool,
     viscosity_pa_s: f64,
@@ -58,7 +57,6 @@ impl VoidageGrid {
                 * setup.thickness_m,
             solid_m3: vec![0.0; ncx * ncy],
             voidage: vec![1.0; ncx * ncy],
-            ln_voidage: vec![0.0; ncx * ncy],
             ideal,
             viscosity_pa_s: setup.viscosity_pa_s,
             fluid_density_kg_m3,
@@ -128,9 +126,17 @@ impl VoidageGrid {
 
     /// The cell holding the point (x, y), m (points outside go to the nearest edge cell).
     pub fn cell_of(&self, x_m: f64, y_m: f64) -> usize {
-        let i = ((x_m / self.width_m * self.ncx as f64) as usize).min(self.ncx - 1);
-        let j = ((y_m / self.height_m * self.ncy as f64) as usize).min(self.ncy - 1);
-        j * self.ncx + i
+        self.cells().cell_of(x_m, y_m)
+    }
+
+    /// The layout of the cells (what [`VoidageGrid::cell_of`] reads), a copy.
+    pub fn cells(&self) -> Cells {
+        Cells {
+            ncx: self.ncx,
+            ncy: self.ncy,
+            width_m: self.width_m,
+            height_m: self.height_m,
+        }
     }
 
     /// The real solid volume of every grain of `st` (its weight times its volume), m³: computed
@@ -146,32 +152,35 @@ impl VoidageGrid {
     /// (ascending grain indices, every suspended grain among them), given the real solid volume
     /// of each grain ([`VoidageGrid::grain_volumes_m3`]), summed in grain order.
     pub fn fill(&mut self, st: &State, volumes_m3: &[f64], active: &[usize]) {
-        self.solid_m3.iter_mut().for_each(|x| *x = 0.0);
-        for &i in active {
-            if !st.settled[i] {
-                let gr = &st.grains[i];
-                let c = self.cell_of(gr.x_m, gr.y_m);
-                self.solid_m3[c] += volumes_m3[i];
-            }
+        let cells = self.cells();
+        self.fill_cells(active.iter().filter(|&&i| !st.settled[i]).map(|&i| {
+            let gr = &st.grains[i];
+            (cells.cell_of(gr.x_m, gr.y_m), volumes_m3[i])
+        }));
+    }
+
+    /// Refills the grid with the solid volumes (m³) of `cells_volumes` (cell, real solid volume
+    /// of a grain), summed in the order given.
+    pub fn fill_cells(&mut self, cells_volumes: impl IntoIterator<Item = (usize, f64)>) {
+        let mut solid = std::mem::take(&mut self.solid_m3);
+        solid.iter_mut().for_each(|x| *x = 0.0);
+        for (c, v) in cells_volumes {
+            solid[c] += v;
         }
         if self.is_di_felice() {
             let cell_volume_m3 = self.cell_volume_m3;
-            for ((e, l), &solid) in self
-                .voidage
-                .iter_mut()
-                .zip(self.ln_voidage.iter_mut())
-                .zip(&self.solid_m3)
-            {
-                *e = voidage_of(solid, cell_volume_m3);
-                *l = e.ln();
+            for (e, &s) in self.voidage.iter_mut().zip(&solid) {
+                *e = voidage_of(s, cell_volume_m3);
             }
         }
+        self.solid_m3 = solid;
     }
 
-    /// The voidage ε of cell `cell` as [`VoidageGrid::drag`] takes it, and ln ε (valid after
+    /// The voidage ε of cell `cell` as [`VoidageGrid::drag`] takes it (valid after
     /// [`VoidageGrid::fill`] when [`VoidageGrid::is_di_felice`]).
-    pub fn voidage_ln(&self, cell: usize) -> (f64, f64) {
-        (self.voidage[cell], self.ln_voidage[cell])
+    #[inline(always)]
+    pub fn voidage(&self, cell: usize) -> f64 {
+        self.voidage[cell]
     }
 
     /// Whether every cell's drag is Dallavalle's with the Di Felice factor (full physics,
@@ -208,6 +217,44 @@ impl VoidageGrid {
     /// The drag of a grain of diameter `d_m` centred at (x, y), m.
     pub fn drag_at(&self, d_m: f64, x_m: f64, y_m: f64) -> SphereDrag {
         self.drag(d_m, self.cell_of(x_m, y_m))
+    }
+}
+
+/// The layout of the cells of a [`VoidageGrid`]: `ncx` × `ncy` cells over the `width_m` ×
+/// `height_m` rectangle (m), row-major, bottom row first.
+#[derive(Clone, Copy, Debug)]
+pub struct Cells {
+    ncx: usize,
+    ncy: usize,
+    width_m: f64,
+    height_m: f64,
+}
+
+impl Cells {
+    /// The cell holding the point (x, y), m (points outside go to the nearest edge cell).
+    #[inline(always)]
+    pub fn cell_of(&self, x_m: f64, y_m: f64) -> usize {
+        self.cell_in_column(self.column_of(x_m), y_m)
+    }
+
+    /// The column of cells holding abscissa `x_m`, m (outside: the nearest edge column).
+    #[inline(always)]
+    pub fn column_of(&self, x_m: f64) -> usize {
+        ((x_m / self.width_m * self.ncx as f64) as usize).min(self.ncx - 1)
+    }
+
+    /// The cell of column `column` ([`Cells::column_of`]) holding height `y_m`, m:
+    /// [`Cells::cell_of`] with the column found once.
+    #[inline(always)]
+    pub fn cell_in_column(&self, column: usize, y_m: f64) -> usize {
+        let j = ((y_m / self.height_m * self.ncy as f64) as usize).min(self.ncy - 1);
+        j * self.ncx + column
+    }
+
+    /// The column of cell `cell`.
+    #[inline(always)]
+    pub fn column_of_cell(&self, cell: usize) -> usize {
+        cell % self.ncx
     }
 }
 

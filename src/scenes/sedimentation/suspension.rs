@@ -1,0 +1,416 @@
+//! The suspended grains of a run without contacts, as a structure of arrays: what the per-step
+//! passes of full physics (voidage grid, free update, deposition, next step size) read and write,
+//! packed so that each pass streams through memory.
+//!
+//! Without contacts a grain moves only vertically, only while it is suspended, and once it has
+//! settled nothing moves it again. So the run keeps, for its suspended grains only and in
+//! ascending grain order, the height, speed and voidage cell that change with every step, and the
+//! constants those passes read (diameter, size class, real solid volume, Stokes terminal speed).
+//! A grain leaves when it settles: deposition writes it into the [`State`] and drops it. The
+//! heights and speeds of the grains still suspended are written back into the [`State`] only when
+//! something reads them there ([`Suspension::write_back`]: the records, snapshots, readings,
+//! checkpoints, a fault report and the end of the run). Every pass does the same arithmetic, on
+//! the same grains, in the same order as the per-grain passes over the [`State`]
+//! ([`Stepper::free_update`], [`VoidageGrid::fill`], [`Stepper::deposit_vmax`]): the results are
+//! the same, bit for bit.
+
+use super::setup::Setup;
+use super::state::State;
+use super::step::{Stepper, INTERRUPT_CHECK_GRAINS};
+use super::voidage::{Cells, VoidageGrid};
+use crate::dynamics::terminal::exponential_near_terminal_lanes;
+use crate::fluid::sphere_volume_m3;
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// Grains whose terminal-state tables the free update evaluates together
+/// ([`exponential_near_terminal_lanes`]).
+const LANES: usize = 16;
+
+/// The suspended grains of a run without contacts (see the module doc). SI units.
+#[derive(Clone, Debug, Default)]
+pub struct Suspension {
+    /// Index of each grain in the [`State`], ascending.
+    index: Vec<u32>,
+    /// Height of each grain's centre, m (ahead of the [`State`] until written back).
+    y_m: Vec<f64>,
+    /// Vertical velocity of each grain, m/s (ahead of the [`State`] until written back).
+    v_m_s: Vec<f64>,
+    /// The voidage cell holding each grain ([`VoidageGrid::cell_of`]).
+    cell: Vec<u32>,
+    /// Size class of each grain.
+    class: Vec<u32>,
+    /// Diameter of each grain, m.
+    diameter_m: Vec<f64>,
+    /// Real solid volume of each grain (its weight times its volume), m³.
+    volume_m3: Vec<f64>,
+    /// Stokes terminal speed of each grain ([`Stepper::stokes_speed_m_s`]), m/s.
+    stokes_m_s: Vec<f64>,
+    /// Entries whose grain has settled ([`GONE`] in `cell`), not yet dropped.
+    gone: usize,
+    /// Height above the bed surface within which a grain may join the bed in one deposition
+    /// pass, m: more than the bed's rise if every grain suspended at the start settled at once.
+    reach_m: f64,
+    /// Per chunk of [`INTERRUPT_CHECK_GRAINS`] entries, after a free update: the entries within
+    /// `reach_m` of the bed surface (ascending), and the largest speed of the others (each the
+    /// larger of its speed and its Stokes terminal speed), m/s.
+    near_bed: Vec<(Vec<u32>, f64)>,
+}
+
+/// The `cell` of an entry whose grain has settled.
+const GONE: u32 = u32::MAX;
+
+impl Suspension {
+    /// The suspended grains of `st` in the cells of `grid`, or None if a grain index or a cell
+    /// does not fit in 32 bits (the caller then steps the [`State`] itself). Also returns whether
+    /// any grain of `st`, suspended or settled, fails the fault test of
+    /// [`Stepper::grain_fault`] now (in the cylinder of `setup`): the first step's free update
+    /// would have found it (nothing changes a settled grain or a horizontal position afterwards).
+    pub fn new(
+        st: &State,
+        grid: &VoidageGrid,
+        stepper: &Stepper,
+        setup: &Setup,
+    ) -> Option<(Self, bool)> {
+        let cells = grid.cells();
+        if u32::try_from(st.grains.len()).is_err()
+            || cells.cell_of(0.0, f64::INFINITY) >= GONE as usize
+        {
+            return None;
+        }
+        let mut me = Self::default();
+        let mut suspect = false;
+        for (i, ((gr, &v), &settled)) in st
+            .grains
+            .iter()
+            .zip(&st.velocity_m_s)
+            .zip(&st.settled)
+            .enumerate()
+        {
+            suspect |= stepper.is_faulty(gr, v, setup);
+            if settled {
+                continue;
+            }
+            me.index.push(i as u32);
+            me.y_m.push(gr.y_m);
+            me.v_m_s.push(v);
+            me.cell.push(cells.cell_of(gr.x_m, gr.y_m) as u32);
+            me.class.push(gr.class as u32);
+            me.diameter_m.push(gr.diameter_m);
+            me.volume_m3
+                .push(gr.weight * sphere_volume_m3(gr.diameter_m));
+            me.stokes_m_s.push(stepper.stokes_speed_m_s(gr.diameter_m));
+        }
+        let total_m3: f64 = me.volume_m3.iter().sum();
+        me.reach_m = 1.01 * total_m3 / stepper.bed_area_m2 + 1e-12;
+        Some((me, suspect))
+    }
+
+    /// The largest speed of the suspended grains, each the larger of its speed and its Stokes
+    /// terminal speed, m/s, 0 if none (as [`Stepper::step_size_s`] finds it).
+    pub fn vmax_m_s(&self) -> f64 {
+        self.v_m_s
+            .iter()
+            .zip(&self.stokes_m_s)
+            .zip(&self.cell)
+            .filter(|(_, &c)| c != GONE)
+            .map(|((v, &vs), _)| v.abs().max(vs))
+            .fold(0.0, f64::max)
+    }
+
+    /// Number of suspended grains.
+    pub fn len(&self) -> usize {
+        self.index.len() - self.gone
+    }
+
+    /// True when no grain is suspended.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Refills `grid` with the solid volume of the suspended grains, summed in grain order (as
+    /// [`VoidageGrid::fill`]).
+    pub fn fill(&self, grid: &mut VoidageGrid) {
+        grid.fill_cells(
+            self.cell
+                .iter()
+                .zip(&self.volume_m3)
+                .filter(|(&c, _)| c != GONE)
+                .map(|(&c, &v)| (c as usize, v)),
+        );
+    }
+
+    /// The free update of every suspended grain over `dt_s` ([`Stepper::grain_step`]) above the
+    /// bed surface `floor_m` (a grain reaching it stops on it; deposition then flags it), in
+    /// parallel by chunks of [`INTERRUPT_CHECK_GRAINS`] grains, with each grain's new voidage
+    /// cell. Returns the grains advanced and whether any now fails the test of
+    /// [`Stepper::grain_fault`] in the cylinder of `setup` (after [`Suspension::write_back`], the
+    /// fault scan names the first).
+    pub fn free_update(
+        &mut self,
+        stepper: &Stepper,
+        grid: &VoidageGrid,
+        setup: &Setup,
+        floor_m: f64,
+        dt_s: f64,
+    ) -> (u64, bool) {
+        let fast = stepper.fast_path(grid);
+        let ctx = Update {
+            stepper,
+            grid,
+            cells: grid.cells(),
+            fast,
+            floor_m,
+            height_m: setup.height_m,
+            dt_s,
+        };
+        let suspect = AtomicBool::new(false);
+        let n = INTERRUPT_CHECK_GRAINS;
+        let chunks = self.index.len().div_ceil(n);
+        self.near_bed.resize_with(chunks, Default::default);
+        let reach = floor_m + 1e-15 + self.reach_m;
+        self.y_m
+            .par_chunks_mut(n)
+            .zip(self.v_m_s.par_chunks_mut(n))
+            .zip(self.cell.par_chunks_mut(n))
+            .zip(self.class.par_chunks(n))
+            .zip(self.diameter_m.par_chunks(n))
+            .zip(self.stokes_m_s.par_chunks(n))
+            .zip(self.near_bed.par_iter_mut())
+            .for_each(
+                |((((((ys, vs), cs), classes), ds), stokes), (near, vmax))| {
+                    near.clear();
+                    *vmax = 0.0;
+                    let mut c = Chunk {
+                        ys,
+                        vs,
+                        cs,
+                        classes,
+                        ds,
+                        stokes,
+                        near,
+                        vmax,
+                        reach,
+                    };
+                    let bad = c.update(&ctx);
+                    if bad {
+                        suspect.store(true, Ordering::Relaxed);
+                    }
+                },
+            );
+        (self.len() as u64, suspect.into_inner())
+    }
+
+    /// Deposition (as [`Stepper::deposit_vmax`], in ascending grain order), after
+    /// [`Suspension::free_update`]: every suspended grain touching the bed surface of `st` joins
+    /// the bed, at rest on it, the bed rising by its real volume over `stepper.bed_area_m2`; it
+    /// is written into `st` and leaves the suspension. Only the grains the free update found
+    /// within reach of the bed are visited. Returns the largest speed of the grains still
+    /// suspended (each the larger of its speed and its Stokes terminal speed), m/s, 0 if none,
+    /// and whether a grain that joined the bed fails the test of [`Stepper::grain_fault`] there
+    /// (the next step's free update would have found it).
+    pub fn deposit_vmax(
+        &mut self,
+        st: &mut State,
+        stepper: &Stepper,
+        setup: &Setup,
+    ) -> (f64, bool) {
+        let mut vmax = 0.0f64;
+        let mut suspect = false;
+        let n = INTERRUPT_CHECK_GRAINS;
+        for (chunk, (near, chunk_vmax)) in self.near_bed.iter().enumerate() {
+            vmax = vmax.max(*chunk_vmax);
+            for &k in near {
+                let j = chunk * n + k as usize;
+                let (y, v, d) = (self.y_m[j], self.v_m_s[j], self.diameter_m[j]);
+                if y - 0.5 * d <= st.bed_height_m + 1e-15 {
+                    let i = self.index[j] as usize;
+                    let gr = &mut st.grains[i];
+                    gr.y_m = st.bed_height_m + 0.5 * d;
+                    st.velocity_m_s[i] = 0.0;
+                    st.settled[i] = true;
+                    st.bed_height_m += gr.weight * sphere_volume_m3(d) / stepper.bed_area_m2;
+                    suspect |= stepper.is_faulty(&st.grains[i], 0.0, setup);
+                    self.cell[j] = GONE;
+                    self.gone += 1;
+                } else {
+                    vmax = vmax.max(v.abs().max(self.stokes_m_s[j]));
+                }
+            }
+        }
+        if self.gone * 16 > self.index.len() {
+            self.drop_gone();
+        }
+        (vmax, suspect)
+    }
+
+    /// Drops the entries of settled grains, keeping the order of the others.
+    fn drop_gone(&mut self) {
+        let mut kept = 0;
+        for j in 0..self.index.len() {
+            if self.cell[j] == GONE {
+                continue;
+            }
+            self.index[kept] = self.index[j];
+            self.y_m[kept] = self.y_m[j];
+            self.v_m_s[kept] = self.v_m_s[j];
+            self.cell[kept] = self.cell[j];
+            self.class[kept] = self.class[j];
+            self.diameter_m[kept] = self.diameter_m[j];
+            self.volume_m3[kept] = self.volume_m3[j];
+            self.stokes_m_s[kept] = self.stokes_m_s[j];
+            kept += 1;
+        }
+        self.truncate(kept);
+        self.gone = 0;
+    }
+
+    /// Keeps the first `n` grains.
+    fn truncate(&mut self, n: usize) {
+        self.index.truncate(n);
+        self.y_m.truncate(n);
+        self.v_m_s.truncate(n);
+        self.cell.truncate(n);
+        self.class.truncate(n);
+        self.diameter_m.truncate(n);
+        self.volume_m3.truncate(n);
+        self.stokes_m_s.truncate(n);
+    }
+
+    /// Writes the heights and speeds of the suspended grains into `st`.
+    pub fn write_back(&self, st: &mut State) {
+        for (((&i, &y), &v), _) in self
+            .index
+            .iter()
+            .zip(&self.y_m)
+            .zip(&self.v_m_s)
+            .zip(&self.cell)
+            .filter(|(_, &c)| c != GONE)
+        {
+            st.grains[i as usize].y_m = y;
+            st.velocity_m_s[i as usize] = v;
+        }
+    }
+}
+
+/// The constants of one free update ([`Suspension::free_update`]).
+struct Update<'a> {
+    stepper: &'a Stepper,
+    grid: &'a VoidageGrid,
+    cells: Cells,
+    /// [`Stepper::fast_path`].
+    fast: bool,
+    /// Bed surface, m.
+    floor_m: f64,
+    /// Cylinder height, m.
+    height_m: f64,
+    /// Step, s.
+    dt_s: f64,
+}
+
+/// One chunk of the suspended grains' arrays in a free update.
+struct Chunk<'a> {
+    ys: &'a mut [f64],
+    vs: &'a mut [f64],
+    cs: &'a mut [u32],
+    classes: &'a [u32],
+    ds: &'a [f64],
+    stokes: &'a [f64],
+    /// The entries within reach of the bed after the update (ascending).
+    near: &'a mut Vec<u32>,
+    /// The largest speed of the others, each the larger of its speed and its Stokes terminal
+    /// speed, m/s.
+    vmax: &'a mut f64,
+    /// Height below which a grain's bottom may touch the bed in this step's deposition, m.
+    reach: f64,
+}
+
+impl Chunk<'_> {
+    /// The free update of every grain of the chunk ([`Suspension::free_update`]); returns
+    /// whether any now fails the fault test.
+    fn update(&mut self, u: &Update) -> bool {
+        let len = self.ys.len();
+        let mut bad = false;
+        let mut k = 0;
+        // Grains with a terminal-state table, `LANES` at a time (the same steps as
+        // `Stepper::grain_step` gives them one by one); the others one by one. A settled
+        // entry's lane computes a step that is not used.
+        while k + LANES <= len {
+            let mut tables = [None; LANES];
+            let mut all = u.fast;
+            for (l, t) in tables.iter_mut().enumerate() {
+                let j = k + l;
+                *t = u.grid.terminal_table(self.classes[j] as usize, self.ds[j]);
+                all &= t.is_some();
+            }
+            if all {
+                let tables = tables.map(|t| t.expect("all tables present"));
+                let steps = exponential_near_terminal_lanes(
+                    tables,
+                    std::array::from_fn(|l| match self.cs[k + l] {
+                        GONE => 1.0,
+                        cell => u.grid.voidage(cell as usize),
+                    }),
+                    tables.map(|t| t.mass_kg),
+                    tables.map(|t| t.body_force_n),
+                    std::array::from_fn(|l| self.vs[k + l]),
+                    u.dt_s,
+                );
+                for (l, step) in steps.into_iter().enumerate() {
+                    if self.cs[k + l] != GONE {
+                        let step = step.unwrap_or_else(|| self.step(u, k + l));
+                        bad |= self.finish(u, k + l, step);
+                    }
+                }
+            } else {
+                for j in k..k + LANES {
+                    if self.cs[j] != GONE {
+                        let step = self.step(u, j);
+                        bad |= self.finish(u, j, step);
+                    }
+                }
+            }
+            k += LANES;
+        }
+        for j in k..len {
+            if self.cs[j] != GONE {
+                let step = self.step(u, j);
+                bad |= self.finish(u, j, step);
+            }
+        }
+        bad
+    }
+    /// [`Stepper::grain_step`] of grain `k` of the chunk: (new velocity, m/s; displacement, m).
+    #[inline(always)]
+    fn step(&self, u: &Update, k: usize) -> (f64, f64) {
+        let (d, class, cell) = (self.ds[k], self.classes[k] as usize, self.cs[k] as usize);
+        u.stepper
+            .grain_step(u.grid, u.fast, d, class, cell, self.vs[k], u.dt_s)
+    }
+
+    /// Applies `step` to grain `k` (stopping it on the bed surface), finds its new cell, and
+    /// lists it as within reach of the bed or counts its speed; returns whether it now fails the test of [`Stepper::grain_fault`] (as
+    /// [`Stepper::is_faulty`]; its horizontal position, constant, was tested by
+    /// [`Suspension::new`]).
+    #[inline(always)]
+    fn finish(&mut self, u: &Update, k: usize, (v1, dx): (f64, f64)) -> bool {
+        let (y, v, d) = (&mut self.ys[k], &mut self.vs[k], self.ds[k]);
+        *v = v1;
+        *y += dx;
+        if *y - 0.5 * d <= u.floor_m {
+            *y = u.floor_m + 0.5 * d;
+        }
+        if y.is_finite() {
+            let column = u.cells.column_of_cell(self.cs[k] as usize);
+            self.cs[k] = u.cells.cell_in_column(column, *y) as u32;
+        }
+        if *y - 0.5 * d <= self.reach {
+            self.near.push(k as u32);
+        } else {
+            *self.vmax = self.vmax.max(v.abs().max(self.stokes[k]));
+        }
+        !(y.is_finite() && v.is_finite())
+            || v.abs() > u.stepper.speed_bound_m_s
+            || *y > u.height_m + d
+    }
+}
