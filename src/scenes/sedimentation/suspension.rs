@@ -38,14 +38,11 @@ pub struct Suspension {
     v_m_s: Vec<f64>,
     /// The voidage cell holding each grain ([`VoidageGrid::cell_of`]).
     cell: Vec<u32>,
-    /// Size class of each grain.
-    class: Vec<u32>,
-    /// Diameter of each grain, m.
-    diameter_m: Vec<f64>,
-    /// Real solid volume of each grain (its weight times its volume), m³.
-    volume_m3: Vec<f64>,
-    /// Stokes terminal speed of each grain ([`Stepper::stokes_speed_m_s`]), m/s.
-    stokes_m_s: Vec<f64>,
+    /// The kind of each grain (an index into `kinds`).
+    kind: Vec<u32>,
+    /// The distinct (size class, diameter, weight) of the grains: a few hundred, where the
+    /// grains are up to millions.
+    kinds: Vec<Kind>,
     /// Entries whose grain has settled ([`GONE`] in `cell`), not yet dropped.
     gone: usize,
     /// Height above the bed surface within which a grain may join the bed in one deposition
@@ -55,6 +52,19 @@ pub struct Suspension {
     /// `reach_m` of the bed surface (ascending), and the largest speed of the others (each the
     /// larger of its speed and its Stokes terminal speed), m/s.
     near_bed: Vec<(Vec<u32>, f64)>,
+}
+
+/// The constants of the grains of one size class, diameter and weight. SI units.
+#[derive(Clone, Copy, Debug)]
+struct Kind {
+    /// Size class.
+    class: usize,
+    /// Diameter, m.
+    diameter_m: f64,
+    /// Real solid volume of one grain (its weight times its volume), m³.
+    volume_m3: f64,
+    /// Stokes terminal speed ([`Stepper::stokes_speed_m_s`]), m/s.
+    stokes_m_s: f64,
 }
 
 /// The `cell` of an entry whose grain has settled.
@@ -80,6 +90,8 @@ impl Suspension {
         }
         let mut me = Self::default();
         let mut suspect = false;
+        let mut kinds = std::collections::HashMap::new();
+        let mut total_m3 = 0.0;
         for (i, ((gr, &v), &settled)) in st
             .grains
             .iter()
@@ -95,13 +107,19 @@ impl Suspension {
             me.y_m.push(gr.y_m);
             me.v_m_s.push(v);
             me.cell.push(cells.cell_of(gr.x_m, gr.y_m) as u32);
-            me.class.push(gr.class as u32);
-            me.diameter_m.push(gr.diameter_m);
-            me.volume_m3
-                .push(gr.weight * sphere_volume_m3(gr.diameter_m));
-            me.stokes_m_s.push(stepper.stokes_speed_m_s(gr.diameter_m));
+            let key = (gr.class, gr.diameter_m.to_bits(), gr.weight.to_bits());
+            let kind = *kinds.entry(key).or_insert_with(|| {
+                me.kinds.push(Kind {
+                    class: gr.class,
+                    diameter_m: gr.diameter_m,
+                    volume_m3: gr.weight * sphere_volume_m3(gr.diameter_m),
+                    stokes_m_s: stepper.stokes_speed_m_s(gr.diameter_m),
+                });
+                me.kinds.len() - 1
+            });
+            me.kind.push(u32::try_from(kind).ok()?);
+            total_m3 += me.kinds[kind].volume_m3;
         }
-        let total_m3: f64 = me.volume_m3.iter().sum();
         me.reach_m = 1.01 * total_m3 / stepper.bed_area_m2 + 1e-12;
         Some((me, suspect))
     }
@@ -111,10 +129,10 @@ impl Suspension {
     pub fn vmax_m_s(&self) -> f64 {
         self.v_m_s
             .iter()
-            .zip(&self.stokes_m_s)
+            .zip(&self.kind)
             .zip(&self.cell)
             .filter(|(_, &c)| c != GONE)
-            .map(|((v, &vs), _)| v.abs().max(vs))
+            .map(|((v, &k), _)| v.abs().max(self.kinds[k as usize].stokes_m_s))
             .fold(0.0, f64::max)
     }
 
@@ -134,9 +152,9 @@ impl Suspension {
         grid.fill_cells(
             self.cell
                 .iter()
-                .zip(&self.volume_m3)
+                .zip(&self.kind)
                 .filter(|(&c, _)| c != GONE)
-                .map(|(&c, &v)| (c as usize, v)),
+                .map(|(&c, &k)| (c as usize, self.kinds[k as usize].volume_m3)),
         );
     }
 
@@ -173,31 +191,26 @@ impl Suspension {
             .par_chunks_mut(n)
             .zip(self.v_m_s.par_chunks_mut(n))
             .zip(self.cell.par_chunks_mut(n))
-            .zip(self.class.par_chunks(n))
-            .zip(self.diameter_m.par_chunks(n))
-            .zip(self.stokes_m_s.par_chunks(n))
+            .zip(self.kind.par_chunks(n))
             .zip(self.near_bed.par_iter_mut())
-            .for_each(
-                |((((((ys, vs), cs), classes), ds), stokes), (near, vmax))| {
-                    near.clear();
-                    *vmax = 0.0;
-                    let mut c = Chunk {
-                        ys,
-                        vs,
-                        cs,
-                        classes,
-                        ds,
-                        stokes,
-                        near,
-                        vmax,
-                        reach,
-                    };
-                    let bad = c.update(&ctx);
-                    if bad {
-                        suspect.store(true, Ordering::Relaxed);
-                    }
-                },
-            );
+            .for_each(|((((ys, vs), cs), ks), (near, vmax))| {
+                near.clear();
+                *vmax = 0.0;
+                let mut c = Chunk {
+                    ys,
+                    vs,
+                    cs,
+                    ks,
+                    kinds: &self.kinds,
+                    near,
+                    vmax,
+                    reach,
+                };
+                let bad = c.update(&ctx);
+                if bad {
+                    suspect.store(true, Ordering::Relaxed);
+                }
+            });
         (self.len() as u64, suspect.into_inner())
     }
 
@@ -222,7 +235,8 @@ impl Suspension {
             vmax = vmax.max(*chunk_vmax);
             for &k in near {
                 let j = chunk * n + k as usize;
-                let (y, v, d) = (self.y_m[j], self.v_m_s[j], self.diameter_m[j]);
+                let kind = self.kinds[self.kind[j] as usize];
+                let (y, v, d) = (self.y_m[j], self.v_m_s[j], kind.diameter_m);
                 if y - 0.5 * d <= st.bed_height_m + 1e-15 {
                     let i = self.index[j] as usize;
                     let gr = &mut st.grains[i];
@@ -234,7 +248,7 @@ impl Suspension {
                     self.cell[j] = GONE;
                     self.gone += 1;
                 } else {
-                    vmax = vmax.max(v.abs().max(self.stokes_m_s[j]));
+                    vmax = vmax.max(v.abs().max(kind.stokes_m_s));
                 }
             }
         }
@@ -255,10 +269,7 @@ impl Suspension {
             self.y_m[kept] = self.y_m[j];
             self.v_m_s[kept] = self.v_m_s[j];
             self.cell[kept] = self.cell[j];
-            self.class[kept] = self.class[j];
-            self.diameter_m[kept] = self.diameter_m[j];
-            self.volume_m3[kept] = self.volume_m3[j];
-            self.stokes_m_s[kept] = self.stokes_m_s[j];
+            self.kind[kept] = self.kind[j];
             kept += 1;
         }
         self.truncate(kept);
@@ -271,10 +282,7 @@ impl Suspension {
         self.y_m.truncate(n);
         self.v_m_s.truncate(n);
         self.cell.truncate(n);
-        self.class.truncate(n);
-        self.diameter_m.truncate(n);
-        self.volume_m3.truncate(n);
-        self.stokes_m_s.truncate(n);
+        self.kind.truncate(n);
     }
 
     /// Writes the heights and speeds of the suspended grains into `st`.
@@ -313,9 +321,9 @@ struct Chunk<'a> {
     ys: &'a mut [f64],
     vs: &'a mut [f64],
     cs: &'a mut [u32],
-    classes: &'a [u32],
-    ds: &'a [f64],
-    stokes: &'a [f64],
+    /// The grains' kinds, and the kinds.
+    ks: &'a [u32],
+    kinds: &'a [Kind],
     /// The entries within reach of the bed after the update (ascending).
     near: &'a mut Vec<u32>,
     /// The largest speed of the others, each the larger of its speed and its Stokes terminal
@@ -340,7 +348,8 @@ impl Chunk<'_> {
             let mut all = u.fast;
             for (l, t) in tables.iter_mut().enumerate() {
                 let j = k + l;
-                *t = u.grid.terminal_table(self.classes[j] as usize, self.ds[j]);
+                let kind = &self.kinds[self.ks[j] as usize];
+                *t = u.grid.terminal_table(kind.class, kind.diameter_m);
                 all &= t.is_some();
             }
             if all {
@@ -383,7 +392,8 @@ impl Chunk<'_> {
     /// [`Stepper::grain_step`] of grain `k` of the chunk: (new velocity, m/s; displacement, m).
     #[inline(always)]
     fn step(&self, u: &Update, k: usize) -> (f64, f64) {
-        let (d, class, cell) = (self.ds[k], self.classes[k] as usize, self.cs[k] as usize);
+        let kind = &self.kinds[self.ks[k] as usize];
+        let (d, class, cell) = (kind.diameter_m, kind.class, self.cs[k] as usize);
         u.stepper
             .grain_step(u.grid, u.fast, d, class, cell, self.vs[k], u.dt_s)
     }
@@ -394,7 +404,8 @@ impl Chunk<'_> {
     /// [`Suspension::new`]).
     #[inline(always)]
     fn finish(&mut self, u: &Update, k: usize, (v1, dx): (f64, f64)) -> bool {
-        let (y, v, d) = (&mut self.ys[k], &mut self.vs[k], self.ds[k]);
+        let d = self.kinds[self.ks[k] as usize].diameter_m;
+        let (y, v) = (&mut self.ys[k], &mut self.vs[k]);
         *v = v1;
         *y += dx;
         if *y - 0.5 * d <= u.floor_m {
@@ -407,7 +418,9 @@ impl Chunk<'_> {
         if *y - 0.5 * d <= self.reach {
             self.near.push(k as u32);
         } else {
-            *self.vmax = self.vmax.max(v.abs().max(self.stokes[k]));
+            *self.vmax = self
+                .vmax
+                .max(v.abs().max(self.kinds[self.ks[k] as usize].stokes_m_s));
         }
         !(y.is_finite() && v.is_finite())
             || v.abs() > u.stepper.speed_bound_m_s
