@@ -6,6 +6,8 @@
 //! (or zero if they cross): the test is exact for the free update of the step, with no travel
 //! bound to guess.
 
+use rayon::prelude::*;
+
 /// One grain as the pair search sees it: centre x, height at the start and at the end of the
 /// free step, radius (real), all in m.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -49,6 +51,11 @@ pub fn may_meet_within(p: &Probe, q: &Probe, outer_fraction: f64, extra_m: f64) 
     closest * closest + dx * dx < contact * contact
 }
 
+/// Grains from which [`PairFinder::pairs`] sorts and searches its columns in parallel, and the
+/// least each parallel task gets: a small search stays on the calling thread, where it costs
+/// less than handing it to the thread pool at every step.
+pub const PARALLEL_MIN_GRAINS: usize = 16_384;
+
 /// Cell list of the pair search: columns of width `column_m` over [0, `width_m`], each holding
 /// the indices of its grains sorted by starting height. Rebuilt every step (O(N) binning, and
 /// sorting that is nearly linear because grains keep their order from step to step).
@@ -61,9 +68,11 @@ impl PairFinder {
     /// Every pair (i < j) of `probes` (None: grain not in suspension) that may meet within the
     /// step ([`may_meet`]), sorted. `outer_fraction` is the lubrication cut-off h_out/a_eff.
     ///
-    /// Once an interrupt is requested ([`crate::interrupt::requested`], checked every
-    /// [`crate::scenes::sedimentation::step::INTERRUPT_CHECK_GRAINS`] grains) the search stops and the list is incomplete: the
-    /// caller must discard the step.
+    /// From [`PARALLEL_MIN_GRAINS`] grains on, the columns are sorted and searched in parallel
+    /// (the result is the same whatever the number of threads). Once an interrupt is requested
+    /// ([`crate::interrupt::requested`], checked at each column and every
+    /// [`crate::scenes::sedimentation::step::INTERRUPT_CHECK_GRAINS`] grains within one) the
+    /// search stops and the list is incomplete: the caller must discard the step.
     pub fn pairs(
         &mut self,
         probes: &[Option<Probe>],
@@ -92,21 +101,36 @@ impl PairFinder {
             }
         }
         let y0 = |i: u32| probes[i as usize].expect("binned").y_start_m;
-        for col in &mut self.columns {
-            col.sort_by(|a, b| y0(*a).total_cmp(&y0(*b)));
+        // Each column sorted (stably: ties keep the binning order) and searched on its own, in
+        // parallel from PARALLEL_MIN_GRAINS grains on (each task at least that many grains);
+        // the pairs are sorted at the end, so the result does not depend on the order the
+        // columns are searched in.
+        let binned: usize = self.columns.iter().map(Vec::len).sum();
+        let parallel = binned >= PARALLEL_MIN_GRAINS;
+        let min_cols = (n_col * PARALLEL_MIN_GRAINS).div_ceil(binned.max(1)).max(1);
+        let sort = |col: &mut Vec<u32>| col.sort_by(|a, b| y0(*a).total_cmp(&y0(*b)));
+        if parallel {
+            self.columns
+                .par_iter_mut()
+                .with_min_len(min_cols)
+                .for_each(sort);
+        } else {
+            self.columns.iter_mut().for_each(sort);
         }
         // Vertical reach: touching (2 r_max + cut-off) plus the largest relative travel.
         let reach = 2.0 * r_max * (1.0 + 0.5 * outer_fraction) + 2.0 * travel_max;
-        let mut out = Vec::new();
-        let mut searched = 0usize;
-        for c in 0..n_col {
-            let here = &self.columns[c];
+        let columns = &self.columns;
+        // The pairs of grains of column `c` with grains of the same or the next column.
+        let search = |c: usize, out: &mut Vec<(usize, usize)>| {
+            if crate::interrupt::requested() {
+                return;
+            }
+            let here = &columns[c];
             for (k, &i) in here.iter().enumerate() {
-                searched += 1;
-                if searched.is_multiple_of(super::super::step::INTERRUPT_CHECK_GRAINS)
+                if (k + 1).is_multiple_of(super::super::step::INTERRUPT_CHECK_GRAINS)
                     && crate::interrupt::requested()
                 {
-                    return out;
+                    return;
                 }
                 let p = probes[i as usize].expect("binned");
                 // Same column: grains above i in the sorted order.
@@ -120,7 +144,7 @@ impl PairFinder {
                     }
                 }
                 // Right-hand column: grains within the reach either way.
-                if let Some(next) = self.columns.get(c + 1) {
+                if let Some(next) = columns.get(c + 1) {
                     let lo = next.partition_point(|&j| y0(j) < p.y_start_m - reach);
                     for &j in &next[lo..] {
                         let q = probes[j as usize].expect("binned");
@@ -132,6 +156,22 @@ impl PairFinder {
                         }
                     }
                 }
+            }
+        };
+        let mut out = Vec::new();
+        if parallel {
+            let found: Vec<Vec<(usize, usize)>> = (0..n_col)
+                .into_par_iter()
+                .with_min_len(min_cols)
+                .fold(Vec::new, |mut acc, c| {
+                    search(c, &mut acc);
+                    acc
+                })
+                .collect();
+            out = found.concat();
+        } else {
+            for c in 0..n_col {
+                search(c, &mut out);
             }
         }
         out.sort_unstable();
@@ -189,6 +229,54 @@ mod tests {
             brute.len()
         );
         assert_eq!(found, brute);
+    }
+
+    #[test]
+    fn the_parallel_search_finds_the_pairs_of_a_sweep_in_x() {
+        // Above PARALLEL_MIN_GRAINS grains (the parallel path), against an independent
+        // reference: grains sorted by x, each tested against those within the widest reach.
+        let mut s = 987654321u64;
+        let mut rnd = || {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (s >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let n = PARALLEL_MIN_GRAINS + 4000;
+        let probes: Vec<Option<Probe>> = (0..n)
+            .map(|k| {
+                if k % 23 == 0 {
+                    return None;
+                }
+                let r = 2e-6 + 33e-6 * rnd();
+                let y0 = 0.05 * rnd();
+                probe(4e-3 * rnd(), y0, y0 - 2e-4 * rnd(), r)
+            })
+            .collect();
+        let mut by_x: Vec<usize> = (0..n).filter(|&i| probes[i].is_some()).collect();
+        by_x.sort_by(|&a, &b| probes[a].unwrap().x_m.total_cmp(&probes[b].unwrap().x_m));
+        let widest = 2.0 * 35e-6 * 1.05 + 1e-9;
+        let mut sweep = Vec::new();
+        for (k, &i) in by_x.iter().enumerate() {
+            let p = probes[i].unwrap();
+            for &j in &by_x[k + 1..] {
+                let q = probes[j].unwrap();
+                if q.x_m - p.x_m > widest {
+                    break;
+                }
+                if may_meet(&p, &q, 0.1) {
+                    sweep.push((i.min(j), i.max(j)));
+                }
+            }
+        }
+        sweep.sort_unstable();
+        let found = PairFinder::default().pairs(&probes, 4e-3, 0.1);
+        assert!(
+            sweep.len() > 100,
+            "the case must have pairs: {}",
+            sweep.len()
+        );
+        assert_eq!(found, sweep);
     }
 
     #[test]

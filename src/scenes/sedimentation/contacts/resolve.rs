@@ -271,11 +271,14 @@ fn first_contact_time(
             margin_m,
         )
     };
+    // A pair within reach at the start makes the answer 0 whatever the others: tested for
+    // every pair before any bisection (the same answer as testing pair by pair, without the
+    // bisections of the pairs before it).
+    if pairs.iter().any(|&(i, j)| meet(i, j, 0.0)) {
+        return 0.0;
+    }
     let mut t_c = dt_s;
     for &(i, j) in pairs {
-        if meet(i, j, 0.0) {
-            return 0.0;
-        }
         let (mut lo, mut hi) = (0.0, t_c);
         if !meet(i, j, hi) {
             continue;
@@ -494,31 +497,43 @@ impl<'a> Window<'a> {
     fn try_release(&self, rest_s: f64) -> Option<Vec<Resolved>> {
         let now = self.current();
         let sc = self.sc;
-        let apart = self.pairs.iter().all(|&(i, j)| {
+        // Each grain's free path over the rest, computed once (a grain may be in several
+        // pairs) and reused for the end state: `free` is the same for `rest_s` and
+        // `rest_s.max(0.0)` (no motion for t ≤ 0).
+        let mut paths: Vec<Option<(f64, f64)>> = vec![None; now.len()];
+        let mut path = |k: usize| {
+            *paths[k]
+                .get_or_insert_with(|| free(&self.grains[k], sc, now[k].y_m, now[k].vy_m_s, rest_s))
+        };
+        let mut apart = true;
+        for &(i, j) in self.pairs {
             if self.on_floor(i) || self.on_floor(j) {
-                return true;
+                continue;
             }
             if self.gap(i, j) < self.cut_of(i, j) {
-                return false;
+                apart = false;
+                break;
             }
-            let probe = |k: usize| Probe {
+            let probe = |k: usize, y_end_m: f64| Probe {
                 x_m: now[k].x_m,
                 y_start_m: now[k].y_m,
-                y_end_m: free(&self.grains[k], sc, now[k].y_m, now[k].vy_m_s, rest_s).0,
+                y_end_m,
                 radius_m: self.radius(k),
             };
-            !may_meet(&probe(i), &probe(j), sc.outer_fraction)
-        });
+            let (pi, pj) = (probe(i, path(i).0), probe(j, path(j).0));
+            if may_meet(&pi, &pj, sc.outer_fraction) {
+                apart = false;
+                break;
+            }
+        }
         if !(apart || rest_s <= 0.0) {
             return None;
         }
-        let end = now
-            .iter()
-            .zip(self.grains)
-            .map(|(s, g)| {
-                let (y, v) = free(g, sc, s.y_m, s.vy_m_s, rest_s.max(0.0));
+        let end = (0..now.len())
+            .map(|k| {
+                let (y, v) = path(k);
                 Resolved {
-                    x_m: s.x_m,
+                    x_m: now[k].x_m,
                     y_m: y,
                     vy_m_s: v,
                 }
