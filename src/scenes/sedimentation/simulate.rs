@@ -45,14 +45,7 @@ pub fn simulate(
     st.interrupted = false;
     let schedule = Schedule::new(s, sm, reading_times_s);
     let stepper = Stepper::new(s, sm, setup, &st);
-    let mut grid = VoidageGrid::new(
-        setup,
-        sm.voidage_cell_m,
-        stepper.ideal,
-        stepper.fluid_density_kg_m3,
-    )
-    .with_hindered(sm.hindered)
-    .with_terminal_tables(&st, stepper.grain_density_kg_m3, stepper.gravity_m_s2);
+    let mut grid = voidage_grid(setup, &stepper, &st);
     let with_contacts = !stepper.ideal && sm.contacts;
     if !stepper.ideal && !with_contacts {
         if let Some((suspension, suspect)) = Suspension::new(&st, &grid, &stepper, setup) {
@@ -67,15 +60,10 @@ pub fn simulate(
     let mut contacts = ContactStage::new(sm, setup, &stepper);
     let mut start = StepStart::default();
     let mut by_interval = stepper.ideal && stepper.integrator == Integrator::Exponential;
-    let speeds = if stepper.ideal {
-        Vec::new()
+    let (speeds, volumes) = if stepper.ideal {
+        (Vec::new(), Vec::new())
     } else {
-        stepper.stokes_speeds_m_s(&st)
-    };
-    let volumes = if stepper.ideal {
-        Vec::new()
-    } else {
-        grid.grain_volumes_m3(&st)
+        (stepper.stokes_speeds_m_s(&st), grid.grain_volumes_m3(&st))
     };
     let cache = if by_interval {
         IdealCache::new(&stepper, &st)
@@ -193,6 +181,20 @@ pub fn simulate(
         st.stages.deposit_events_s += t5.elapsed().as_secs_f64();
     }
     st
+}
+
+/// The voidage grid of a run of `setup` with the step constants `stepper`, from `st` (its
+/// grains' terminal-state tables).
+fn voidage_grid(setup: &Setup, stepper: &Stepper, st: &State) -> VoidageGrid {
+    let sm = &setup.spec.sample;
+    VoidageGrid::new(
+        setup,
+        sm.voidage_cell_m,
+        stepper.ideal,
+        stepper.fluid_density_kg_m3,
+    )
+    .with_hindered(sm.hindered)
+    .with_terminal_tables(st, stepper.grain_density_kg_m3, stepper.gravity_m_s2)
 }
 
 /// The step loop of full physics without contacts, on the suspended grains packed in a

@@ -183,6 +183,38 @@ impl PairFinder {
 mod tests {
     use super::*;
 
+    /// Pseudo-random numbers in [0, 1) from `seed` (a 64-bit linear congruential generator).
+    fn uniform(seed: u64) -> impl FnMut() -> f64 {
+        let mut s = seed;
+        move || {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (s >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    /// `n` pseudo-random grains (seed `seed`; every `gap`-th one not in suspension) of radius
+    /// 2–35 µm in a box `[width, height]` m, each moving down by up to `drop` m.
+    fn grains(
+        seed: u64,
+        n: usize,
+        gap: usize,
+        [width, height, drop]: [f64; 3],
+    ) -> Vec<Option<Probe>> {
+        let mut rnd = uniform(seed);
+        (0..n)
+            .map(|k| {
+                if k % gap == 0 {
+                    return None;
+                }
+                let r = 2e-6 + 33e-6 * rnd();
+                let y0 = height * rnd();
+                probe(width * rnd(), y0, y0 - drop * rnd(), r)
+            })
+            .collect()
+    }
+
     fn probe(x: f64, y0: f64, y1: f64, r: f64) -> Option<Probe> {
         Some(Probe {
             x_m: x,
@@ -195,23 +227,7 @@ mod tests {
     #[test]
     fn finds_exactly_the_pairs_of_a_brute_force_search() {
         // Pseudo-random grains in a 2 mm × 20 mm box, moving down by up to 0.5 mm.
-        let mut s = 12345u64;
-        let mut rnd = || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        };
-        let probes: Vec<Option<Probe>> = (0..3000)
-            .map(|k| {
-                if k % 17 == 0 {
-                    return None;
-                }
-                let r = 2e-6 + 33e-6 * rnd();
-                let y0 = 0.02 * rnd();
-                probe(2e-3 * rnd(), y0, y0 - 5e-4 * rnd(), r)
-            })
-            .collect();
+        let probes = grains(12345, 3000, 17, [2e-3, 0.02, 5e-4]);
         let mut brute = Vec::new();
         for i in 0..probes.len() {
             for j in i + 1..probes.len() {
@@ -235,24 +251,8 @@ mod tests {
     fn the_parallel_search_finds_the_pairs_of_a_sweep_in_x() {
         // Above PARALLEL_MIN_GRAINS grains (the parallel path), against an independent
         // reference: grains sorted by x, each tested against those within the widest reach.
-        let mut s = 987654321u64;
-        let mut rnd = || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        };
         let n = PARALLEL_MIN_GRAINS + 4000;
-        let probes: Vec<Option<Probe>> = (0..n)
-            .map(|k| {
-                if k % 23 == 0 {
-                    return None;
-                }
-                let r = 2e-6 + 33e-6 * rnd();
-                let y0 = 0.05 * rnd();
-                probe(4e-3 * rnd(), y0, y0 - 2e-4 * rnd(), r)
-            })
-            .collect();
+        let probes = grains(987654321, n, 23, [4e-3, 0.05, 2e-4]);
         let mut by_x: Vec<usize> = (0..n).filter(|&i| probes[i].is_some()).collect();
         by_x.sort_by(|&a, &b| probes[a].unwrap().x_m.total_cmp(&probes[b].unwrap().x_m));
         let widest = 2.0 * 35e-6 * 1.05 + 1e-9;
