@@ -85,7 +85,7 @@ pub struct Args {
     /// Override any other scenario key for every run, as in `settle run --set`. Repeatable.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
-    /// Output folder; results go to OUT/<name>_fit/.
+    /// Output folder; results go to `OUT/<name>_fit/`.
     #[arg(long, default_value = "out")]
     pub out: PathBuf,
     /// Print nothing but errors.

@@ -37,7 +37,7 @@ pub struct Args {
     /// Run only slice I of N of the grid (1-based), writing a partial CSV to merge later.
     #[arg(long, value_name = "I/N", value_parser = parse_shard)]
     pub shard: Option<Shard>,
-    /// Vary a scenario key instead of dt (a parameter sweep into OUT/<name>_vary/): KEY=LO:HI:N
+    /// Vary a scenario key instead of dt (a parameter sweep into `OUT/<name>_vary/`): KEY=LO:HI:N
     /// (N values from LO to HI), KEY=log:LO:HI:N (log-spaced) or KEY=V1,V2,… (numbers, or words
     /// and booleans: a categorical axis, e.g. transient.history=off,basset); each value is
     /// applied as --set KEY=VALUE at the scenario's own dt and integrator. Repeat for a full grid

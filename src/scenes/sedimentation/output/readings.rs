@@ -2,7 +2,7 @@
 //! laboratory's format, the one `settle reduce` reads (docs/commands/reduce.md): `# key = value`
 //! figures of the test, then `time_min, reading, temperature_c` rows; `readings_pipette.csv`
 //! and `readings_sphere.csv`: its pipette's and buoyancy sphere's readings in the same format
-//! ([`direct_text`]). All four carry the model figures `fluid_density_kg_m3`, `gravity_m_s2`
+//! (`direct_text`). All four carry the model figures `fluid_density_kg_m3`, `gravity_m_s2`
 //! and `column_height_cm` (the run's ρ_f, g and H) for `settle invert`'s forward model.
 //!
 //! What the run knows is written as a laboratory would write it:
@@ -79,7 +79,7 @@ pub fn water_temperature_c(mu_pa_s: f64) -> Option<f64> {
 /// readings, a 152H scale (0–60 g/L for G = 2.65) and a viscosity of water at 16–30 °C (the
 /// range both standards accept); and `readings_pipette.csv` / `readings_sphere.csv` (the
 /// pipette's and the sphere's readings at their times, full precision) when the run had those
-/// and a viscosity of water at 0–40 °C ([`direct_text`]). Otherwise writes nothing.
+/// and a viscosity of water at 0–40 °C (`direct_text`). Otherwise writes nothing.
 pub fn write_all(
     stage: &StagedDir,
     s: &Scenario,
