@@ -232,7 +232,7 @@ pub fn exponential_near_terminal(
     exponential_near_terminal_lanes(
         [table],
         [g.voidage],
-        [g.mass_kg],
+        [dt_s / g.mass_kg],
         [g.body_force_n],
         [v0_m_s],
         dt_s,
@@ -240,7 +240,8 @@ pub fn exponential_near_terminal(
 }
 
 /// [`exponential_near_terminal`] for `L` spheres at once, each with its table (`tables`), its
-/// voidage, mass (kg), body force (N) and velocity (m/s) over the same step `dt_s` (s). Each
+/// voidage, step over mass dt/m (s/kg: the caller may compute it once for many spheres of one
+/// mass), body force (N) and velocity (m/s) over the same step `dt_s` (s). Each
 /// lane's result is the one-sphere result bit for bit (the same operations in the same order);
 /// the lanes go through each stage together (Horner's rule is a chain of 30 multiply-adds per
 /// sphere, and the step three divisions), so that the processor overlaps and pairs them.
@@ -248,7 +249,7 @@ pub fn exponential_near_terminal(
 pub fn exponential_near_terminal_lanes<const L: usize>(
     tables: [&TerminalTable; L],
     voidage: [f64; L],
-    mass_kg: [f64; L],
+    dt_over_mass_s_kg: [f64; L],
     body_force_n: [f64; L],
     v0_m_s: [f64; L],
     dt_s: f64,
@@ -263,7 +264,7 @@ pub fn exponential_near_terminal_lanes<const L: usize>(
     let (mut k, mut f0, mut num, mut z, mut inv) =
         ([0.0; L], [0.0; L], [0.0; L], [0.0; L], [0.0; L]);
     for l in 0..L {
-        kk[l] = dt / mass_kg[l];
+        kk[l] = dt_over_mass_s_kg[l];
         p[l] = v0[l] + w[l] * kk[l];
         inv_h1[l] = 1.0 / (1.0 + kk[l] * kt[l]);
     }

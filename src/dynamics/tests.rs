@@ -381,7 +381,7 @@ fn tabulated_step_lanes_match_one_sphere_bit_for_bit() {
             let lanes = exponential_near_terminal_lanes::<L>(
                 std::array::from_fn(|l| &group[l].0),
                 std::array::from_fn(|l| group[l].1.voidage),
-                std::array::from_fn(|l| group[l].1.mass_kg),
+                std::array::from_fn(|l| dt / group[l].1.mass_kg),
                 std::array::from_fn(|l| group[l].1.body_force_n),
                 std::array::from_fn(|l| group[l].2),
                 dt,

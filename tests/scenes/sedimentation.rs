@@ -341,3 +341,45 @@ fn packed_suspension_gives_the_step_loop_bit_for_bit() {
         );
     }
 }
+
+/// The packed free update finds a grain's new voidage cell from its old one
+/// (`VoidageGrid::cell_after`: two comparisons against the cell's exact bounds); it must be the
+/// cell `VoidageGrid::cell_of` computes, at every row boundary to the last unit in the last
+/// place, from the cell below, the cell itself and the cell above, and outside the cylinder.
+#[test]
+fn cell_after_is_cell_of_at_every_row_boundary() {
+    use settle::scenes::sedimentation::voidage::VoidageGrid;
+    let p = prepare(Path::new("scenarios/sedimentation_sample2.toml"), None, &[]).unwrap();
+    let su = setup(&p.scenario, &p.path).unwrap();
+    let cell_m = su.spec.sample.voidage_cell_m;
+    let grid = VoidageGrid::new(&su, cell_m, false, 1000.0);
+    let rows = (su.height_m / cell_m).ceil() as usize;
+    let mut checked = 0;
+    for x in [0.0, 0.37 * su.width_m, su.width_m] {
+        for r in 0..=rows {
+            let nominal = r as f64 * su.height_m / rows as f64;
+            let mut ys = vec![-1.0, su.height_m * 2.0, f64::INFINITY];
+            let mut y = nominal;
+            for _ in 0..4 {
+                y = f64::from_bits(y.to_bits().saturating_sub(1));
+            }
+            for _ in 0..9 {
+                ys.push(y);
+                y = f64::from_bits(y.to_bits() + 1);
+            }
+            for y in ys {
+                let want = grid.cell_of(x, y);
+                for from_y in [nominal - cell_m, nominal, nominal + 0.5 * cell_m] {
+                    let from = grid.cell_of(x, from_y);
+                    assert_eq!(
+                        grid.cell_after(from, y),
+                        want,
+                        "x {x}, y {y:e}, from {from}"
+                    );
+                    checked += 1;
+                }
+            }
+        }
+    }
+    assert!(checked > 1000, "{checked}");
+}

@@ -17,7 +17,7 @@
 use super::setup::Setup;
 use super::state::State;
 use super::step::{Stepper, INTERRUPT_CHECK_GRAINS};
-use super::voidage::{Cells, VoidageGrid};
+use super::voidage::VoidageGrid;
 use crate::dynamics::terminal::exponential_near_terminal_lanes;
 use crate::fluid::sphere_volume_m3;
 use rayon::prelude::*;
@@ -176,11 +176,18 @@ impl Suspension {
         let ctx = Update {
             stepper,
             grid,
-            cells: grid.cells(),
             fast,
             floor_m,
             height_m: setup.height_m,
             dt_s,
+            dt_over_mass: self
+                .kinds
+                .iter()
+                .map(|k| {
+                    grid.terminal_table(k.class, k.diameter_m)
+                        .map_or(f64::NAN, |t| dt_s / t.mass_kg)
+                })
+                .collect(),
         };
         let suspect = AtomicBool::new(false);
         let n = INTERRUPT_CHECK_GRAINS;
@@ -305,7 +312,9 @@ impl Suspension {
 struct Update<'a> {
     stepper: &'a Stepper,
     grid: &'a VoidageGrid,
-    cells: Cells,
+    /// The step over the mass, dt/m (s/kg), of each kind with a terminal-state table (NaN
+    /// for the others): one division per kind and step instead of one per grain.
+    dt_over_mass: Vec<f64>,
     /// [`Stepper::fast_path`].
     fast: bool,
     /// Bed surface, m.
@@ -360,7 +369,7 @@ impl Chunk<'_> {
                         GONE => 1.0,
                         cell => u.grid.voidage(cell as usize),
                     }),
-                    tables.map(|t| t.mass_kg),
+                    std::array::from_fn(|l| u.dt_over_mass[self.ks[k + l] as usize]),
                     tables.map(|t| t.body_force_n),
                     std::array::from_fn(|l| self.vs[k + l]),
                     u.dt_s,
@@ -412,8 +421,7 @@ impl Chunk<'_> {
             *y = u.floor_m + 0.5 * d;
         }
         if y.is_finite() {
-            let column = u.cells.column_of_cell(self.cs[k] as usize);
-            self.cs[k] = u.cells.cell_in_column(column, *y) as u32;
+            self.cs[k] = u.grid.cell_after(self.cs[k] as usize, *y) as u32;
         }
         if *y - 0.5 * d <= self.reach {
             self.near.push(k as u32);

@@ -27,6 +27,10 @@ pub struct VoidageGrid {
     /// only where the fast path of the free update reads it (full physics with the Di Felice
     /// factor, [`VoidageGrid::is_di_felice`]).
     voidage: Vec<f64>,
+    /// The heights bounding each cell, m: a point of its column is in it exactly when
+    /// `lo ≤ y < hi` ([`VoidageGrid::cell_after`]; −∞ below the bottom row, +∞ above the top
+    /// one).
+    bounds_m: Vec<(f64, f64)>,
     /// Stokes drag only (`ideal-stokes`): the grid is not used.
     ideal: bool,
     viscosity_pa_s: f64,
@@ -47,7 +51,7 @@ impl VoidageGrid {
             ((setup.width_m / cell_m).ceil() as usize).max(1),
             ((setup.height_m / cell_m).ceil() as usize).max(1),
         );
-        Self {
+        let mut me = Self {
             ncx,
             ncy,
             width_m: setup.width_m,
@@ -57,12 +61,18 @@ impl VoidageGrid {
                 * setup.thickness_m,
             solid_m3: vec![0.0; ncx * ncy],
             voidage: vec![1.0; ncx * ncy],
+            bounds_m: Vec::new(),
             ideal,
             viscosity_pa_s: setup.viscosity_pa_s,
             fluid_density_kg_m3,
             hindered: HinderedLaw::DiFelice,
             tables: Vec::new(),
-        }
+        };
+        let floors: Vec<f64> = (0..=ncy).map(|r| me.cells().row_floor_m(r)).collect();
+        me.bounds_m = (0..ncx * ncy)
+            .map(|c| (floors[c / ncx], floors[c / ncx + 1]))
+            .collect();
+        me
     }
 
     /// The same grid with the terminal-state table ([`TerminalTable`]) of every size class of
@@ -127,6 +137,20 @@ impl VoidageGrid {
     /// The cell holding the point (x, y), m (points outside go to the nearest edge cell).
     pub fn cell_of(&self, x_m: f64, y_m: f64) -> usize {
         self.cells().cell_of(x_m, y_m)
+    }
+
+    /// The cell holding a point of the column of cell `cell` at height `y_m` (m): `cell` itself
+    /// if the point is still in it (two comparisons), else [`Cells::cell_in_column`]. The same
+    /// cell as [`VoidageGrid::cell_of`] in every case: the row is a non-decreasing function of
+    /// the height, and the bounds are its exact steps.
+    #[inline(always)]
+    pub fn cell_after(&self, cell: usize, y_m: f64) -> usize {
+        let (lo, hi) = self.bounds_m[cell];
+        if lo <= y_m && y_m < hi {
+            return cell;
+        }
+        let cells = self.cells();
+        cells.cell_in_column(cells.column_of_cell(cell), y_m)
     }
 
     /// The layout of the cells (what [`VoidageGrid::cell_of`] reads), a copy.
@@ -247,14 +271,40 @@ impl Cells {
     /// [`Cells::cell_of`] with the column found once.
     #[inline(always)]
     pub fn cell_in_column(&self, column: usize, y_m: f64) -> usize {
-        let j = ((y_m / self.height_m * self.ncy as f64) as usize).min(self.ncy - 1);
-        j * self.ncx + column
+        self.row_of(y_m) * self.ncx + column
     }
 
     /// The column of cell `cell`.
     #[inline(always)]
     pub fn column_of_cell(&self, cell: usize) -> usize {
         cell % self.ncx
+    }
+
+    /// The row of cells holding height `y_m`, m (below the bottom: 0; above the top: the top
+    /// row).
+    #[inline(always)]
+    fn row_of(&self, y_m: f64) -> usize {
+        ((y_m / self.height_m * self.ncy as f64) as usize).min(self.ncy - 1)
+    }
+
+    /// The lowest height whose row ([`Cells::cell_in_column`]) is `row` or above, m: −∞ for
+    /// row 0, +∞ above the top row. Found from the nominal boundary by stepping one unit in the
+    /// last place at a time (the rounding moves it by a few at most).
+    fn row_floor_m(&self, row: usize) -> f64 {
+        if row == 0 {
+            return f64::NEG_INFINITY;
+        }
+        if row >= self.ncy {
+            return f64::INFINITY;
+        }
+        let mut y = row as f64 * self.height_m / self.ncy as f64;
+        while self.row_of(y) >= row {
+            y = f64::from_bits(y.to_bits() - 1);
+        }
+        while self.row_of(y) < row {
+            y = f64::from_bits(y.to_bits() + 1);
+        }
+        y
     }
 }
 
