@@ -199,32 +199,28 @@ fn the_confinement_factor_slows_the_sphere_by_faxens_k() {
         walled.v_simulated_m_s,
         vt / k
     );
-    let set: Vec<String> = [
+    // The error of loading the scenario with `set`.
+    let refusal = |set: [&str; 3]| {
+        let set: Vec<String> = set.iter().map(|s| s.to_string()).collect();
+        prepare(Path::new(SCENARIO), None, &set)
+            .unwrap_err()
+            .to_string()
+    };
+    let msg = refusal([
         "container.height_m=0.5",
         "container.width_m=1e-3",
         "transient.confinement=haberman-sayre",
-    ]
-    .iter()
-    .map(|s| s.to_string())
-    .collect();
-    let msg = prepare(Path::new(SCENARIO), None, &set)
-        .unwrap_err()
-        .to_string();
+    ]);
     assert!(
         msg.contains("transient.confinement") && msg.contains("container.diameter_m"),
         "{msg}"
-    ); // A sphere beyond Haberman & Sayre's range (d/D = 0.91 > 0.8) is refused with its key.
-    let set: Vec<String> = [
+    );
+    // A sphere beyond Haberman & Sayre's range (d/D = 0.91 > 0.8) is refused with its key.
+    let msg = refusal([
         "container.height_m=0.5",
         "container.diameter_m=1.1e-4",
         "transient.confinement=haberman-sayre",
-    ]
-    .iter()
-    .map(|s| s.to_string())
-    .collect();
-    let msg = prepare(Path::new(SCENARIO), None, &set)
-        .unwrap_err()
-        .to_string();
+    ]);
     assert!(
         msg.contains("diameter_m") && msg.contains("Haberman") && msg.contains("0.8"),
         "{msg}"

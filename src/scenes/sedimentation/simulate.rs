@@ -71,9 +71,9 @@ pub fn simulate(
         IdealCache::default()
     };
     let mut runs: Vec<(f64, u64)> = Vec::new();
-    // The grains the per-step passes visit, ascending: every grain at first; without contacts,
-    // a settled grain leaves the list once a free update has tested it ([`Stepper::retire`]).
-    let mut active: Vec<usize> = (0..st.grains.len()).collect();
+    // The grains the per-step passes visit: every grain (without contacts, full physics steps
+    // the suspended grains packed instead, above).
+    let active: Vec<usize> = (0..st.grains.len()).collect();
     // The largest suspended speed after the last deposition (full physics), for the next step.
     let mut vmax: Option<f64> = None;
     while schedule.running(&st) {
@@ -125,7 +125,7 @@ pub fn simulate(
         if !stepper.ideal {
             grid.fill(&st, &volumes, &active);
         }
-        start.capture(&st, &active);
+        start.capture(&st);
         let t2 = Instant::now();
         st.stages.voidage_s += (t2 - t1).as_secs_f64();
         let Some((moved, suspect)) = stepper.free_update(&mut st, setup, &grid, dt, &active) else {
@@ -144,9 +144,6 @@ pub fn simulate(
                 st.fault = Some(u);
                 break;
             }
-        }
-        if !with_contacts {
-            Stepper::retire(&st, &mut active);
         }
         let t4 = Instant::now();
         st.stages.fault_scan_s += (t4 - t3).as_secs_f64();

@@ -25,37 +25,17 @@ pub const INTERRUPT_CHECK_GRAINS: usize = 4096;
 /// update and the contact stage change nothing else before deposition).
 #[derive(Clone, Debug, Default)]
 pub struct StepStart {
-    /// Height of each kept grain's centre, m.
+    /// Height of each grain's centre, m (entry i: grain i, as the contact stage reads them).
     pub y_m: Vec<f64>,
-    /// Vertical velocity of each kept grain, m/s.
+    /// Vertical velocity of each grain, m/s.
     pub v_m_s: Vec<f64>,
     /// Settled flag of each grain (kept only by [`StepStart::capture_all`]).
     pub settled: Vec<bool>,
-    /// The grains kept, ascending (empty: every grain, entry i of `y_m` and `v_m_s` being
-    /// grain i, as the contact stage reads them).
-    pub index: Vec<usize>,
 }
 
 impl StepStart {
-    /// Keeps the heights and speeds of the grains `active` of `st` (ascending indices, as
-    /// [`Stepper::free_update`] takes them); when `active` lists every grain, entry i is grain i.
-    pub fn capture(&mut self, st: &State, active: &[usize]) {
-        if active.len() == st.grains.len() {
-            self.capture_every(st);
-            return;
-        }
-        self.index.clear();
-        self.index.extend_from_slice(active);
-        self.y_m.clear();
-        self.y_m.extend(active.iter().map(|&i| st.grains[i].y_m));
-        self.v_m_s.clear();
-        self.v_m_s
-            .extend(active.iter().map(|&i| st.velocity_m_s[i]));
-    }
-
     /// Keeps the heights and speeds of every grain of `st`.
-    fn capture_every(&mut self, st: &State) {
-        self.index.clear();
+    pub fn capture(&mut self, st: &State) {
         self.y_m.clear();
         self.y_m.extend(st.grains.iter().map(|g| g.y_m));
         self.v_m_s.clear();
@@ -65,7 +45,7 @@ impl StepStart {
     /// Keeps the heights, speeds and settled flags of every grain of `st` (before an
     /// ideal-Stokes interval, which deposits grains as it goes).
     pub fn capture_all(&mut self, st: &State) {
-        self.capture_every(st);
+        self.capture(st);
         self.settled.clear();
         self.settled.extend_from_slice(&st.settled);
     }
@@ -77,15 +57,8 @@ impl StepStart {
         st.settled.copy_from_slice(&self.settled);
     }
 
-    /// Puts the kept grains of `st` back at their captured heights and speeds.
+    /// Puts every grain of `st` back at its captured height and speed.
     pub fn rewind(&self, st: &mut State) {
-        if !self.index.is_empty() {
-            for (&i, (&y0, &v0)) in self.index.iter().zip(self.y_m.iter().zip(&self.v_m_s)) {
-                st.grains[i].y_m = y0;
-                st.velocity_m_s[i] = v0;
-            }
-            return;
-        }
         for ((g, v), (&y0, &v0)) in st
             .grains
             .iter_mut()
@@ -216,8 +189,8 @@ impl Stepper {
     /// Otherwise returns the number of grains advanced, and whether any grain of `active`
     /// (suspended or not) now fails the test of [`Stepper::grain_fault`] with the bound
     /// `speed_bound_m_s` in the cylinder of `setup` (checked here as the grains are updated;
-    /// `grain_fault` then names the first). `active` lists every suspended grain and the settled
-    /// ones not yet tested since they settled ([`Stepper::retire`]); other grains are left alone.
+    /// `grain_fault` then names the first). `active` lists every suspended grain (settled ones are
+    /// tested only); other grains are left alone.
     pub fn free_update(
         &self,
         st: &mut State,
@@ -508,16 +481,6 @@ impl Stepper {
             Interval::Done
         };
         (end, moved)
-    }
-
-    /// Drops from `active` the grains of `st` that are settled, after a [`Stepper::free_update`]
-    /// over `active` has tested them: without contacts nothing moves a settled grain again (its
-    /// height, speed and horizontal position stay as deposition left them), so its fault test
-    /// would give the same answer at every later step, and it adds nothing to the voidage grid,
-    /// the deposition or the step size. The order of the others is kept (the sums over them keep
-    /// their order).
-    pub fn retire(st: &State, active: &mut Vec<usize>) {
-        active.retain(|&i| !st.settled[i]);
     }
 
     /// Deposition (serial, in ascending grain order: the bed grows as grains join it): every
