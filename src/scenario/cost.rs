@@ -42,13 +42,31 @@ const BODY_DISK_BYTES: f64 = 200.0;
 /// rounded up (exact free update ≈ 2–20 ns, Rapier ≈ 350–750 ns per body and step).
 const FREE_BODY_STEP_S: f64 = 2e-8;
 const RAPIER_BODY_STEP_S: f64 = 1e-6;
-/// Cost of one grain-step of the sedimentation cylinder with its contacts, s: 20 000 grains of
-/// sample 1 over 1440 min (8654 steps) took 85 s on the shared 2-core machine (ideal Stokes
-/// physics, no contacts: 8 s).
-const SEDIMENTATION_GRAIN_STEP_S: f64 = 5e-7;
-/// Memory per grain of the sedimentation cylinder, bytes: 3 million grains of sample 1 held
-/// 7.7 GB (the grains, the voidage grid, the contact search and what is recorded).
-const SEDIMENTATION_GRAIN_BYTES: f64 = 2600.0;
+/// CPU time of the sedimentation cylinder per grain and step (N × steps, the steps counted at
+/// `sample.max_step_s`), s, with full physics and no contacts: everything the run does (free
+/// update, voidage grid, deposition, instruments, outputs) over N and the steps, the slowest of
+/// the five samples of `scenarios/` at N = 10⁶ (sample 3: 75 s of CPU for 10⁶ × 8640, 8.7 ns;
+/// sample 2: 18.5 s), rounded up. Measured on the 2-core machine, issue 17 (stop 21).
+const SEDIMENTATION_FULL_GRAIN_STEP_S: f64 = 1e-8;
+/// The same with `physics = "ideal-stokes"` (sample 5 at N = 10⁵: 0.36 s of CPU for
+/// 10⁵ × 8640, 0.42 ns), rounded up.
+const SEDIMENTATION_IDEAL_GRAIN_STEP_S: f64 = 1e-9;
+/// CPU time of the contact stage (`sample.contacts = true`) per step, s, as
+/// C N² (N/N₀)^½ (A₀/A) for N ≥ N₀, C N² (A₀/A) below: close pairs of representative grains
+/// meet at a rate proportional to their number density N/A in the projected area A = B H, and
+/// there are N of them (the close pairs grow as N^2.0–2.1, `docs/validation/performance.md`);
+/// each pair costs 86–120 µs of CPU at N₀ = 10⁵, more as clusters grow. C is sample 2's (the
+/// costliest of the measured samples): 331.8 s of CPU at N = 10⁵ over 8640 steps; with the
+/// factor (N/N₀)^½ the model gives 5 170 s at 3·10⁵ against 5 016 s measured (sample 4: 1 927
+/// s, the model is conservative for it).
+const SEDIMENTATION_CONTACT_C_S: f64 = 3.84e-12;
+const SEDIMENTATION_CONTACT_N0: f64 = 1e5;
+/// The projected area A₀ of the cylinder those contact costs were measured in (B × H of
+/// `scenarios/sedimentation_sample*.toml`), m².
+const SEDIMENTATION_CONTACT_AREA_M2: f64 = 0.0635 * 0.457;
+/// Memory per grain of the sedimentation cylinder, bytes: peak RSS 187 MB at N = 10⁶ for every
+/// sample without contacts, 240 MB with contacts (sample 4), rounded up.
+const SEDIMENTATION_GRAIN_BYTES: f64 = 300.0;
 const RAPIER_BODY_BYTES: f64 = 2048.0;
 
 /// The estimate for one scenario.
@@ -116,6 +134,30 @@ fn rows_per_body(s: &Scenario, steps: f64) -> f64 {
     (steps / every).floor() + 1.0
 }
 
+/// CPU time of the sedimentation cylinder per grain and step, s, for `n` grains: the per-grain
+/// cost of its physics, plus with contacts the cost of the close pairs of one step
+/// ([`SEDIMENTATION_CONTACT_C_S`]) shared over the grains.
+fn sedimentation_grain_step_s(s: &Scenario, n: f64) -> f64 {
+    let per_grain = match s.physics {
+        super::schema::Physics::Full => SEDIMENTATION_FULL_GRAIN_STEP_S,
+        super::schema::Physics::IdealStokes => SEDIMENTATION_IDEAL_GRAIN_STEP_S,
+    };
+    let contacts =
+        s.physics == super::schema::Physics::Full && s.sample.as_ref().is_some_and(|m| m.contacts);
+    if !contacts {
+        return per_grain;
+    }
+    let area_m2 = s
+        .container
+        .as_ref()
+        .and_then(|c| Some(c.height_m * c.width_m.or(c.diameter_m)?))
+        .unwrap_or(SEDIMENTATION_CONTACT_AREA_M2);
+    let growth = (n / SEDIMENTATION_CONTACT_N0).max(1.0).sqrt();
+    let pairs_s =
+        SEDIMENTATION_CONTACT_C_S * n * n * growth * SEDIMENTATION_CONTACT_AREA_M2 / area_m2;
+    per_grain + pairs_s / n
+}
+
 /// Estimates the cost of a scenario (see the module doc).
 pub fn estimate(s: &Scenario) -> Cost {
     let (steps, bodies, per_step, per_body) = match s.kind {
@@ -126,7 +168,7 @@ pub fn estimate(s: &Scenario) -> Cost {
             (
                 s.time.end_s / max_step,
                 n,
-                SEDIMENTATION_GRAIN_STEP_S,
+                sedimentation_grain_step_s(s, n),
                 SEDIMENTATION_GRAIN_BYTES,
             )
         }
@@ -260,17 +302,30 @@ pub fn check(s: &Scenario, file: &Path, force: bool) -> Result<Cost, ScenarioErr
         ));
     }
     if c.wall_s > MAX_WALL_S {
-        let key = if s.kind == Kind::Sedimentation {
-            "sample.max_step_s"
-        } else {
-            "time.dt_s"
+        let contacts = s.kind == Kind::Sedimentation
+            && s.physics == super::schema::Physics::Full
+            && s.sample.as_ref().is_some_and(|m| m.contacts);
+        let (key, hint) = match s.kind {
+            Kind::Sedimentation if contacts => (
+                "sample.particles",
+                "fewer grains (the contacts' cost grows as N^2.5), sample.contacts = false, \
+                 or run with --force",
+            ),
+            Kind::Sedimentation => (
+                "sample.max_step_s",
+                "raise the step, shorten time.end_s, or run with --force",
+            ),
+            _ => (
+                "time.dt_s",
+                "raise the step, shorten time.end_s, or run with --force",
+            ),
         };
         return Err(ScenarioError::new(
             file,
             Some(key),
             format!(
                 "{:.3e} steps × {:.3e} bodies would take about {:.0} h of wall time on one core \
-                 (limit {:.0} h): raise the step, shorten time.end_s, or run with --force",
+                 (limit {:.0} h): {hint}",
                 c.steps,
                 c.bodies,
                 c.wall_s / 3600.0,

@@ -247,8 +247,8 @@ fn resume_without_checkpoint_is_refused() {
     assert!(e.contains("no checkpointed run"), "{e}");
 }
 
-/// The cost guard: 10¹² grains would need 2.6 PB, more than any machine here: refused with the
-/// estimate even with --force; 3.5·10⁶ grains (9.1 GB) is over the 8 GB limit: refused, naming
+/// The cost guard: 10¹² grains would need 300 TB, more than any machine here: refused with the
+/// estimate even with --force; 3.5·10⁷ grains (10.5 GB) is over the 8 GB limit: refused, naming
 /// --force; a 68-ball pour of 15 repeats at dt = 1e-8 s (1e8 steps × 1020 bodies ≈ 28 h) is
 /// refused for its time. Nothing is written.
 #[test]
@@ -268,9 +268,9 @@ fn cost_guard_refuses_runs_beyond_the_limits() {
             &[
                 "scenarios/sedimentation_sample5.toml",
                 "--set",
-                "sample.particles=3500000",
+                "sample.particles=35000000",
             ],
-            &["sample.particles", "9.1 GB", "--force"],
+            &["sample.particles", "10.5 GB", "--force"],
         ),
         (
             &[

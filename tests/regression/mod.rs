@@ -21,4 +21,5 @@ mod issue_13_console_tables;
 mod issue_13_end_time_trims_defaults;
 mod issue_13_run_toml_rerun;
 mod issue_13_vary_any_key;
+mod issue_17_cylinder_cost_estimate;
 mod issue_8_concurrent_checkpoint_saves;
