@@ -18,7 +18,7 @@ use super::setup::Setup;
 use super::state::State;
 use super::step::{Stepper, INTERRUPT_CHECK_GRAINS};
 use super::voidage::VoidageGrid;
-use crate::dynamics::terminal::exponential_near_terminal_lanes;
+use crate::dynamics::terminal::{exponential_near_terminal_lanes, TerminalTable};
 use crate::fluid::sphere_volume_m3;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -176,18 +176,23 @@ impl Suspension {
         let ctx = Update {
             stepper,
             grid,
-            fast,
-            floor_m,
-            height_m: setup.height_m,
-            dt_s,
-            dt_over_mass: self
+            kinds: self
                 .kinds
                 .iter()
                 .map(|k| {
-                    grid.terminal_table(k.class, k.diameter_m)
-                        .map_or(f64::NAN, |t| dt_s / t.mass_kg)
+                    let table = grid.terminal_table(k.class, k.diameter_m).filter(|_| fast);
+                    KindStep {
+                        table,
+                        dt_over_mass: table.map_or(f64::NAN, |t| dt_s / t.mass_kg),
+                        half_d_m: 0.5 * k.diameter_m,
+                        top_m: setup.height_m + k.diameter_m,
+                        stokes_m_s: k.stokes_m_s,
+                    }
                 })
                 .collect(),
+            fast,
+            floor_m,
+            dt_s,
         };
         let suspect = AtomicBool::new(false);
         let n = INTERRUPT_CHECK_GRAINS;
@@ -202,19 +207,21 @@ impl Suspension {
             .zip(self.near_bed.par_iter_mut())
             .for_each(|((((ys, vs), cs), ks), (near, vmax))| {
                 near.clear();
-                *vmax = 0.0;
-                let mut c = Chunk {
+                let mut found = Found {
+                    near,
+                    vmax: 0.0,
+                    bad: false,
+                };
+                let chunk = Chunk {
                     ys,
                     vs,
                     cs,
                     ks,
                     kinds: &self.kinds,
-                    near,
-                    vmax,
-                    reach,
                 };
-                let bad = c.update(&ctx);
-                if bad {
+                chunk.update(&ctx, reach, &mut found);
+                *vmax = found.vmax;
+                if found.bad {
                     suspect.store(true, Ordering::Relaxed);
                 }
             });
@@ -312,20 +319,36 @@ impl Suspension {
 struct Update<'a> {
     stepper: &'a Stepper,
     grid: &'a VoidageGrid,
-    /// The step over the mass, dt/m (s/kg), of each kind with a terminal-state table (NaN
-    /// for the others): one division per kind and step instead of one per grain.
-    dt_over_mass: Vec<f64>,
+    /// What the update reads of each kind ([`KindStep`]).
+    kinds: Vec<KindStep<'a>>,
     /// [`Stepper::fast_path`].
     fast: bool,
     /// Bed surface, m.
     floor_m: f64,
-    /// Cylinder height, m.
-    height_m: f64,
     /// Step, s.
     dt_s: f64,
 }
 
-/// One chunk of the suspended grains' arrays in a free update.
+/// What the free update reads of one grain kind, computed once per step: the same operations
+/// on the same values as per grain, so the same bits. SI units.
+#[derive(Clone, Copy)]
+struct KindStep<'a> {
+    /// Its terminal-state table, on the fast path ([`Stepper::fast_path`]) when its size class
+    /// has one.
+    table: Option<&'a TerminalTable>,
+    /// The step over the mass, dt/m, s/kg (NaN without a table): one division per kind and step
+    /// instead of one per grain.
+    dt_over_mass: f64,
+    /// Half the diameter, m.
+    half_d_m: f64,
+    /// The cylinder height plus the diameter, m: a centre above it is a fault.
+    top_m: f64,
+    /// Stokes terminal speed, m/s.
+    stokes_m_s: f64,
+}
+
+/// One chunk of the suspended grains' arrays in a free update: each a separate slice, so that
+/// the compiler knows a store to one does not change the others.
 struct Chunk<'a> {
     ys: &'a mut [f64],
     vs: &'a mut [f64],
@@ -333,105 +356,123 @@ struct Chunk<'a> {
     /// The grains' kinds, and the kinds.
     ks: &'a [u32],
     kinds: &'a [Kind],
+}
+
+/// What the free update of one chunk found ([`Chunk::update`]).
+struct Found<'a> {
     /// The entries within reach of the bed after the update (ascending).
     near: &'a mut Vec<u32>,
     /// The largest speed of the others, each the larger of its speed and its Stokes terminal
     /// speed, m/s.
-    vmax: &'a mut f64,
-    /// Height below which a grain's bottom may touch the bed in this step's deposition, m.
-    reach: f64,
+    vmax: f64,
+    /// Whether any grain now fails the fault test.
+    bad: bool,
 }
 
 impl Chunk<'_> {
-    /// The free update of every grain of the chunk ([`Suspension::free_update`]); returns
-    /// whether any now fails the fault test.
-    fn update(&mut self, u: &Update) -> bool {
-        let len = self.ys.len();
-        let mut bad = false;
-        let mut k = 0;
+    /// The free update of every grain of the chunk ([`Suspension::free_update`]); `reach` is
+    /// the height below which a grain's bottom may touch the bed in this step's deposition, m.
+    fn update(self, u: &Update, reach: f64, found: &mut Found) {
+        let Chunk {
+            ys,
+            vs,
+            cs,
+            ks,
+            kinds,
+        } = self;
+        let len = ys.len();
+        let voidage = u.grid.voidages();
+        let kind_of = |j: usize| &u.kinds[ks[j] as usize];
         // Grains with a terminal-state table, `LANES` at a time (the same steps as
         // `Stepper::grain_step` gives them one by one); the others one by one. A settled
         // entry's lane computes a step that is not used.
+        let mut k = 0;
         while k + LANES <= len {
-            let mut tables = [None; LANES];
-            let mut all = u.fast;
-            for (l, t) in tables.iter_mut().enumerate() {
-                let j = k + l;
-                let kind = &self.kinds[self.ks[j] as usize];
-                *t = u.grid.terminal_table(kind.class, kind.diameter_m);
-                all &= t.is_some();
-            }
-            if all {
+            let lanes: [&KindStep; LANES] = std::array::from_fn(|l| kind_of(k + l));
+            let tables = lanes.map(|q| q.table);
+            let steps = if u.fast && tables.iter().all(Option::is_some) {
                 let tables = tables.map(|t| t.expect("all tables present"));
-                let steps = exponential_near_terminal_lanes(
+                exponential_near_terminal_lanes(
                     tables,
-                    std::array::from_fn(|l| match self.cs[k + l] {
+                    std::array::from_fn(|l| match cs[k + l] {
                         GONE => 1.0,
-                        cell => u.grid.voidage(cell as usize),
+                        cell => voidage[cell as usize],
                     }),
-                    std::array::from_fn(|l| u.dt_over_mass[self.ks[k + l] as usize]),
+                    lanes.map(|q| q.dt_over_mass),
                     tables.map(|t| t.body_force_n),
-                    std::array::from_fn(|l| self.vs[k + l]),
+                    std::array::from_fn(|l| vs[k + l]),
                     u.dt_s,
-                );
-                for (l, step) in steps.into_iter().enumerate() {
-                    if self.cs[k + l] != GONE {
-                        let step = step.unwrap_or_else(|| self.step(u, k + l));
-                        bad |= self.finish(u, k + l, step);
-                    }
-                }
+                )
             } else {
-                for j in k..k + LANES {
-                    if self.cs[j] != GONE {
-                        let step = self.step(u, j);
-                        bad |= self.finish(u, j, step);
-                    }
+                [None; LANES]
+            };
+            for (l, step) in steps.into_iter().enumerate() {
+                let j = k + l;
+                if cs[j] != GONE {
+                    let step =
+                        step.unwrap_or_else(|| grain_step(u, &kinds[ks[j] as usize], cs[j], vs[j]));
+                    finish(u, lanes[l], reach, j, step, ys, vs, cs, found);
                 }
             }
             k += LANES;
         }
         for j in k..len {
-            if self.cs[j] != GONE {
-                let step = self.step(u, j);
-                bad |= self.finish(u, j, step);
+            if cs[j] != GONE {
+                let step = grain_step(u, &kinds[ks[j] as usize], cs[j], vs[j]);
+                finish(u, kind_of(j), reach, j, step, ys, vs, cs, found);
             }
         }
-        bad
     }
-    /// [`Stepper::grain_step`] of grain `k` of the chunk: (new velocity, m/s; displacement, m).
-    #[inline(always)]
-    fn step(&self, u: &Update, k: usize) -> (f64, f64) {
-        let kind = &self.kinds[self.ks[k] as usize];
-        let (d, class, cell) = (kind.diameter_m, kind.class, self.cs[k] as usize);
-        u.stepper
-            .grain_step(u.grid, u.fast, d, class, cell, self.vs[k], u.dt_s)
-    }
+}
 
-    /// Applies `step` to grain `k` (stopping it on the bed surface), finds its new cell, and
-    /// lists it as within reach of the bed or counts its speed; returns whether it now fails the test of [`Stepper::grain_fault`] (as
-    /// [`Stepper::is_faulty`]; its horizontal position, constant, was tested by
-    /// [`Suspension::new`]).
-    #[inline(always)]
-    fn finish(&mut self, u: &Update, k: usize, (v1, dx): (f64, f64)) -> bool {
-        let d = self.kinds[self.ks[k] as usize].diameter_m;
-        let (y, v) = (&mut self.ys[k], &mut self.vs[k]);
-        *v = v1;
-        *y += dx;
-        if *y - 0.5 * d <= u.floor_m {
-            *y = u.floor_m + 0.5 * d;
-        }
-        if y.is_finite() {
-            self.cs[k] = u.grid.cell_after(self.cs[k] as usize, *y) as u32;
-        }
-        if *y - 0.5 * d <= self.reach {
-            self.near.push(k as u32);
-        } else {
-            *self.vmax = self
-                .vmax
-                .max(v.abs().max(self.kinds[self.ks[k] as usize].stokes_m_s));
-        }
-        !(y.is_finite() && v.is_finite())
-            || v.abs() > u.stepper.speed_bound_m_s
-            || *y > u.height_m + d
+/// [`Stepper::grain_step`] of a grain of `kind` in cell `cell` at speed `v_m_s`: (new velocity,
+/// m/s; displacement, m). Out of line: the lanes cover nearly every grain-step (all but the
+/// first step from rest and steps after a large change of voidage, 0.4 % in sample 5).
+#[cold]
+#[inline(never)]
+fn grain_step(u: &Update, kind: &Kind, cell: u32, v_m_s: f64) -> (f64, f64) {
+    u.stepper.grain_step(
+        u.grid,
+        u.fast,
+        kind.diameter_m,
+        kind.class,
+        cell as usize,
+        v_m_s,
+        u.dt_s,
+    )
+}
+
+/// Applies `(v1, dx)` to entry `j` of kind `q` (stopping it on the bed surface), finds its new
+/// cell, and lists it in `found` as within `reach` of the bed or counts its speed; records
+/// whether it now fails the test of [`Stepper::grain_fault`] (as [`Stepper::is_faulty`]; its
+/// horizontal position, constant, was tested by [`Suspension::new`]).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn finish(
+    u: &Update,
+    q: &KindStep,
+    reach: f64,
+    j: usize,
+    (v1, dx): (f64, f64),
+    ys: &mut [f64],
+    vs: &mut [f64],
+    cs: &mut [u32],
+    found: &mut Found,
+) {
+    let (y, v) = (&mut ys[j], &mut vs[j]);
+    *v = v1;
+    *y += dx;
+    if *y - q.half_d_m <= u.floor_m {
+        *y = u.floor_m + q.half_d_m;
     }
+    if y.is_finite() {
+        cs[j] = u.grid.cell_after(cs[j] as usize, *y) as u32;
+    }
+    if *y - q.half_d_m <= reach {
+        found.near.push(j as u32);
+    } else {
+        found.vmax = found.vmax.max(v.abs().max(q.stokes_m_s));
+    }
+    found.bad |=
+        !(y.is_finite() && v.is_finite()) || v.abs() > u.stepper.speed_bound_m_s || *y > q.top_m;
 }

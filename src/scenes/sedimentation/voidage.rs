@@ -200,6 +200,12 @@ impl VoidageGrid {
         self.solid_m3 = solid;
     }
 
+    /// The voidage ε of every cell, as [`VoidageGrid::voidage`] reads it.
+    #[inline(always)]
+    pub fn voidages(&self) -> &[f64] {
+        &self.voidage
+    }
+
     /// The voidage ε of cell `cell` as [`VoidageGrid::drag`] takes it (valid after
     /// [`VoidageGrid::fill`] when [`VoidageGrid::is_di_felice`]).
     #[inline(always)]
