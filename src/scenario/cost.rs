@@ -65,7 +65,7 @@ const SEDIMENTATION_CONTACT_N0: f64 = 1e5;
 /// `scenarios/sedimentation_sample*.toml`), m².
 const SEDIMENTATION_CONTACT_AREA_M2: f64 = 0.0635 * 0.457;
 /// Memory per grain of the sedimentation cylinder, bytes: peak RSS 187 MB at N = 10⁶ for every
-/// sample without contacts, 240 MB with contacts (sample 4), rounded up.
+/// sample without contacts, 255 MB with contacts (sample 4), rounded up.
 const SEDIMENTATION_GRAIN_BYTES: f64 = 300.0;
 const RAPIER_BODY_BYTES: f64 = 2048.0;
 
@@ -134,6 +134,14 @@ fn rows_per_body(s: &Scenario, steps: f64) -> f64 {
     (steps / every).floor() + 1.0
 }
 
+/// Whether `s` is a sedimentation run whose close grain pairs are resolved (`sample.contacts`
+/// with full physics).
+fn sedimentation_contacts(s: &Scenario) -> bool {
+    s.kind == Kind::Sedimentation
+        && s.physics == super::schema::Physics::Full
+        && s.sample.as_ref().is_some_and(|m| m.contacts)
+}
+
 /// CPU time of the sedimentation cylinder per grain and step, s, for `n` grains: the per-grain
 /// cost of its physics, plus with contacts the cost of the close pairs of one step
 /// ([`SEDIMENTATION_CONTACT_C_S`]) shared over the grains.
@@ -142,9 +150,7 @@ fn sedimentation_grain_step_s(s: &Scenario, n: f64) -> f64 {
         super::schema::Physics::Full => SEDIMENTATION_FULL_GRAIN_STEP_S,
         super::schema::Physics::IdealStokes => SEDIMENTATION_IDEAL_GRAIN_STEP_S,
     };
-    let contacts =
-        s.physics == super::schema::Physics::Full && s.sample.as_ref().is_some_and(|m| m.contacts);
-    if !contacts {
+    if !sedimentation_contacts(s) {
         return per_grain;
     }
     let area_m2 = s
@@ -302,23 +308,22 @@ pub fn check(s: &Scenario, file: &Path, force: bool) -> Result<Cost, ScenarioErr
         ));
     }
     if c.wall_s > MAX_WALL_S {
-        let contacts = s.kind == Kind::Sedimentation
-            && s.physics == super::schema::Physics::Full
-            && s.sample.as_ref().is_some_and(|m| m.contacts);
-        let (key, hint) = match s.kind {
-            Kind::Sedimentation if contacts => (
+        let (key, hint) = if sedimentation_contacts(s) {
+            (
                 "sample.particles",
                 "fewer grains (the contacts' cost grows as N^2.5), sample.contacts = false, \
                  or run with --force",
-            ),
-            Kind::Sedimentation => (
-                "sample.max_step_s",
+            )
+        } else {
+            let key = if s.kind == Kind::Sedimentation {
+                "sample.max_step_s"
+            } else {
+                "time.dt_s"
+            };
+            (
+                key,
                 "raise the step, shorten time.end_s, or run with --force",
-            ),
-            _ => (
-                "time.dt_s",
-                "raise the step, shorten time.end_s, or run with --force",
-            ),
+            )
         };
         return Err(ScenarioError::new(
             file,

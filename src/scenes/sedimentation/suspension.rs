@@ -347,8 +347,7 @@ struct KindStep<'a> {
     stokes_m_s: f64,
 }
 
-/// One chunk of the suspended grains' arrays in a free update: each a separate slice, so that
-/// the compiler knows a store to one does not change the others.
+/// One chunk of the suspended grains' arrays in a free update.
 struct Chunk<'a> {
     ys: &'a mut [f64],
     vs: &'a mut [f64],
