@@ -1,11 +1,10 @@
 //! The arguments of `settle sweep` (clap), with value parsers that refuse bad values with a
 //! message naming the option and what is allowed (clap exits 2).
 
-use super::plan::{DtRange, Shard};
+use super::values::{parse_dt, parse_dt_range, parse_shard, parse_tol, DtRange, Shard};
 use super::vary::{parse_vary, Axis};
 use crate::dynamics::Integrator;
 use clap::builder::PossibleValue;
-use std::fmt;
 use std::path::PathBuf;
 
 /// Arguments of `settle sweep` (see `settle sweep --help`).
@@ -67,79 +66,4 @@ impl clap::ValueEnum for Integrator {
     fn to_possible_value(&self) -> Option<PossibleValue> {
         Some(PossibleValue::new(self.name()))
     }
-}
-
-/// A command-line value outside its allowed range; clap prints it after the option's name.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct BadValue {
-    /// What is allowed, e.g. `0 < TOL ≤ 1`.
-    pub allowed: &'static str,
-}
-
-impl fmt::Display for BadValue {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "allowed {}", self.allowed)
-    }
-}
-
-impl std::error::Error for BadValue {}
-
-const DT_ALLOWED: &str = "a time step dt > 0 s (finite), e.g. 1e-3";
-const RANGE_ALLOWED: &str = "LO:HI with 0 < LO < HI (s, finite), e.g. 1e-8:1e-1";
-const SHARD_ALLOWED: &str = "I/N with 1 ≤ I ≤ N, e.g. 2/8";
-/// The allowed range of `--tol`: a relative error, above 0 (0 would admit no step) and at most
-/// 1 (100 %, beyond which the comparison means nothing); as `[sweep] tol` in a scenario.
-pub const TOL_ALLOWED: &str = "0 < TOL ≤ 1 (a relative error against the finest stable dt)";
-
-fn positive_s(s: &str) -> Option<f64> {
-    s.trim()
-        .parse::<f64>()
-        .ok()
-        .filter(|x| *x > 0.0 && x.is_finite())
-}
-
-/// Parses one `--dt` value: a finite time step > 0, s.
-pub fn parse_dt(s: &str) -> Result<f64, BadValue> {
-    positive_s(s).ok_or(BadValue {
-        allowed: DT_ALLOWED,
-    })
-}
-
-/// Parses `--dt-range LO:HI`.
-pub fn parse_dt_range(s: &str) -> Result<DtRange, BadValue> {
-    let bad = BadValue {
-        allowed: RANGE_ALLOWED,
-    };
-    let (lo, hi) = s.split_once(':').ok_or(bad)?;
-    match (positive_s(lo), positive_s(hi)) {
-        (Some(lo_s), Some(hi_s)) if lo_s < hi_s => Ok(DtRange { lo_s, hi_s }),
-        _ => Err(bad),
-    }
-}
-
-/// Parses `--shard I/N`.
-pub fn parse_shard(s: &str) -> Result<Shard, BadValue> {
-    let bad = BadValue {
-        allowed: SHARD_ALLOWED,
-    };
-    let (i, n) = s.split_once('/').ok_or(bad)?;
-    let (index, count): (usize, usize) = (
-        i.trim().parse().map_err(|_| bad)?,
-        n.trim().parse().map_err(|_| bad)?,
-    );
-    if index == 0 || index > count {
-        return Err(bad);
-    }
-    Ok(Shard { index, count })
-}
-
-/// Parses `--tol`: a relative error in (0, 1], see [`TOL_ALLOWED`].
-pub fn parse_tol(s: &str) -> Result<f64, BadValue> {
-    s.trim()
-        .parse::<f64>()
-        .ok()
-        .filter(|t| *t > 0.0 && *t <= 1.0)
-        .ok_or(BadValue {
-            allowed: TOL_ALLOWED,
-        })
 }

@@ -23,14 +23,18 @@ mod plan;
 mod report;
 mod table;
 mod targets;
+mod values;
 pub mod vary;
 
 pub use analysis::{rayleigh_time_of, recommended_dt, summarise, CaseSummary, RAYLEIGH_FRACTION};
-pub use args::{parse_dt, parse_dt_range, parse_shard, parse_tol, Args, BadValue, TOL_ALLOWED};
-pub use plan::{dt_range, grid, shard, Case, DtRange, Plan, Shard, DEFAULT_TOL};
+pub use args::Args;
+pub use plan::{dt_range, grid, shard, Case, Plan, DEFAULT_TOL};
 pub use report::{charts, write_results, Context};
 pub use table::{finish, from_csv, read_rows, rel, to_csv, write_rows, Row, Status, HEADER};
 pub use targets::{has_reference, Target, SWEEPABLE, SWEEPABLE_NAMES};
+pub use values::{
+    parse_dt, parse_dt_range, parse_shard, parse_tol, BadValue, DtRange, Shard, TOL_ALLOWED,
+};
 
 use crate::error::Error;
 use crate::io::StagedDir;

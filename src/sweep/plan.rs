@@ -2,6 +2,7 @@
 //! scenario's `[sweep]` table. Pure: no I/O, no simulation.
 
 use super::args::Args;
+use super::values::Shard;
 use crate::dynamics::Integrator;
 use crate::error::Error;
 use crate::run::Prepared;
@@ -57,24 +58,6 @@ pub fn shard(cases: &[Case], shard: usize, of: usize) -> Vec<Case> {
         .filter(|(i, _)| i % of == shard - 1)
         .map(|(_, c)| *c)
         .collect()
-}
-
-/// `--shard I/N`: slice `index` (1-based) of `count`, 1 ≤ index ≤ count.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Shard {
-    /// Which slice, 1-based.
-    pub index: usize,
-    /// How many slices.
-    pub count: usize,
-}
-
-/// `--dt-range LO:HI`: the smallest and largest time step, 0 < lo_s < hi_s < ∞, s.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct DtRange {
-    /// Smallest time step, s.
-    pub lo_s: f64,
-    /// Largest time step, s.
-    pub hi_s: f64,
 }
 
 /// What to run for one scenario: integrators × time steps (optionally one shard of them) and

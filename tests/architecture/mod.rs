@@ -2,6 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
+mod cycles;
 mod layers;
 mod shape;
 

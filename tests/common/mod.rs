@@ -49,20 +49,23 @@ pub fn number_after(text: &str, key: &str) -> f64 {
     tail.split(' ').next().unwrap().parse().unwrap()
 }
 
-/// Reads a CSV written by a run into (header, rows).
+/// Reads a CSV written by a run into (header, rows): the one CSV reader of the tests (the csv
+/// crate, so that a quoted field with a comma is one field); rows may be shorter or longer
+/// than the header.
 pub fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
-    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let mut lines = text.lines();
-    let header = lines
-        .next()
-        .unwrap()
-        .split(',')
-        .map(str::to_string)
-        .collect();
-    let rows = lines
-        .map(|l| l.split(',').map(str::to_string).collect())
-        .collect();
-    (header, rows)
+    let mut r = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .from_path(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut records = r.records().map(|x| {
+        x.unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+            .iter()
+            .map(str::to_string)
+            .collect::<Vec<String>>()
+    });
+    let header = records.next().unwrap_or_default();
+    (header, records.collect())
 }
 
 /// The number in column `name` of `row` (a row of [`read_csv`] with its `header`).
@@ -76,18 +79,11 @@ pub fn col(header: &[String], row: &[String], name: &str) -> f64 {
         .unwrap_or_else(|e| panic!("{name} = `{}`: {e}", row[i]))
 }
 
-/// Reads a CSV into rows of named fields.
+/// [`read_csv`] as rows of named fields (header → value).
 pub fn read_csv_records(path: &Path) -> Vec<HashMap<String, String>> {
-    let mut r = csv::Reader::from_path(path).unwrap();
-    let h = r.headers().unwrap().clone();
-    r.records()
-        .map(|x| {
-            let x = x.unwrap();
-            h.iter()
-                .zip(x.iter())
-                .map(|(a, b)| (a.to_string(), b.to_string()))
-                .collect()
-        })
+    let (header, rows) = read_csv(path);
+    rows.into_iter()
+        .map(|r| header.iter().cloned().zip(r).collect())
         .collect()
 }
 

@@ -3,7 +3,7 @@
 //! for a categorical axis (`transient.history=off,basset`), a text passed as `--set` passes it.
 //! Pure: no I/O.
 
-use super::super::args::BadValue;
+use crate::sweep::values::BadValue;
 use std::cmp::Ordering;
 use std::fmt;
 

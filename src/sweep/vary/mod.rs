@@ -26,8 +26,9 @@ pub use grid::{
 pub use table::{VaryRow, VaryTable};
 
 use super::args::Args;
-use super::plan::{Case, Shard};
+use super::plan::Case;
 use super::targets::Target;
+use super::values::Shard;
 use crate::error::{BadInput, Error};
 use crate::io::StagedDir;
 use crate::run::{prepare, Prepared};
