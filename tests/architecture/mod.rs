@@ -2,6 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
+mod formatters;
 mod layers;
 mod shape;
 
