@@ -162,10 +162,22 @@ impl Signalled {
 pub fn signal_when(
     cmd: Command,
     signal: &str,
-    mut ready: impl FnMut(u32, Duration) -> bool,
+    ready: impl FnMut(u32, Duration) -> bool,
     limit: Duration,
     what: &str,
 ) -> Signalled {
+    try_signal_when(cmd, signal, ready, limit).unwrap_or_else(|e| panic!("{what}: {e}"))
+}
+
+/// [`signal_when`], with Err (saying what happened, and the run's stderr) instead of a panic
+/// when the run ended before the signal or never got ready within [`HANG`].
+#[cfg(unix)]
+pub fn try_signal_when(
+    cmd: Command,
+    signal: &str,
+    mut ready: impl FnMut(u32, Duration) -> bool,
+    limit: Duration,
+) -> Result<Signalled, String> {
     let (mut child, reader) = spawn(cmd);
     let start = Instant::now();
     let pid = child.id();
@@ -178,14 +190,14 @@ pub fn signal_when(
         let _ = child.kill();
         let _ = child.wait();
         let err = reader.join().unwrap_or_default();
-        panic!(
-            "{what}: {} before the signal; stderr: {err}",
+        return Err(format!(
+            "{} before the signal; stderr: {err}",
             if ended {
                 "the run ended"
             } else {
                 "the run never got ready"
             }
-        );
+        ));
     }
     let cpu0 = cpu_time(pid);
     let sent = Command::new("kill")
@@ -206,12 +218,12 @@ pub fn signal_when(
         let _ = child.kill();
     }
     let status = child.wait().expect("wait");
-    Signalled {
+    Ok(Signalled {
         code: status.code(),
         stderr: reader.join().expect("stderr"),
         waited,
         cpu_after: cpu0.zip(cpu_last).map(|(a, b)| b.saturating_sub(a)),
-    }
+    })
 }
 
 /// [`signal_when`] the run has used `cpu` of CPU time (wall time without `/proc`): past its

@@ -8,7 +8,7 @@ pub use child::{
     cpu_time, has_checkpoint, random_between, run_measured, test_seed, wait_for, HANG,
 };
 #[cfg(unix)]
-pub use child::{signal_when, signalled, Signalled};
+pub use child::{signal_when, signalled, try_signal_when, Signalled};
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
