@@ -11,7 +11,8 @@ use super::Fit;
 use crate::error::Error;
 use crate::io::chart::{Chart, Curve, Scale, Series};
 use crate::io::fmt::{g, g_opt, short};
-use crate::io::{num, opt, write_atomic, write_csv, StagedDir};
+use crate::io::fmt::{num, opt};
+use crate::io::{write_atomic, write_csv, StagedDir};
 use serde::Serialize;
 use std::path::Path;
 

@@ -4,9 +4,9 @@ use super::solve::LambdaRule;
 use super::{Model, Report, Request};
 use crate::error::Error;
 use crate::io::chart::{Band, Chart, Curve, Scale, Series};
+use crate::io::fmt::clean;
 use crate::io::fmt::g;
 use crate::io::{self, StagedDir};
-use crate::reduce::clean;
 use std::path::{Path, PathBuf};
 
 /// Writes the staged folder `OUT/<name>/` and commits it.

@@ -17,9 +17,9 @@ pub mod eval;
 pub mod loso;
 
 use crate::error::Error;
-use crate::io::fmt::{g, pct, sig};
+use crate::io::fmt::{g, num, opt, pct, sig};
 use crate::io::metrics::ErrorStats;
-use crate::io::{self, num, StagedDir};
+use crate::io::{self, StagedDir};
 use data::DataSet;
 use eval::{Law, LawResult, State};
 use std::path::PathBuf;
@@ -163,10 +163,10 @@ fn write_laws_csv(
                 num(r.force.median_abs),
                 num(r.force.bias),
                 num(r.force.within_10pct),
-                io::opt(r.loso.as_ref().map(|l| l.mean_abs)),
-                io::opt(r.loso.as_ref().map(|l| l.within_25pct)),
+                opt(r.loso.as_ref().map(|l| l.mean_abs)),
+                opt(r.loso.as_ref().map(|l| l.within_25pct)),
                 r.meets_aim().to_string(),
-                io::opt(w.map(|p| p.v_predicted_m_s)),
+                opt(w.map(|p| p.v_predicted_m_s)),
                 w.map(|p| p.state.label()).unwrap_or("").to_string(),
             ]
         })

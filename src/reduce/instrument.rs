@@ -3,7 +3,9 @@
 //! Figures of another instrument are refused, so that a file never silently means something
 //! else than its author thought.
 
-use super::input::{bad, figure, kinds, required, Parsed};
+use super::figures::{
+    bad, d7928_keys, figure, keys_of, kinds, required, Parsed, HYDROMETER, PIPETTE, SPHERE,
+};
 use super::Request;
 use crate::error::Error;
 use crate::instruments::reduction::d7928::MeasuredHydrometer;
@@ -11,43 +13,11 @@ use crate::instruments::reduction::{
     water_density_kg_m3, HydrometerType, Instrument, ModelFigures, PipetteRegion, Standard,
     TestSetup,
 };
-use crate::io::fmt::sig_trim as sig;
-use crate::io::num;
+use crate::io::fmt::{num, sig_trim};
 use std::collections::BTreeMap;
 use std::f64::consts::PI;
 use std::path::Path;
 
-/// Figures of the hydrometer only (the D7928 dimensions among them).
-const HYDROMETER_KEYS: [&str; 9] = [
-    "standard",
-    "hydrometer",
-    "meniscus_correction",
-    "h_r1_cm",
-    "h_r2_cm",
-    "r1",
-    "r2",
-    "bulb_volume_ml",
-    "hydrometer_bulb_length_cm",
-];
-/// Figures of the pipette only.
-const PIPETTE_KEYS: [&str; 4] = [
-    "pipette_volume_ml",
-    "pipette_depth_cm",
-    "pipette_region",
-    "pipette_radius_cm",
-];
-/// Figures of the buoyancy sphere only.
-const SPHERE_KEYS: [&str; 3] = ["sphere_diameter_mm", "sphere_mass_g", "sphere_depth_cm"];
-/// The D7928-only keys (the hydrometer's measured dimensions and its cylinder).
-const D7928_KEYS: [&str; 7] = [
-    "h_r1_cm",
-    "h_r2_cm",
-    "r1",
-    "r2",
-    "bulb_volume_ml",
-    "cylinder_area_cm2",
-    "cylinder_diameter_cm",
-];
 /// The instruments a readings file may name.
 const INSTRUMENTS: &str = "hydrometer, pipette, buoyancy-sphere";
 /// The section of ASTM D422's cylinder, cm² (the column height's default section).
@@ -228,15 +198,13 @@ pub(super) fn setup(
 
 /// Refuses the figures that belong to another instrument than `kind`.
 fn refuse_foreign(file: &Path, p: &Parsed, kind: &str) -> Result<(), Error> {
-    let groups: [(&str, &[&str]); 3] = [
-        ("hydrometer", &HYDROMETER_KEYS),
-        ("pipette", &PIPETTE_KEYS),
-        ("buoyancy-sphere", &SPHERE_KEYS),
-    ];
-    for (owner, keys) in groups.iter().filter(|(o, _)| *o != kind) {
-        if let Some(k) = keys.iter().find(|k| p.figures.contains_key(**k)) {
-            let line = p.figures[*k].1;
-            let what = if D7928_KEYS.contains(k) {
+    for owner in [HYDROMETER, PIPETTE, SPHERE]
+        .into_iter()
+        .filter(|o| *o != kind)
+    {
+        if let Some(k) = keys_of(owner).find(|k| p.figures.contains_key(*k)) {
+            let line = p.figures[k].1;
+            let what = if d7928_keys().any(|d| d == k) {
                 "a D7928 hydrometer dimension"
             } else {
                 &format!("a {owner} figure")
@@ -428,10 +396,10 @@ fn inside_text(what: &str, r_cm: f64, h_cm: f64) -> String {
     format!(
         "{}–{} cm ({what}, of radius {} cm, within the suspension of height {} cm: \
          column_height_cm, else suspension_volume_ml over the cylinder's section)",
-        sig(r_cm, 4),
-        sig(h_cm - r_cm, 4),
-        sig(r_cm, 4),
-        sig(h_cm, 4)
+        sig_trim(r_cm, 4),
+        sig_trim(h_cm - r_cm, 4),
+        sig_trim(r_cm, 4),
+        sig_trim(h_cm, 4)
     )
 }
 
@@ -472,8 +440,8 @@ fn sphere(file: &Path, p: &Parsed, height_m: f64, s: &mut TestSetup) -> Result<R
                 "line {}: a sphere of {mass_g} g and Ø {d_mm} mm floats (it displaces {} g of \
                  the fluid); allowed: more than {} g",
                 p.figures["sphere_mass_g"].1,
-                sig(displaced_g, 4),
-                sig(displaced_g, 4)
+                sig_trim(displaced_g, 4),
+                sig_trim(displaced_g, 4)
             ),
         ));
     }
@@ -535,7 +503,7 @@ fn hydrometer(
     let measured = match standard {
         Standard::D7928 => Some(measured(file, p, h)?),
         Standard::D422 => {
-            if let Some(k) = D7928_KEYS.iter().find(|k| p.figures.contains_key(**k)) {
+            if let Some(k) = d7928_keys().find(|k| p.figures.contains_key(*k)) {
                 return Err(Error::bad_input(
                     file,
                     Some(k),

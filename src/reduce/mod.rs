@@ -29,6 +29,7 @@
 //! is one error naming the file, the key or the row and column (1-based), and what is allowed;
 //! exit 2, nothing written.
 
+mod figures;
 mod input;
 mod instrument;
 
@@ -39,7 +40,8 @@ use crate::instruments::reduction::{
     reduce, Instrument, LabReading, PipetteRegion, Reduced, TestSetup,
 };
 use crate::io::chart::{scatter_svg, Scale, Series};
-use crate::io::{self, num, StagedDir};
+use crate::io::fmt::{clean, sig_plain};
+use crate::io::{self, StagedDir};
 use std::path::{Path, PathBuf};
 
 /// What `settle reduce` is asked to do.
@@ -103,8 +105,8 @@ pub fn run(req: &Request) -> Result<Report, Error> {
             format!(
                 "percent finer {} % at t = {} min is outside 0–100 %: check dry_mass_g, \
                  specific_gravity and the blank reading",
-                sig(r.percent_finer, 3),
-                sig(r.reading.time_s / 60.0, 4)
+                sig_plain(r.percent_finer, 3),
+                sig_plain(r.reading.time_s / 60.0, 4)
             )
         })
         .collect();
@@ -116,37 +118,6 @@ pub fn run(req: &Request) -> Result<Report, Error> {
         lines,
         warnings,
     })
-}
-
-/// `x` for a CSV or TOML file: [`num`] of x rounded to 12 significant digits, so that float
-/// noise of the arithmetic (0.09893999999999999 for 16.29 − 0.164 × 39 cm) does not show.
-pub fn clean(x: f64) -> String {
-    if !x.is_finite() {
-        return num(x);
-    }
-    num(format!("{x:.11e}").parse().unwrap_or(x))
-}
-
-/// `x` with `n` significant digits, never `-0`.
-pub fn sig(x: f64, n: usize) -> String {
-    if x == 0.0 || !x.is_finite() {
-        return if x.is_finite() {
-            "0".into()
-        } else {
-            format!("{x}")
-        };
-    }
-    let mag = x.abs().log10().floor() as i32;
-    let decimals = (n as i32 - 1 - mag).max(0) as usize;
-    let s = format!("{x:.decimals$}");
-    if s.trim_start_matches('-')
-        .chars()
-        .all(|c| c == '0' || c == '.')
-    {
-        "0".into()
-    } else {
-        s
-    }
 }
 
 /// How the readings were reduced, for the console and the chart: `ASTM D7928, 152H`,
@@ -182,13 +153,13 @@ fn summary(file: &Path, out: &Path, s: &TestSetup, red: &[Reduced]) -> Vec<Strin
         let x = &r.reading;
         lines.push(format!(
             "  {:>9} {:>8} {:>6} {:>7} {:>8} {:>8} {:>8}",
-            sig(x.time_s / 60.0, 4),
-            sig(x.reading, 4),
-            sig(x.blank_reading, 4),
-            sig(x.temperature_c, 3),
-            sig(r.effective_depth_m * 100.0, 3),
-            sig(r.diameter_m * 1e6, 3),
-            sig(r.percent_finer, 3)
+            sig_plain(x.time_s / 60.0, 4),
+            sig_plain(x.reading, 4),
+            sig_plain(x.blank_reading, 4),
+            sig_plain(x.temperature_c, 3),
+            sig_plain(r.effective_depth_m * 100.0, 3),
+            sig_plain(r.diameter_m * 1e6, 3),
+            sig_plain(r.percent_finer, 3)
         ));
     }
     lines

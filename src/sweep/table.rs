@@ -3,7 +3,7 @@
 //! finest stable dt and puts rows in their canonical order.
 
 use crate::dynamics::Integrator;
-use crate::io::num;
+use crate::io::fmt::num;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::collections::BTreeMap;
 use std::io;

@@ -5,10 +5,13 @@
 //! cost guard refuses runs that would take days or more memory than allowed, naming the file,
 //! the key and the estimate.
 
-use crate::common::{assert_exit, settle, tmp, tree};
+use crate::common::{
+    has_checkpoint, random_between, run_measured, settle, test_seed, tmp, tree, try_signal_when,
+    Signalled, HANG,
+};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
-use std::time::{Duration, Instant};
+use std::process::Output;
+use std::time::Duration;
 
 /// Every file under `dir`, relative, sorted.
 fn files(dir: &Path) -> Vec<PathBuf> {
@@ -36,54 +39,46 @@ fn assert_same_outputs(a: &Path, b: &Path) {
     }
 }
 
-fn run(args: &[&str], out: &Path) -> Output {
-    let o = settle()
-        .args(args)
-        .arg("--quiet")
-        .arg("--out")
-        .arg(out)
-        .output()
-        .unwrap();
+/// Runs `settle ARGS --quiet --out OUT` to its end; its output and the CPU time it used.
+fn run(args: &[&str], out: &Path) -> (Output, Duration) {
+    let mut cmd = settle();
+    cmd.args(args).arg("--quiet").arg("--out").arg(out);
+    let (o, cpu) = run_measured(cmd);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    o
+    (o, cpu)
 }
 
-/// A delay drawn from the clock's nanoseconds, in [lo, hi) ms: a different moment every run.
-fn random_delay(lo_ms: u64, hi_ms: u64) -> Duration {
-    let nanos = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .unwrap()
-        .subsec_nanos() as u64;
-    Duration::from_millis(lo_ms + nanos % (hi_ms - lo_ms))
-}
-
-/// Starts a run with checkpoints every 0.2 s, sends `signal` after a random delay in
-/// [lo, hi) ms (once a checkpoint exists), and waits for it.
-fn start_and_signal(args: &[&str], out: &Path, signal: &str, lo_ms: u64, hi_ms: u64) -> Output {
-    let child = settle()
-        .args(args)
-        .args(["--quiet", "--checkpoint-every", "0.2", "--out"])
-        .arg(out)
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let delay = random_delay(lo_ms, hi_ms);
-    let t0 = Instant::now();
-    // Wait for a first checkpoint, then for the random moment.
-    while !out.join("checkpoint/request.toml").exists() && t0.elapsed() < Duration::from_secs(60) {
-        std::thread::sleep(Duration::from_millis(20));
+/// Starts a run with checkpoints every 0.2 s and sends it `signal` (`"KILL"`, `"INT"`) at a
+/// random moment after its first checkpoint: once it has used a fraction in [0.05, 0.4) of
+/// `whole`, the CPU time of the same run uninterrupted (the fraction drawn from
+/// [`test_seed`]). Measured in CPU time, the moment falls inside the run however loaded the
+/// machine. The CPU time of a parallel run varies with the load (by a third between two runs
+/// of the funnel), so a run that ends before the signal is started again (in a fresh folder) at
+/// half the fraction, up to [`ATTEMPTS`] times: the signal always comes while the run is going
+/// and there is a checkpoint to resume from, or the test fails.
+fn start_and_signal(args: &[&str], out: &Path, signal: &str, whole: Duration) -> Signalled {
+    let seed = test_seed();
+    let mut fraction = random_between(seed, 0.05, 0.4);
+    for attempt in 1..=ATTEMPTS {
+        let mut cmd = settle();
+        cmd.args(args)
+            .args(["--quiet", "--checkpoint-every", "0.2", "--out"])
+            .arg(out);
+        let at = whole.mul_f64(fraction);
+        eprintln!("attempt {attempt}: {signal} once the run has a checkpoint and {at:?} of CPU");
+        let ready = |_, used| used >= at && has_checkpoint(out);
+        match try_signal_when(cmd, signal, ready, HANG) {
+            Ok(o) => return o,
+            Err(e) => eprintln!("{e}"),
+        }
+        let _ = std::fs::remove_dir_all(out);
+        fraction /= 2.0;
     }
-    std::thread::sleep(delay.saturating_sub(t0.elapsed()));
-    let pid = child.id().to_string();
-    assert!(Command::new("kill")
-        .args([signal, &pid])
-        .status()
-        .unwrap()
-        .success());
-    eprintln!("{signal} after {:?}", t0.elapsed());
-    child.wait_with_output().unwrap()
+    panic!("the run ended before the {signal} {ATTEMPTS} times (SETTLE_TEST_SEED={seed})");
 }
+
+/// Runs of [`start_and_signal`] before it gives up.
+const ATTEMPTS: u32 = 3;
 
 fn resume(out: &Path) -> Output {
     let o = settle()
@@ -118,11 +113,11 @@ const SEDIMENTATION: [&str; 6] = [
 fn sedimentation_killed_and_resumed_matches_an_uninterrupted_run() {
     let dir = tmp();
     let reference = dir.path().join("ref");
-    let o = run(&SEDIMENTATION, &reference);
+    let (o, whole) = run(&SEDIMENTATION, &reference);
     assert!(o.stderr.is_empty(), "no progress bar when stderr is a pipe");
     let killed = dir.path().join("killed");
-    let o = start_and_signal(&SEDIMENTATION, &killed, "-KILL", 600, 2500);
-    assert_eq!(o.status.code(), None, "killed by a signal");
+    let o = start_and_signal(&SEDIMENTATION, &killed, "KILL", whole);
+    assert_eq!(o.code, None, "killed by a signal");
     assert!(killed
         .join("checkpoint/sedimentation_sample2.state.bin")
         .is_file());
@@ -148,10 +143,10 @@ fn sedimentation_killed_and_resumed_matches_an_uninterrupted_run() {
 fn sedimentation_interrupted_and_resumed_matches_an_uninterrupted_run() {
     let dir = tmp();
     let reference = dir.path().join("ref");
-    run(&SEDIMENTATION, &reference);
+    let (_, whole) = run(&SEDIMENTATION, &reference);
     let stopped = dir.path().join("stopped");
-    let o = start_and_signal(&SEDIMENTATION, &stopped, "-INT", 600, 2500);
-    assert_exit(&o, 130);
+    let o = start_and_signal(&SEDIMENTATION, &stopped, "INT", whole);
+    assert_eq!(o.code, Some(130), "{}", o.stderr);
     let partial = std::fs::read_to_string(stopped.join("sedimentation_sample2/run.toml")).unwrap();
     assert!(partial.contains("status = \"interrupted\""), "{partial}");
     assert!(stopped
@@ -174,27 +169,28 @@ const FUNNEL: [&str; 6] = [
 ];
 
 /// The 68-ball pour (2 repeats in parallel, Rapier worlds serialized with their contacts and
-/// joints), killed at a random moment and resumed: identical files.
+/// joints), killed at a random moment after its first checkpoint and resumed: identical files,
+/// and the run says it was resumed.
 #[test]
 fn funnel_pour_killed_and_resumed_matches_an_uninterrupted_run() {
     let dir = tmp();
     let reference = dir.path().join("ref");
-    run(&FUNNEL, &reference);
+    let (_, whole) = run(&FUNNEL, &reference);
     let killed = dir.path().join("killed");
-    let o = start_and_signal(&FUNNEL, &killed, "-KILL", 300, 1200);
-    if o.status.success() {
-        // The run finished before the signal: nothing to resume, outputs must still match.
-        assert_same_outputs(
-            &reference.join("paste_68_balls"),
-            &killed.join("paste_68_balls"),
-        );
-        return;
-    }
+    let o = start_and_signal(&FUNNEL, &killed, "KILL", whole);
+    assert_eq!(o.code, None, "killed by a signal");
+    assert!(has_checkpoint(&killed), "no checkpoint to resume from");
+    assert!(
+        !killed.join("paste_68_balls").exists(),
+        "finished before the kill"
+    );
     resume(&killed);
     assert_same_outputs(
         &reference.join("paste_68_balls"),
         &killed.join("paste_68_balls"),
     );
+    let run_toml = std::fs::read_to_string(killed.join("paste_68_balls/run.toml")).unwrap();
+    assert!(run_toml.contains("resumed = true"), "{run_toml}");
 }
 
 /// A scenario edited between the kill and the resume is refused: its state would not belong to
@@ -213,10 +209,9 @@ fn resume_refuses_a_changed_scenario() {
         "--dt",
         "1e-4",
     ];
-    let o = start_and_signal(&args, &out, "-INT", 200, 400);
-    if o.status.success() {
-        return; // finished first; nothing to resume
-    }
+    let (_, whole) = run(&args, &dir.path().join("ref"));
+    let o = start_and_signal(&args, &out, "INT", whole);
+    assert_eq!(o.code, Some(130), "{}", o.stderr);
     let text = std::fs::read_to_string(&scenario).unwrap();
     std::fs::write(
         &scenario,

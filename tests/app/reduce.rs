@@ -292,12 +292,12 @@ fn a_folder_settle_did_not_create_is_not_replaced() {
 /// Human and file numbers: significant digits without `-0`, files without float noise.
 #[test]
 fn numbers_print_without_noise() {
-    use settle::reduce::{clean, sig};
-    assert_eq!(sig(0.66, 4), "0.6600");
-    assert_eq!(sig(1252.0, 4), "1252");
-    assert_eq!(sig(-1e-12, 3), "-0.00000000000100");
-    assert_eq!(sig(-0.0004, 1), "-0.0004");
-    assert_eq!(sig(-0.0, 3), "0");
+    use settle::io::fmt::{clean, sig_plain};
+    assert_eq!(sig_plain(0.66, 4), "0.6600");
+    assert_eq!(sig_plain(1252.0, 4), "1252");
+    assert_eq!(sig_plain(-1e-12, 3), "-0.00000000000100");
+    assert_eq!(sig_plain(-0.0004, 1), "-0.0004");
+    assert_eq!(sig_plain(-0.0, 3), "0");
     assert_eq!(clean(0.1629 - 0.00164 * 39.0), "0.09894");
     assert_eq!(clean(55e-6 * 1e6), "55");
     assert_eq!(clean(-0.0), "0");

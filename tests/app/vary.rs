@@ -211,7 +211,7 @@ fn merged_shards_equal_the_unsharded_parameter_sweep() {
 #[cfg(unix)]
 #[test]
 fn sigterm_stops_a_parameter_sweep_and_writes_nothing() {
-    use crate::common::signalled;
+    use crate::common::{signalled, HANG};
     use std::time::Duration;
     let dir = tmp();
     let out = dir.path().join("out");
@@ -228,13 +228,11 @@ fn sigterm_stops_a_parameter_sweep_and_writes_nothing() {
         "--out",
     ])
     .arg(&out);
-    let o = signalled(
-        cmd,
-        "TERM",
-        Duration::from_millis(1500),
-        Duration::from_secs(5),
-    );
-    assert!(o.waited < Duration::from_secs(5), "not stopped within 5 s");
+    // Signalled once the sweep has used 1.5 s of CPU, however loaded the machine. The aim is
+    // about a second from the signal to the exit; 5 s (wall, or CPU on a loaded machine) keeps
+    // the test from failing on a busy runner while still catching a sweep that runs on.
+    let o = signalled(cmd, "TERM", Duration::from_millis(1500), HANG);
+    o.assert_stopped_within(Duration::from_secs(5), "SIGTERM during a parameter sweep");
     assert_eq!(o.code, Some(130), "stderr: {}", o.stderr);
     assert!(o.stderr.contains("interrupted"), "stderr: {}", o.stderr);
     let left: Vec<_> = std::fs::read_dir(&out)

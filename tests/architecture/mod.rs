@@ -3,6 +3,7 @@
 use std::path::{Path, PathBuf};
 
 mod cycles;
+mod formatters;
 mod layers;
 mod shape;
 

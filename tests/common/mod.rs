@@ -2,6 +2,13 @@
 //! the files a run left, the CSV files it wrote and the figures it printed.
 
 pub mod chart;
+pub mod child;
+
+pub use child::{
+    cpu_time, has_checkpoint, random_between, run_measured, test_seed, wait_for, HANG,
+};
+#[cfg(unix)]
+pub use child::{signal_when, signalled, try_signal_when, Signalled};
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -137,61 +144,6 @@ pub fn isolated(test: &str) -> bool {
         "{test} did not run in its own process (wrong path?):\n{out}"
     );
     false
-}
-
-/// What [`signalled`] saw of a run it interrupted.
-#[cfg(unix)]
-pub struct Signalled {
-    /// Exit code (None: killed by a signal, e.g. after `limit`).
-    pub code: Option<i32>,
-    /// Everything the run printed on stderr.
-    pub stderr: String,
-    /// From the signal to the exit (at least `limit` when the run had to be killed).
-    pub waited: std::time::Duration,
-}
-
-/// Spawns `cmd` (stdout discarded, stderr kept), sends it `signal` (`"INT"`, `"TERM"`) after
-/// `delay`, and waits for it at most `limit` after the signal; a run still going then is killed
-/// (SIGKILL), so a test of an old binary that ignores the signal fails instead of hanging. Panics
-/// if the run ended before the signal: the test's scene must be longer.
-#[cfg(unix)]
-pub fn signalled(
-    mut cmd: Command,
-    signal: &str,
-    delay: std::time::Duration,
-    limit: std::time::Duration,
-) -> Signalled {
-    use std::process::Stdio;
-    use std::time::Instant;
-    let mut child = cmd
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("spawn settle");
-    std::thread::sleep(delay);
-    assert!(
-        child.try_wait().expect("wait").is_none(),
-        "the run ended before the signal: make it longer"
-    );
-    let sent = Command::new("kill")
-        .args([format!("-{signal}"), child.id().to_string()])
-        .status()
-        .expect("kill");
-    assert!(sent.success(), "kill -{signal} failed");
-    let t0 = Instant::now();
-    while child.try_wait().expect("wait").is_none() && t0.elapsed() < limit {
-        std::thread::sleep(std::time::Duration::from_millis(20));
-    }
-    let waited = t0.elapsed();
-    if child.try_wait().expect("wait").is_none() {
-        let _ = child.kill();
-    }
-    let out = child.wait_with_output().expect("output");
-    Signalled {
-        code: out.status.code(),
-        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
-        waited,
-    }
 }
 
 /// Asserts that a finished run exited with `code`, showing its stderr otherwise.

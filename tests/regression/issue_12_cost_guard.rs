@@ -7,10 +7,10 @@
 //!
 //! Set `SETTLE_BIN` to run these checks against another binary (e.g. the one before the fix).
 
-use crate::common::{settle, tmp};
+use crate::common::{settle, tmp, wait_for, HANG};
 use std::io::{BufRead, BufReader};
 use std::process::Stdio;
-use std::time::Duration;
+use std::time::Instant;
 
 #[test]
 fn hundred_thousand_spheres_are_refused_for_their_time_series() {
@@ -43,20 +43,13 @@ fn hundred_thousand_spheres_are_refused_for_their_time_series() {
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    // Refused within seconds; the old binary runs for minutes (then it is killed here).
-    let mut waited = Duration::ZERO;
-    let status = loop {
-        if let Some(s) = child.try_wait().unwrap() {
-            break Some(s);
-        }
-        if waited > Duration::from_secs(60) {
-            child.kill().unwrap();
-            child.wait().unwrap();
-            break None;
-        }
-        std::thread::sleep(Duration::from_millis(100));
-        waited += Duration::from_millis(100);
-    };
+    // Refused within seconds; the old binary runs for minutes (it is killed after HANG, which
+    // only catches that).
+    let ended = wait_for(HANG, || child.try_wait().unwrap().is_some());
+    if !ended {
+        child.kill().unwrap();
+    }
+    let status = Some(child.wait().unwrap()).filter(|_| ended);
     let mut err = String::new();
     std::io::Read::read_to_string(child.stderr.as_mut().unwrap(), &mut err).unwrap();
     assert_eq!(status.and_then(|s| s.code()), Some(2), "not refused: {err}");
@@ -94,9 +87,13 @@ fn three_million_particles_show_their_estimate_before_the_run() {
             }
         }
     });
+    // The estimate comes before the run, after reading the scenario: within seconds; HANG (from
+    // the start, not per line) only catches a binary that never prints it.
     let mut seen = Vec::new();
+    let deadline = Instant::now() + HANG;
     let found = loop {
-        match rx.recv_timeout(Duration::from_secs(30)) {
+        let left = deadline.saturating_duration_since(Instant::now());
+        match rx.recv_timeout(left) {
             Ok(l) if l.contains("estimate") => break Some(l),
             Ok(l) => seen.push(l),
             Err(_) => break None,
@@ -104,7 +101,7 @@ fn three_million_particles_show_their_estimate_before_the_run() {
     };
     let _ = child.kill();
     let _ = child.wait();
-    let line = found.unwrap_or_else(|| panic!("no estimate shown within 30 s: {seen:?}"));
+    let line = found.unwrap_or_else(|| panic!("no estimate shown within {HANG:?}: {seen:?}"));
     assert!(line.contains("sedimentation_sample1.toml"), "{line}");
     assert!(line.contains("3.000e6 bodies"), "{line}");
     assert!(

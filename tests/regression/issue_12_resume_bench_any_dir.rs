@@ -6,40 +6,27 @@
 //!
 //! Set `SETTLE_BIN` to run these checks against another binary (e.g. the one before the fix).
 
-use crate::common::{assert_exit, settle, tmp};
+use crate::common::{assert_exit, has_checkpoint, settle, signal_when, tmp, HANG};
 use std::path::Path;
-use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
 
 const REPO: &str = env!("CARGO_MANIFEST_DIR");
 
+#[cfg(unix)]
 #[test]
 fn resume_works_from_another_directory() {
     let dir = tmp();
     let out = dir.path().join("out");
     // Started from the repository with a relative scenario path, stopped by SIGINT.
-    let child = settle()
-        .current_dir(REPO)
+    let mut cmd = settle();
+    cmd.current_dir(REPO)
         .args(["run", "scenarios/sedimentation_sample2.toml"])
         .args(["--set", "sample.particles=20000", "--quiet"])
         .args(["--checkpoint-every", "0.2", "--out"])
-        .arg(&out)
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let t0 = Instant::now();
-    while !out.join("checkpoint/request.toml").exists() && t0.elapsed() < Duration::from_secs(60) {
-        std::thread::sleep(Duration::from_millis(20));
-    }
-    std::thread::sleep(Duration::from_millis(300));
-    assert!(Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap()
-        .success());
-    let o = child.wait_with_output().unwrap();
-    assert_exit(&o, 130);
+        .arg(&out);
+    // Signalled once a first state is checkpointed (however long that takes on a loaded
+    // machine); the run (minutes of CPU) is then far from its end.
+    let o = signal_when(cmd, "INT", |_, _| has_checkpoint(&out), HANG, "resume");
+    assert_eq!(o.code, Some(130), "{}", o.stderr);
     // Resumed from the temporary folder, with a relative DIR.
     let o = settle()
         .current_dir(dir.path())

@@ -1,7 +1,7 @@
 //! The pieces of a report page: escaping, relative links, numbers to significant digits, base64
 //! for inlined PNGs, tables from CSV files, charts inlined, and the page's style sheet.
 
-pub use crate::io::fmt::sig_trim as sig;
+use crate::io::fmt::sig_trim;
 use std::fmt::Write as _;
 
 /// Significant digits of the numbers a report's tables show (the CSV keeps every digit).
@@ -97,7 +97,7 @@ pub fn href(rel: &str) -> String {
 pub fn cell(raw: &str) -> (String, bool) {
     let t = raw.trim();
     match t.parse::<f64>() {
-        Ok(x) if t.contains(['.', 'e', 'E']) && x.is_finite() => (sig(x, TABLE_DIGITS), true),
+        Ok(x) if t.contains(['.', 'e', 'E']) && x.is_finite() => (sig_trim(x, TABLE_DIGITS), true),
         Ok(_) if t.bytes().any(|b| b.is_ascii_digit()) || t.eq_ignore_ascii_case("nan") => {
             (t.trim_start_matches('+').to_string(), true)
         }
@@ -197,16 +197,16 @@ mod tests {
 
     #[test]
     fn numbers_to_significant_digits_without_noise_or_negative_zero() {
-        assert_eq!(sig(0.15468578413257608, 4), "0.1547");
-        assert_eq!(sig(9.190158771602966e7, 4), "9.19e7");
-        assert_eq!(sig(1.3977750784161776e-13, 4), "1.398e-13");
-        assert_eq!(sig(9.999999999999999e-5, 4), "1e-4");
-        assert_eq!(sig(0.001, 4), "0.001");
-        assert_eq!(sig(-0.0, 4), "0");
-        assert_eq!(sig(-0.00001, 1), "-1e-5");
-        assert_eq!(sig(2.064213979, 4), "2.064");
-        assert_eq!(sig(99999.96, 4), "100000");
-        assert_eq!(sig(f64::NAN, 4), "NaN");
+        assert_eq!(sig_trim(0.15468578413257608, 4), "0.1547");
+        assert_eq!(sig_trim(9.190158771602966e7, 4), "9.19e7");
+        assert_eq!(sig_trim(1.3977750784161776e-13, 4), "1.398e-13");
+        assert_eq!(sig_trim(9.999999999999999e-5, 4), "1e-4");
+        assert_eq!(sig_trim(0.001, 4), "0.001");
+        assert_eq!(sig_trim(-0.0, 4), "0");
+        assert_eq!(sig_trim(-0.00001, 1), "-1e-5");
+        assert_eq!(sig_trim(2.064213979, 4), "2.064");
+        assert_eq!(sig_trim(99999.96, 4), "100000");
+        assert_eq!(sig_trim(f64::NAN, 4), "NaN");
     }
 
     #[test]

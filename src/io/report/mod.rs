@@ -10,7 +10,8 @@
 mod html;
 mod table;
 
-pub use html::{base64, esc, sig};
+use crate::io::fmt::sig_trim;
+pub use html::{base64, esc};
 
 use html::{href, inline_svg, scope_ids, svg_title};
 use std::fmt::Write as _;
@@ -230,7 +231,7 @@ fn string_list(v: Option<&toml::Value>) -> Vec<String> {
 fn value_text(v: &toml::Value) -> String {
     match v {
         toml::Value::String(s) => s.clone(),
-        toml::Value::Float(f) => sig(*f, 4),
+        toml::Value::Float(f) => sig_trim(*f, 4),
         toml::Value::Integer(i) => i.to_string(),
         toml::Value::Boolean(b) => if *b { "yes" } else { "no" }.to_string(),
         toml::Value::Array(a) if a.is_empty() => "none".to_string(),
@@ -522,9 +523,9 @@ fn size_text(bytes: u64) -> String {
     let b = bytes as f64;
     match bytes {
         0..=999 => format!("{bytes} B"),
-        1_000..=999_999 => format!("{} kB", sig(b / 1e3, 3)),
-        1_000_000..=999_999_999 => format!("{} MB", sig(b / 1e6, 3)),
-        _ => format!("{} GB", sig(b / 1e9, 3)),
+        1_000..=999_999 => format!("{} kB", sig_trim(b / 1e3, 3)),
+        1_000_000..=999_999_999 => format!("{} MB", sig_trim(b / 1e6, 3)),
+        _ => format!("{} GB", sig_trim(b / 1e9, 3)),
     }
 }
 

@@ -18,7 +18,8 @@
 
 use super::{Geometry, Place, RepeatResult};
 use crate::error::Error;
-use crate::io::{num, StagedDir};
+use crate::io::fmt::num;
+use crate::io::StagedDir;
 use crate::scenario::FunnelPourSpec;
 use crate::scenes::Prepared;
 use plotters::prelude::*;

@@ -13,7 +13,8 @@ use super::fit::heights_within;
 use super::{Comparison, DropOutcome, Setup, Tally};
 use crate::contact::{LawFit, RestitutionLaw};
 use crate::io::chart::{Chart, Curve, Scale, Series};
-use crate::io::{num, write_csv};
+use crate::io::fmt::num;
+use crate::io::write_csv;
 use std::io;
 use std::path::Path;
 

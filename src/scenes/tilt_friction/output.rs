@@ -9,7 +9,8 @@
 use super::TiltOutcome;
 use crate::io::chart::ticks::significant;
 use crate::io::chart::{Chart, Curve, Scale, Series};
-use crate::io::{num, opt, write_csv};
+use crate::io::fmt::{num, opt};
+use crate::io::write_csv;
 use std::io;
 use std::path::Path;
 

@@ -7,6 +7,7 @@ use super::grid::Level;
 use super::table::VaryTable;
 use crate::error::Error;
 use crate::io::chart::{Chart, Scale, Series};
+use crate::io::fmt::g_whole;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -37,27 +38,6 @@ pub fn unit_of(name: &str) -> &'static str {
         .iter()
         .find(|(suffix, _)| name.ends_with(suffix))
         .map_or("-", |(_, unit)| unit)
-}
-
-/// A number with 4 significant digits, as the console prints it (`0.004630`, `1.250e-6`; no
-/// `-0`).
-fn sig(x: f64) -> String {
-    if x.is_nan() {
-        return "NaN".into();
-    }
-    if x == 0.0 {
-        return "0".into();
-    }
-    let a = x.abs();
-    if x.fract() == 0.0 && a < 1e5 {
-        return format!("{}", x as i64);
-    }
-    if (1e-3..1e5).contains(&a) {
-        let d = (3 - a.log10().floor() as i32).max(0) as usize;
-        format!("{x:.d$}")
-    } else {
-        format!("{x:.3e}")
-    }
 }
 
 /// The x scale of an axis's values: log when they are positive and geometric (at least three,
@@ -244,8 +224,8 @@ pub fn console_lines(title: &str, t: &VaryTable) -> Vec<String> {
             let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
             let text = match v.len() {
                 0 => "-".to_string(),
-                _ if lo == hi => sig(lo),
-                n => format!("{} to {} ({n} bodies)", sig(lo), sig(hi)),
+                _ if lo == hi => g_whole(lo),
+                n => format!("{} to {} ({n} bodies)", g_whole(lo), g_whole(hi)),
             };
             line.push_str(&format!(" {q} {text};"));
         }
@@ -270,16 +250,6 @@ mod tests {
         assert_eq!(unit_of("time.dt_s"), "s");
         assert_eq!(unit_of("balls_lost"), "-");
         assert_eq!(unit_of("contacts.friction"), "-");
-    }
-
-    #[test]
-    fn console_numbers_have_four_significant_digits() {
-        assert_eq!(sig(0.00463), "0.004630");
-        assert_eq!(sig(12.5), "12.50");
-        assert_eq!(sig(4.0), "4");
-        assert_eq!(sig(-0.0), "0");
-        assert_eq!(sig(1.25e-6), "1.250e-6");
-        assert_eq!(sig(123456.0), "1.235e5");
     }
 
     #[test]

@@ -73,12 +73,12 @@ impl Level {
     }
 }
 
-/// As written to `vary.csv` and the console: a number as [`crate::io::num`] writes it, a text
+/// As written to `vary.csv` and the console: a number as [`crate::io::fmt::num`] writes it, a text
 /// as is.
 impl fmt::Display for Level {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Level::Num(x) => f.write_str(&crate::io::num(*x)),
+            Level::Num(x) => f.write_str(&crate::io::fmt::num(*x)),
             Level::Text(t) => f.write_str(t),
         }
     }

@@ -7,7 +7,7 @@
 use super::super::table::{Row, Status};
 use super::super::targets::has_reference;
 use super::grid::Level;
-use crate::io::num;
+use crate::io::fmt::num;
 use std::io;
 use std::path::Path;
 

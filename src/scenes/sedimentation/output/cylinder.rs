@@ -4,10 +4,10 @@
 //! with respect to the total mass", averaged over bands of layers); the deposited bed is drawn
 //! apart, in brown, to its height, with its own mass fraction.
 
-use super::plot::{err, sig, time_text};
+use super::plot::{err, time_text};
 use super::Snapshot;
 use crate::fluid::sphere_volume_m3;
-use crate::io::num;
+use crate::io::fmt::{num, sig_shortest};
 use crate::scenes::sedimentation::setup::Setup;
 use crate::scenes::sedimentation::state::{State, PICTURE_BANDS};
 use plotters::prelude::*;
@@ -140,8 +140,8 @@ pub fn write_svg(
             .disable_mesh()
             .x_labels(3)
             .y_labels(10)
-            .x_label_formatter(&|v| sig(*v, 3))
-            .y_label_formatter(&|v| sig(-*v, 3))
+            .x_label_formatter(&|v| sig_shortest(*v, 3))
+            .y_label_formatter(&|v| sig_shortest(-*v, 3))
             .label_style(("sans-serif", 13))
             .axis_desc_style(("sans-serif", 14))
             .x_desc("width (cm)")
@@ -195,7 +195,7 @@ fn draw_scale<DB: DrawingBackend>(
         .disable_mesh()
         .disable_x_axis()
         .y_labels(6)
-        .y_label_formatter(&|v| sig(*v, 3))
+        .y_label_formatter(&|v| sig_shortest(*v, 3))
         .label_style(("sans-serif", 13))
         .axis_desc_style(("sans-serif", 14))
         .y_desc("suspended mass fraction per band (%)")
@@ -216,7 +216,7 @@ fn draw_scale<DB: DrawingBackend>(
         .map_err(err)?;
     let band_mm = height_m / PICTURE_BANDS as f64 * 1e3;
     let mut lines = vec![
-        format!("band: {} mm of depth;", sig(band_mm, 3)),
+        format!("band: {} mm of depth;", sig_shortest(band_mm, 3)),
         "fraction of the sample's mass".to_string(),
         "held by suspended grains.".to_string(),
         String::new(),
@@ -226,8 +226,8 @@ fn draw_scale<DB: DrawingBackend>(
         format!(
             "{}: {} cm high, {} % of the mass",
             time_text(p.time_s).trim_start_matches("t = "),
-            sig(p.bed_height_m * 100.0, 3),
-            sig(p.bed_fraction * 100.0, 3)
+            sig_shortest(p.bed_height_m * 100.0, 3),
+            sig_shortest(p.bed_fraction * 100.0, 3)
         )
     }));
     notes

@@ -6,7 +6,8 @@
 
 use super::charts;
 use crate::io::chart::{Chart, Curve, Scale, Series};
-use crate::io::{num, opt, StagedDir};
+use crate::io::fmt::{num, opt};
+use crate::io::StagedDir;
 use crate::sample::Distribution;
 use crate::scenario::{SampleSpec, Scenario};
 use crate::scenes::sedimentation::instruments::{BulbRow, InstrumentKind, InstrumentReading};

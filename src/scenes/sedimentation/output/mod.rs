@@ -15,7 +15,8 @@ use super::instruments::{BulbRow, InstrumentReading};
 use super::setup::{limiting_diameter_m, Setup};
 use super::state::{concentration, Profile, State};
 use crate::error::Error;
-use crate::io::{num, StagedDir};
+use crate::io::fmt::num;
+use crate::io::StagedDir;
 use crate::scenario::{Physics, SampleSpec, Scenario};
 use crate::scenes::SceneReport;
 use std::io;
@@ -362,7 +363,10 @@ fn write_max_diameter(path: &Path, rows: &[charts::MaxDiameterRow]) -> io::Resul
 
 /// The times of the panels as a title says them: `60, 300 and 900 s`.
 fn times_text(times_s: &[f64]) -> String {
-    let t: Vec<String> = times_s.iter().map(|t| plot::sig(*t, 6)).collect();
+    let t: Vec<String> = times_s
+        .iter()
+        .map(|t| crate::io::fmt::sig_shortest(*t, 6))
+        .collect();
     match t.split_last() {
         None => String::new(),
         Some((last, [])) => format!("{last} s"),

@@ -1,7 +1,7 @@
 //! Particle files of a sedimentation run: the `snapshots/` (CSV and VTK PolyData); the picture
 //! of the cylinder (seed Fig. 11) is [`super::cylinder`].
 
-use crate::io::num;
+use crate::io::fmt::num;
 use crate::scenes::sedimentation::state::State;
 use std::io::Write;
 use std::path::Path;

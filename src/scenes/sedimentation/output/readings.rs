@@ -37,7 +37,8 @@
 
 use crate::instruments::hydrometer::{Hydrometer, HydrometerReading};
 use crate::instruments::reduction::{d7928, water_viscosity_pa_s};
-use crate::io::{num, write_atomic, StagedDir};
+use crate::io::fmt::{clean_reading, num};
+use crate::io::{write_atomic, StagedDir};
 use crate::scenario::Scenario;
 use crate::scenes::sedimentation::instruments::{
     layered_field, InstrumentKind, InstrumentReading, InstrumentSet,
@@ -45,15 +46,6 @@ use crate::scenes::sedimentation::instruments::{
 use crate::scenes::sedimentation::setup::Setup;
 use crate::scenes::sedimentation::state::{profile, Profile};
 use std::io;
-
-/// `x` to 10 significant digits (and 0 below 1e-9 in magnitude: the bisection's noise of a
-/// reading of clear fluid), so that the file has no float noise.
-fn clean(x: f64) -> String {
-    if x.abs() < 1e-9 {
-        return "0".into();
-    }
-    num(format!("{x:.9e}").parse().unwrap_or(x))
-}
 
 /// Temperature (°C) at which water has the viscosity `mu` (Pa s), by bisection over 0–40 °C
 /// of [`water_viscosity_pa_s`] (None outside that range).
@@ -309,19 +301,19 @@ impl Head<'_> {
             self.name,
             self.sample,
             env!("CARGO_PKG_VERSION"),
-            clean(self.dry_mass_g),
-            clean(self.volume_ml),
-            clean(self.gs),
+            clean_reading(self.dry_mass_g),
+            clean_reading(self.volume_ml),
+            clean_reading(self.gs),
         );
         if let Some(h) = measured {
             let centre = 0.5 * h.spec.bulb_length_m;
             t.push_str(&format!(
                 "# h_r1_cm = {}\n# r1 = -5\n# h_r2_cm = {}\n# r2 = 60\n\
                  # bulb_volume_ml = {}\n# cylinder_area_cm2 = {}\n",
-                clean((centre + h.mark_m(-5.0)) * 1e2),
-                clean((centre + h.mark_m(60.0)) * 1e2),
-                clean(h.bulb_volume_m3() * 1e6),
-                clean(h.spec.astm_cylinder_area_m2 * 1e4),
+                clean_reading((centre + h.mark_m(-5.0)) * 1e2),
+                clean_reading((centre + h.mark_m(60.0)) * 1e2),
+                clean_reading(h.bulb_volume_m3() * 1e6),
+                clean_reading(h.spec.astm_cylinder_area_m2 * 1e4),
             ));
         }
         t.push_str(&self.model_lines(num));
@@ -330,7 +322,7 @@ impl Head<'_> {
                 "# not read at {} min: the run kept no state at those times\n",
                 missing
                     .iter()
-                    .map(|x| clean(*x))
+                    .map(|x| clean_reading(*x))
                     .collect::<Vec<_>>()
                     .join(", ")
             ));
@@ -339,9 +331,9 @@ impl Head<'_> {
         for (time_s, r) in rows {
             t.push_str(&format!(
                 "{},{},{}\n",
-                clean(time_s / 60.0),
-                clean(r.reading),
-                clean(self.t_c)
+                clean_reading(time_s / 60.0),
+                clean_reading(r.reading),
+                clean_reading(self.t_c)
             ));
         }
         t

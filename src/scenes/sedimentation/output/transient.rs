@@ -16,12 +16,12 @@
 //! (313.4e-5 s = τ ln 100) follows it. The other five rows (104.0, 26.0, 4.16, 1.04, 0.26 e-5 s)
 //! are τ ln 20, the time to 95 %: at 99 % they would read 160.0, 40.0, 6.40, 1.60 and 0.40e-5 s.
 
-use super::plot::sig;
 use crate::dynamics::{advance, Integrator};
 use crate::fluid::newtonian::{reynolds, stokes_response_time_s};
 use crate::fluid::{sphere_mass_kg, DragLaw, SphereDrag};
 use crate::io::chart::{scatter_svg, Chart, Curve, Scale, Series};
-use crate::io::{num, StagedDir};
+use crate::io::fmt::{num, sig_shortest};
+use crate::io::StagedDir;
 use nalgebra::SVector;
 use std::io;
 
@@ -310,8 +310,8 @@ pub fn write_all(stage: &StagedDir, name: &str, k: Grains, diameters_m: &[f64]) 
         .map(|(i, t)| Series {
             label: format!(
                 "d = {} µm (v_t = {} mm/s)",
-                sig(t.diameter_m * 1e6, 3),
-                sig(t.terminal_m_s * 1e3, 3)
+                sig_shortest(t.diameter_m * 1e6, 3),
+                sig_shortest(t.terminal_m_s * 1e3, 3)
             ),
             points: t
                 .curve
