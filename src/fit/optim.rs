@@ -7,6 +7,8 @@
 //! (golden section with parabolic steps); Nelder, J. A. & Mead, R. (1965), *Comput. J.* 7, 308
 //! (reflection 1, expansion 2, contraction ½, shrink ½).
 
+use crate::numerics::{try_bisect, Bisection, Stop};
+
 /// The outcome of a minimisation.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Minimum {
@@ -249,18 +251,8 @@ pub fn crossing<E>(
     if f(outside)? < level {
         return Ok(None);
     }
-    let (mut a, mut b) = (inside, outside);
-    for _ in 0..max_evals {
-        if (b - a).abs() <= xtol {
-            break;
-        }
-        let m = 0.5 * (a + b);
-        if f(m)? < level {
-            a = m;
-        } else {
-            b = m;
-        }
-    }
+    let rule = Bisection::until(Stop::Width(xtol), max_evals);
+    let (a, b) = try_bisect(inside, outside, rule, |m| Ok(f(m)? < level))?;
     Ok(Some(0.5 * (a + b)))
 }
 

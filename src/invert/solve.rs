@@ -18,6 +18,7 @@
 //! cross-validation (Golub, Heath & Wahba 1979: the λ minimising m χ²/(m − tr H)²), H the
 //! influence matrix of the free variables ([`Linear::solve`]).
 
+use crate::numerics::{bisect, Bisection};
 use nalgebra::{DMatrix, DVector};
 
 /// One linear least-squares problem: readings b with standard deviations σ, design J
@@ -176,21 +177,16 @@ impl Linear {
             return None;
         }
         let extreme = |sign: f64| {
-            let (mut lo, mut hi) = ((1e-8 * s).ln(), (1e12 * s).ln());
+            let (lo, hi) = ((1e-8 * s).ln(), (1e12 * s).ln());
             if at(hi.exp(), sign).0 <= chi2_max {
                 return at(hi.exp(), sign).1;
             }
             if at(lo.exp(), sign).0 > chi2_max {
                 return at(0.0, sign).1;
             }
-            for _ in 0..48 {
-                let mid = 0.5 * (lo + hi);
-                if at(mid.exp(), sign).0 <= chi2_max {
-                    lo = mid;
-                } else {
-                    hi = mid;
-                }
-            }
+            let (lo, _) = bisect(lo, hi, Bisection::halvings(48), |mid| {
+                at(mid.exp(), sign).0 <= chi2_max
+            });
             at(lo.exp(), sign).1
         };
         Some((extreme(1.0), extreme(-1.0)))
