@@ -22,6 +22,7 @@ pub struct Minimum {
     pub converged: bool,
 }
 
+// Kept over argmin's BrentOpt (same runs, same x): docs/validation/numerics.md.
 /// Brent's method on `[lo, hi]`: the minimum of `f` to within `xtol` (absolute, in x) using at
 /// most `max_evals` evaluations. An error of `f` stops the search and is returned.
 pub fn brent<E>(
@@ -107,6 +108,7 @@ pub fn brent<E>(
     })
 }
 
+// Kept over argmin's NelderMead (stops on χ² spread, unbounded): docs/validation/numerics.md.
 /// Nelder–Mead on the box `lo[i] ≤ x[i] ≤ hi[i]`, worked in unit coordinates (each parameter
 /// scaled to [0, 1], points clamped to the box), from the box's centre with a simplex of side
 /// ¼; stops when every vertex is within `xtol_unit` of the best in every unit coordinate, or

@@ -252,6 +252,7 @@ fn kkt_matrix(q: &DMatrix<f64>, free: &[usize]) -> DMatrix<f64> {
     k
 }
 
+// Kept over clarabel (exact, 6× faster, no failures): docs/validation/numerics.md.
 /// min ½ wᵀQw − cᵀw subject to w ≥ 0 and Σw = 1 (Q positive definite on {Σw = 0}), by the
 /// primal active-set method: solve the equality-constrained problem on the free set, step back
 /// to feasibility when a free variable would go negative (freeing it no more), and free the
