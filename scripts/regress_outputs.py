@@ -5,7 +5,13 @@
     scripts/regress_outputs.py compare OLD NEW        # compare two such folders
 
 `run` runs every file in scenarios/ one at a time (sedimentation at
---set sample.particles=20000, the funnel at --set repeats.count=2) into OUTDIR/<file stem>/.
+--set sample.particles=20000, the funnel at --set repeats.count=2) into OUTDIR/<file stem>/,
+then the other commands on fixed inputs into OUTDIR/cmd/<case>/ (see COMMANDS): `reduce` on
+each file of data/lab/, `invert` on the readings of data/invert/ (ideal Stokes and full model,
+once with --bounds), `laws`, `fit` (the worked cases of docs/commands/fit.md; the restitution
+fits at dt = 1e-4 s to stay short; `fit slump` prints only, so its lines go to slump.csv),
+and `sweep` (a dt sweep and a --vary sweep). About a minute and a half on an idle machine
+beside the scenarios.
 `compare` reads every CSV present in both trees and compares every column both files have:
 numbers within 1e-9 relative (absolute 1e-300 floor; NaN equals NaN), text exactly. Files
 and columns present on one side only are listed, not failed. Exit 1 on any difference.
@@ -22,6 +28,120 @@ OVERRIDES = {
     "paste_68_balls": ["--set", "repeats.count=2"],
 }
 SKIP_COLUMNS = ("wall_time_s", "wall_s", "elapsed_s")
+
+
+PASTE_M = [
+    "file,column,row,value,sigma",
+    "summary.csv,settling_distance_m,id=d12.6mm-H255mm,0.05063,5e-4",
+]
+REBOUND_M = [
+    "file,column,row,value",
+    "summary.csv,rebound_height_m,drop_height_m=0.095,0.0370",
+    "summary.csv,rebound_height_m,drop_height_m=0.188,0.0720",
+    "summary.csv,rebound_height_m,drop_height_m=0.252,0.0909",
+    "summary.csv,rebound_height_m,drop_height_m=0.318,0.1180",
+    "summary.csv,rebound_height_m,drop_height_m=0.398,0.1469",
+]
+INVERT_SETS = ["sample2_full", "sample2_full_contacts", "sample4_full", "sample4_full_contacts"]
+READINGS = ["readings.csv", "readings_d7928.csv", "readings_pipette.csv", "readings_sphere.csv"]
+
+
+def commands(root, cmd):
+    """(case, argv after the binary, stdout file or None): the command cases of `run`."""
+    lab = os.path.join(root, "data", "lab")
+    scen = os.path.join(root, "scenarios")
+    out = []
+    # reduce: each laboratory file by the standard it allows (the D422 files lack the
+    # hydrometer dimensions D7928 needs; the D7928 file's readings are refused by D422).
+    for name, std in [
+        ("atech_d422_percent_finer", "d422"),
+        ("envalysis_clayloam_d422", "d422"),
+        ("soiltestr_protocol8_d7928", "d7928"),
+    ]:
+        case = f"reduce_{name}_{std}"
+        f = os.path.join(lab, name + ".csv")
+        out.append((case, ["reduce", f, "--standard", std, "--out", os.path.join(cmd, case)], None))
+    # invert: the four instruments of each reference run together, both models.
+    for d in INVERT_SETS:
+        files = [os.path.join(root, "data", "invert", d, r) for r in READINGS]
+        for model in ("ideal-stokes", "full"):
+            case = f"invert_{d}_{model}"
+            argv = ["invert"] + files + ["--model", model, "--out", os.path.join(cmd, case)]
+            out.append((case, argv, None))
+    files = [os.path.join(root, "data", "invert", "sample2_full", r) for r in READINGS]
+    case = "invert_sample2_full_bounds"
+    out.append((case, ["invert"] + files + ["--bounds", "--out", os.path.join(cmd, case)], None))
+    out.append(("laws", ["laws", "--out", os.path.join(cmd, "laws")], None))
+    # run with the history force of Mei & Adrian (its kernel is fitted by NNLS; the scenarios
+    # have the history force off).
+    for reyn in ("terminal", "current"):
+        case = f"run_ten_cate_e4_mei_adrian_{reyn}"
+        argv = ["run", os.path.join(scen, "ten_cate_e4.toml"), "--set", "transient.history=mei-adrian",
+                "--set", f"transient.history_reynolds={reyn}", "--out", os.path.join(cmd, case), "-q"]
+        out.append((case, argv, None))
+    # fit: the worked cases of docs/commands/fit.md.
+    paste = os.path.join(cmd, "paste_measured.csv")
+    rebound = os.path.join(cmd, "rebound_measured.csv")
+    case = "fit_slump"
+    argv = ["fit", "slump", "--height-mm", "152", "--slump-mm", "102,103,100", "--density", "1843"]
+    out.append((case, argv, os.path.join(cmd, case, "slump.csv")))
+    case = "fit_paste_eta_b"
+    argv = ["fit", os.path.join(scen, "paste_single_ball.toml"),
+            "--set", "release.fall_heights_m=[0.255]",
+            "--fit", "fluid.plastic_viscosity_pa_s=0.1:3", "--measured", paste,
+            "--out", os.path.join(cmd, case), "-q"]
+    out.append((case, argv, None))
+    case = "fit_restitution_brent"
+    argv = ["fit", os.path.join(scen, "restitution_drop.toml"), "--set", "time.dt_s=1e-4",
+            "--set", "contacts.restitution_exponent=0", "--fit", "contacts.restitution=0.4:0.8",
+            "--measured", rebound, "--out", os.path.join(cmd, case), "-q"]
+    out.append((case, argv, None))
+    case = "fit_restitution_nelder_mead"
+    argv = ["fit", os.path.join(scen, "restitution_drop.toml"), "--set", "time.dt_s=1e-4",
+            "--fit", "contacts.restitution=0.5:0.8", "--fit", "contacts.restitution_exponent=0:0.2",
+            "--measured", rebound, "--out", os.path.join(cmd, case), "-q"]
+    out.append((case, argv, None))
+    # sweep: a dt sweep (the scenario's [sweep] table) and a parameter sweep.
+    case = "sweep_valentik_susp1"
+    argv = ["sweep", os.path.join(scen, "valentik_susp1.toml"), "--out", os.path.join(cmd, case), "-q"]
+    out.append((case, argv, None))
+    case = "sweep_stokes_single_dt"
+    argv = ["sweep", os.path.join(scen, "stokes_single.toml"), "--dt-range", "1e-5:1e-3",
+            "--per-decade", "2", "--out", os.path.join(cmd, case), "-q"]
+    out.append((case, argv, None))
+    case = "sweep_vary_stokes_single"
+    argv = ["sweep", os.path.join(scen, "stokes_single.toml"),
+            "--vary", "fluid.viscosity_pa_s=log:1e-3:1e-2:3", "--vary", "drag.law=stokes,dallavalle",
+            "--out", os.path.join(cmd, case), "-q"]
+    out.append((case, argv, None))
+    case = "sweep_vary_valentik_susp1"
+    argv = ["sweep", os.path.join(scen, "valentik_susp1.toml"),
+            "--vary", "fluid.yield_stress_pa=20:40:3", "--out", os.path.join(cmd, case), "-q"]
+    out.append((case, argv, None))
+    return out, {paste: PASTE_M, rebound: REBOUND_M}
+
+
+def run_commands(binary, root, outdir):
+    cmd = os.path.join(outdir, "cmd")
+    os.makedirs(cmd, exist_ok=True)
+    cases, inputs = commands(root, cmd)
+    for path, lines in inputs.items():
+        with open(path, "w") as f:
+            f.write("\n".join(lines) + "\n")
+    for case, argv, stdout in cases:
+        print(" ".join([binary] + argv), flush=True)
+        if stdout is None:
+            r = subprocess.run([binary] + argv)
+        else:
+            r = subprocess.run([binary] + argv, capture_output=True, text=True)
+            os.makedirs(os.path.dirname(stdout), exist_ok=True)
+            with open(stdout, "w", newline="") as f:
+                w = csv.writer(f)
+                w.writerow(["line"])
+                for line in r.stdout.splitlines():
+                    w.writerow([line])
+        if r.returncode != 0:
+            print(f"  exit {r.returncode}", flush=True)
 
 
 def run(binary, outdir):
@@ -41,6 +161,7 @@ def run(binary, outdir):
         r = subprocess.run(cmd)
         if r.returncode != 0:
             print(f"  exit {r.returncode}", flush=True)
+    run_commands(binary, root, outdir)
 
 
 def number(s):

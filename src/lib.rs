@@ -11,7 +11,7 @@
 //!
 //! | layer | modules | what |
 //! |---|---|---|
-//! | 0 infrastructure | [`error`], [`io`], [`checkpoint`], [`interrupt`], [`progress`] | the error type and exit codes, staged output folders, atomic writes, charts, checkpoints, interruption, progress bars; no domain types |
+//! | 0 infrastructure | [`error`], [`numerics`], [`io`], [`checkpoint`], [`interrupt`], [`progress`] | the error type and exit codes, bracketing root finders, staged output folders, atomic writes, charts, checkpoints, interruption, progress bars; no domain types |
 //! | 1 physics | [`fluid`], [`contact`], [`dynamics`], [`sample`], [`instruments`] | pure functions with their equations: no I/O, no Rapier |
 //! | 2 engine | [`engine`] | the Rapier worlds |
 //! | 3 scenario | [`scenario`] | schema, loading, validation, input files, cost |
@@ -23,6 +23,7 @@ pub mod checkpoint;
 pub mod error;
 pub mod interrupt;
 pub mod io;
+pub mod numerics;
 pub mod progress;
 // Layer 1: physics.
 pub mod contact;

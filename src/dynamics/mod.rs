@@ -20,6 +20,7 @@ pub mod terminal;
 pub mod transient;
 
 use crate::fluid::SphereDrag;
+use crate::numerics::safeguarded_newton;
 use nalgebra::SVector;
 pub use stability::{DtBasis, Monitor, Unstable};
 
@@ -314,42 +315,34 @@ pub fn exponential_dallavalle_1d(
         return None;
     }
     // Safeguarded Newton on h(s) = s + kk F(s) − |p| over [0, |p|] (h(s) ≥ s).
-    let (mut lo, mut hi) = (0.0, target);
+    let (lo, hi) = (0.0, target);
     let guess = v0.abs();
-    let mut s = if guess > lo && guess < hi {
+    let start = if guess > lo && guess < hi {
         guess
     } else {
         0.5 * (lo + hi)
     };
-    let (mut at, mut f, mut k, mut k2) = (s, 0.0, 0.0, 0.0);
-    for _ in 0..200 {
-        (f, k, k2) = law(s);
-        at = s;
-        let r = s + kk * f - target;
-        if r == 0.0 {
-            break;
-        }
-        if r > 0.0 {
-            hi = s;
-        } else {
-            lo = s;
-        }
-        let slope = 1.0 + kk * k;
-        let mut next = s - r / slope;
-        let newton = next > lo && next < hi && next.is_finite();
-        if !newton {
-            next = 0.5 * (lo + hi);
-        }
-        let c = (next - s).abs();
-        let left = (kk * k2).abs() / (2.0 * slope) * c * c;
-        let done = (newton && c <= 1e-6 * s && left <= 1e-18 * s)
-            || c <= 4.0 * f64::EPSILON * s.abs().max(f64::MIN_POSITIVE)
-            || hi - lo <= 4.0 * f64::EPSILON * hi;
-        s = next;
-        if done {
-            break;
-        }
-    }
+    let end = safeguarded_newton(
+        lo,
+        hi,
+        start,
+        200,
+        |s| {
+            let (f, k, k2) = law(s);
+            (s + kk * f - target, 1.0 + kk * k, (f, k, k2))
+        },
+        |it| {
+            let (s, k2) = (it.at, it.extra.2);
+            let c = (it.next - s).abs();
+            let left = (kk * k2).abs() / (2.0 * it.slope) * c * c;
+            (it.newton && c <= 1e-6 * s && left <= 1e-18 * s)
+                || c <= 4.0 * f64::EPSILON * s.abs().max(f64::MIN_POSITIVE)
+                || it.hi - it.lo <= 4.0 * f64::EPSILON * it.hi
+        },
+    );
+    let s = end.x;
+    let last = end.last?;
+    let (mut at, (mut f, mut k, mut k2)) = (last.at, last.extra);
     if !(s > 0.0 && s.is_finite()) {
         return None;
     }

@@ -13,6 +13,7 @@
 
 use super::{phi12, DallavalleGrain, PHI_SATURATED};
 use crate::fluid::newtonian::dallavalle_di_felice_derivatives;
+use crate::numerics::safeguarded_newton;
 
 /// Lowest voidage tabulated: below it the step falls back to the Newton solve.
 pub const TABLE_VOIDAGE_MIN: f64 = 0.8;
@@ -58,29 +59,21 @@ pub fn terminal_state(g: &DallavalleGrain) -> (f64, f64, f64) {
     while law(hi).0 < w {
         hi *= 2.0;
     }
-    let mut lo = 0.0;
-    let mut u = hi;
-    for _ in 0..200 {
-        let (f, k, _) = law(u);
-        let r = f - w;
-        if r == 0.0 {
-            break;
-        }
-        if r > 0.0 {
-            hi = u;
-        } else {
-            lo = u;
-        }
-        let mut next = u - r / k;
-        if !(next > lo && next < hi) {
-            next = 0.5 * (lo + hi);
-        }
-        let done = (next - u).abs() <= f64::EPSILON * u || hi - lo <= 2.0 * f64::EPSILON * hi;
-        u = next;
-        if done {
-            break;
-        }
-    }
+    let end = safeguarded_newton(
+        0.0,
+        hi,
+        hi,
+        200,
+        |u| {
+            let (f, k, _) = law(u);
+            (f - w, k, ())
+        },
+        |it| {
+            (it.next - it.at).abs() <= f64::EPSILON * it.at
+                || it.hi - it.lo <= 2.0 * f64::EPSILON * it.hi
+        },
+    );
+    let u = end.x;
     let (_, k, c) = law(u);
     (u, k, c)
 }

@@ -7,6 +7,8 @@
 //! (golden section with parabolic steps); Nelder, J. A. & Mead, R. (1965), *Comput. J.* 7, 308
 //! (reflection 1, expansion 2, contraction ½, shrink ½).
 
+use crate::numerics::{try_bisect, Bisection, Stop};
+
 /// The outcome of a minimisation.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Minimum {
@@ -20,6 +22,7 @@ pub struct Minimum {
     pub converged: bool,
 }
 
+// Kept over argmin's BrentOpt (same runs, same x): docs/validation/numerics.md.
 /// Brent's method on `[lo, hi]`: the minimum of `f` to within `xtol` (absolute, in x) using at
 /// most `max_evals` evaluations. An error of `f` stops the search and is returned.
 pub fn brent<E>(
@@ -105,6 +108,7 @@ pub fn brent<E>(
     })
 }
 
+// Kept over argmin's NelderMead (stops on χ² spread, unbounded): docs/validation/numerics.md.
 /// Nelder–Mead on the box `lo[i] ≤ x[i] ≤ hi[i]`, worked in unit coordinates (each parameter
 /// scaled to [0, 1], points clamped to the box), from the box's centre with a simplex of side
 /// ¼; stops when every vertex is within `xtol_unit` of the best in every unit coordinate, or
@@ -249,18 +253,8 @@ pub fn crossing<E>(
     if f(outside)? < level {
         return Ok(None);
     }
-    let (mut a, mut b) = (inside, outside);
-    for _ in 0..max_evals {
-        if (b - a).abs() <= xtol {
-            break;
-        }
-        let m = 0.5 * (a + b);
-        if f(m)? < level {
-            a = m;
-        } else {
-            b = m;
-        }
-    }
+    let rule = Bisection::until(Stop::Width(xtol), max_evals);
+    let (a, b) = try_bisect(inside, outside, rule, |m| Ok(f(m)? < level))?;
     Ok(Some(0.5 * (a + b)))
 }
 

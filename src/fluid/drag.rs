@@ -12,6 +12,7 @@ use super::bingham::{
 use super::bingham::{plastic, PlasticLaw, YieldFluid};
 use super::buoyancy::sphere_area_m2;
 use super::newtonian::{cd_dallavalle, di_felice_factor, drag_from_cd_n, reynolds, CdCorrelation};
+use crate::numerics::safeguarded_newton;
 use std::f64::consts::PI;
 
 /// Which drag law acts on a sphere, with the fluid properties it needs.
@@ -496,40 +497,29 @@ impl SphereDrag {
         &self,
         f: &dyn Fn(f64) -> f64,
         df: impl Fn(f64) -> f64,
-        mut lo: f64,
-        mut hi: f64,
+        lo: f64,
+        hi: f64,
         target: f64,
         guess: f64,
     ) -> Solved {
-        let mut s = if guess > lo && guess < hi {
+        let start = if guess > lo && guess < hi {
             guess
         } else {
             0.5 * (lo + hi)
         };
-        for _ in 0..200 {
-            let r = f(s) - target;
-            if r == 0.0 {
-                break;
-            }
-            if r > 0.0 {
-                hi = s;
-            } else {
-                lo = s;
-            }
-            let slope = df(s);
-            let mut next = s - r / slope;
-            if !(next > lo && next < hi && next.is_finite()) {
-                next = 0.5 * (lo + hi);
-            }
-            let done = (next - s).abs() <= 4.0 * f64::EPSILON * s.abs().max(f64::MIN_POSITIVE)
-                || hi - lo <= 4.0 * f64::EPSILON * hi;
-            s = next;
-            if done {
-                break;
-            }
-        }
+        let end = safeguarded_newton(
+            lo,
+            hi,
+            start,
+            200,
+            |s| (f(s) - target, df(s), ()),
+            |it| {
+                (it.next - it.at).abs() <= 4.0 * f64::EPSILON * it.at.abs().max(f64::MIN_POSITIVE)
+                    || it.hi - it.lo <= 4.0 * f64::EPSILON * it.hi
+            },
+        );
         Solved {
-            speed_m_s: s,
+            speed_m_s: end.x,
             at_jump: false,
         }
     }

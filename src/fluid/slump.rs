@@ -14,6 +14,8 @@
 //! kg/m³, slumps 102, 103, 100 mm: printed 135, 131, 143 Pa, mean 136 Pa; recomputing from
 //! A1–A3 with g = 9.81 m/s² gives 136.6, 132.7, 144.6 Pa).
 
+use crate::numerics::{bisect, Bisection, Stop};
+
 /// Gravitational acceleration of the slump calculator, m/s² (the value that reproduces
 /// f-EDEM's Table A1 to its printed rounding).
 pub const G_M_S2: f64 = 9.81;
@@ -36,18 +38,8 @@ pub fn dimensionless_yield_stress(slump_dimensionless: f64) -> Option<f64> {
         return None;
     }
     // x = 2τ′ in (0, 1]; S′(x) decreases from 1 to 0.
-    let (mut lo, mut hi) = (0.0_f64, 1.0_f64);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if mid == lo || mid == hi {
-            break;
-        }
-        if dimensionless_slump(0.5 * mid) > s {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
+    let rule = Bisection::until(Stop::Adjacent, 200);
+    let (lo, hi) = bisect(0.0, 1.0, rule, |mid| dimensionless_slump(0.5 * mid) > s);
     Some(0.25 * (lo + hi))
 }
 

@@ -37,6 +37,7 @@
 //! density over the submerged volume (bulb and stem), not the density at the bulb centre.
 
 use super::{Analysis, LayeredField, Point};
+use crate::numerics::{bisect, Bisection, Stop};
 use std::f64::consts::PI;
 
 /// Figures of a soil hydrometer (defaults: ASTM E100 152H and ASTM D422 Table 2).
@@ -269,21 +270,12 @@ impl Hydrometer {
     /// field or does not reach equilibrium within its stem).
     pub fn float_tip_depth_m(&self, field: &LayeredField) -> Option<f64> {
         let f = |tip: f64| self.displaced_mass_kg(field, tip) - self.mass_kg;
-        let (mut lo, mut hi) = (0.0, self.length_m().min(field.height_m()));
+        let hi = self.length_m().min(field.height_m());
         if f(hi) < 0.0 {
             return None;
         }
-        for _ in 0..200 {
-            let mid = 0.5 * (lo + hi);
-            if f(mid) < 0.0 {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-            if hi - lo < 1e-12 {
-                break;
-            }
-        }
+        let rule = Bisection::until(Stop::WidthBelow(1e-12), 200);
+        let (lo, hi) = bisect(0.0, hi, rule, |tip| f(tip) < 0.0);
         Some(0.5 * (lo + hi))
     }
 

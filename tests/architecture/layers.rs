@@ -3,7 +3,7 @@
 //!
 //! | layer | modules |
 //! |---|---|
-//! | 0 infrastructure | `error`, `io`, `checkpoint`, `interrupt`, `progress` |
+//! | 0 infrastructure | `error`, `numerics`, `io`, `checkpoint`, `interrupt`, `progress` |
 //! | 1 physics | `fluid`, `contact`, `dynamics`, `sample`, `instruments` |
 //! | 2 engine | `engine` |
 //! | 3 scenario | `scenario` |
@@ -19,7 +19,7 @@ use std::path::{Path, PathBuf};
 /// The layer of a top-level module of the crate, or None if the table does not place it.
 fn layer(module: &str) -> Option<u8> {
     Some(match module {
-        "error" | "io" | "checkpoint" | "interrupt" | "progress" => 0,
+        "error" | "numerics" | "io" | "checkpoint" | "interrupt" | "progress" => 0,
         "fluid" | "contact" | "dynamics" | "sample" | "instruments" => 1,
         "engine" => 2,
         "scenario" => 3,

@@ -209,6 +209,7 @@ mod tests {
     use crate::fluid::bingham::net_weight_n;
     use crate::fluid::newtonian::cd_clift_gauvin;
     use crate::fluid::sphere_area_m2;
+    use crate::numerics::{bisect, Bisection};
 
     /// Wilson et al.'s method run forward, independently of the law: τ̄_s from the weight, μ_eq
     /// at 0.3 τ̄_s, then the Newtonian (Clift–Gauvin) terminal velocity by bisection on V.
@@ -218,18 +219,11 @@ mod tests {
         let mu = equivalent_viscosity_pa_s(ty, k, n, ts);
         let drag =
             |v: f64| 0.5 * cd_clift_gauvin(rho_f * v * d / mu) * rho_f * sphere_area_m2(d) * v * v;
-        let (mut lo, mut hi) = (0.0_f64, 1.0_f64);
+        let mut hi = 1.0_f64;
         while drag(hi) < w {
             hi *= 2.0;
         }
-        for _ in 0..200 {
-            let mid = 0.5 * (lo + hi);
-            if drag(mid) < w {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
+        let (lo, hi) = bisect(0.0, hi, Bisection::halvings(200), |v| drag(v) < w);
         0.5 * (lo + hi)
     }
 

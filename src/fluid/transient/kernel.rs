@@ -172,6 +172,7 @@ impl ExpSum {
     }
 }
 
+// Kept over the nnls crate (its weights break the kernel's impulse): docs/validation/numerics.md.
 /// Non-negative least squares min ‖A x − b‖, x ≥ 0 (Lawson & Hanson's active-set algorithm;
 /// the unconstrained sub-problems by SVD).
 fn nnls(a: &nalgebra::DMatrix<f64>, b: &nalgebra::DVector<f64>) -> nalgebra::DVector<f64> {

@@ -45,6 +45,7 @@
 
 use super::speed::SpeedTable;
 use super::{Bins, Column};
+use crate::numerics::{bisect, safeguarded_newton, Bisection, Stop};
 
 /// Largest width of a sub-diameter of a bin, in ln d (1 %).
 pub const SUB_DIAMETER_STEP: f64 = 0.01;
@@ -241,21 +242,11 @@ impl Hindered {
         let total = self.conc.last().copied().unwrap_or(0.0) * h;
         let cap = self.packing * self.col.analysis.grain_density_kg_m3;
         let f = |b: f64| b * cap - total + t_s * self.conc_integral((h - b) / t_s);
-        let (mut lo, mut hi) = (0.0, h);
-        if f(lo) >= 0.0 {
+        if f(0.0) >= 0.0 {
             return 0.0;
         }
-        for _ in 0..200 {
-            let mid = 0.5 * (lo + hi);
-            if f(mid) < 0.0 {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-            if hi - lo <= 1e-15 * h {
-                break;
-            }
-        }
+        let rule = Bisection::until(Stop::Width(1e-15 * h), 200);
+        let (lo, hi) = bisect(0.0, h, rule, |b| f(b) < 0.0);
         0.5 * (lo + hi)
     }
 
@@ -343,31 +334,31 @@ fn solve_voidage_above(
     };
     // G is concave and decreasing: Newton from either side lands on the far side of the root
     // and then converges monotonically; the bracket catches the steps that would cross a pole.
-    let mut lo = eps;
-    let mut x = eps;
-    for _ in 0..200 {
-        let (gx, dg) = g(x);
-        if gx > 0.0 {
-            lo = x;
-        } else if gx < 0.0 {
-            hi = x;
-        } else {
-            return x;
-        }
-        let newton = x - gx / dg;
-        let next = if gx.is_finite() && dg < 0.0 && newton > lo && newton < hi {
-            newton
-        } else {
-            0.5 * (lo + hi)
-        };
-        if (next - x).abs() <= 1e-15 || hi - lo <= 1e-15 {
-            break;
-        }
-        x = next;
+    // Newton on −G (increasing); a NaN G ends the search where it is, as G = 0 does, and a
+    // slope G′ ≥ 0 (or NaN) refuses Newton's step (given as NaN).
+    let end = safeguarded_newton(
+        eps,
+        hi,
+        eps,
+        200,
+        |x| {
+            let (gx, dg) = g(x);
+            let r = if gx.is_nan() { 0.0 } else { -gx };
+            (r, if dg < 0.0 { -dg } else { f64::NAN }, ())
+        },
+        |it| (it.next - it.at).abs() <= 1e-15 || it.hi - it.lo <= 1e-15,
+    );
+    let Some(last) = end.last else {
+        return eps;
+    };
+    if last.residual == 0.0 && !end.stopped {
+        return last.at;
     }
+    // Stopped: the last point evaluated; out of iterations: the step after it.
+    let x = if end.stopped { last.at } else { end.x };
     if g(x).0.is_finite() {
         x
     } else {
-        lo
+        last.lo
     }
 }

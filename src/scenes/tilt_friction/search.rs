@@ -2,6 +2,7 @@
 
 use super::{simulate_tilt, TiltOutcome, TiltSetup};
 use crate::engine::Unstable;
+use crate::numerics::{try_bisect, Bisection, Stop};
 
 /// The runs of a threshold search.
 #[derive(Clone, Debug, PartialEq)]
@@ -42,19 +43,14 @@ pub fn tilt_threshold(
         .map(|r| r.angle_deg)
         .fold(f64::NEG_INFINITY, f64::max);
     let bracket = if lo.is_finite() && hi.is_finite() {
-        let (mut lo, mut hi) = (lo, hi);
-        while hi - lo > tolerance_deg {
-            let mid = 0.5 * (lo + hi);
+        let rule = Bisection::until(Stop::Width(tolerance_deg), usize::MAX);
+        Some(try_bisect(lo, hi, rule, |mid| {
             let mut r = simulate_tilt(t, mid)?;
             r.bisection = true;
-            if r.slides {
-                hi = mid;
-            } else {
-                lo = mid;
-            }
+            let sticks = !r.slides;
             runs.push(r);
-        }
-        Some((lo, hi))
+            Ok(sticks)
+        })?)
     } else {
         None
     };
