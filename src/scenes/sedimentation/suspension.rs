@@ -409,10 +409,12 @@ impl Chunk<'_> {
                 if cs[j] == GONE {
                     continue;
                 }
-                let kind = &kinds[ks[j] as usize];
                 match step {
                     Some(step) => finish(u, lanes[l], reach, j, step, ys, vs, cs, found),
-                    None => one_grain(u, kind, lanes[l], reach, j, ys, vs, cs, found),
+                    None => {
+                        let kind = &kinds[ks[j] as usize];
+                        one_grain(u, kind, lanes[l], reach, j, ys, vs, cs, found)
+                    }
                 }
             }
             k += LANES;

@@ -154,6 +154,7 @@ struct Job<'a> {
 
 /// [`L`] grains stepped together: each lane's grain, height (m), speed (m/s), half its diameter
 /// (m), the height above which its centre is a fault (m), and whether it is still suspended.
+#[derive(Clone, Copy)]
 struct Lanes {
     grain: [StokesGrain; L],
     y_m: [f64; L],
@@ -186,9 +187,9 @@ impl Job<'_> {
         }
         let mut moved = 0u64;
         for group in live_in_chunk.chunks(L) {
-            let mut lanes = self.lanes(group, grains, speeds);
+            let lanes = self.lanes(group, grains, speeds);
             let factors = |i: usize| &self.cache.factors[base + group[i]];
-            let (m, b) = self.step_lanes(&mut lanes, group.len(), factors);
+            let (lanes, m, b) = self.step_lanes(lanes, group.len(), factors);
             (moved, bad) = (moved + m, bad | b);
             for (i, &g) in group.iter().enumerate() {
                 grains[g].y_m = lanes.y_m[i];
@@ -232,25 +233,33 @@ impl Job<'_> {
         lanes
     }
 
-    /// Every step of the interval for the lanes `x`, the first `l` of them holding grains whose
+    /// Every step of the interval for `lanes`, the first `l` of them holding grains whose
     /// factors at the cached step are `cached(i)`; every lane computes, only the live ones keep
-    /// the result. Returns the grain-steps made and whether a grain failed the fault test (the
-    /// lanes then stop).
+    /// the result. Returns the lanes after them, the grain-steps made and whether a grain failed
+    /// the fault test (the lanes then stop).
     #[inline(always)]
     fn step_lanes<'c>(
         &self,
-        x: &mut Lanes,
+        lanes: Lanes,
         l: usize,
         cached: impl Fn(usize) -> &'c (f64, f64),
-    ) -> (u64, bool) {
+    ) -> (Lanes, u64, bool) {
+        // In locals, so that the lanes stay in registers.
+        let Lanes {
+            mut grain,
+            mut y_m,
+            mut v_m_s,
+            half_d_m,
+            top_m,
+            mut live,
+        } = lanes;
         let (lim, floor) = (self.lim, self.lim.floor_m);
         let (mut moved, mut bad) = (0u64, false);
-        for &(dt, count) in self.runs {
-            if !x.live.iter().any(|&x| x) {
+        'runs: for &(dt, count) in self.runs {
+            if !live.iter().any(|&x| x) {
                 break;
             }
-            for i in 0..l {
-                let g = &mut x.grain[i];
+            for (i, g) in grain.iter_mut().enumerate().take(l) {
                 (g.dt_phi1_s, g.dt2_phi2_s2) = if dt == self.cache.dt_s {
                     *cached(i)
                 } else {
@@ -260,23 +269,30 @@ impl Job<'_> {
             let drag = StokesDrag { dt_s: dt };
             for _ in 0..count {
                 for i in 0..L {
-                    let (y0, v0, half) = (x.y_m[i], x.v_m_s[i], x.half_d_m[i]);
-                    let (y1, v1, fault) =
-                        free_step(&drag, &x.grain[i], y0, v0, half, x.top_m[i], lim);
-                    bad |= x.live[i] && fault;
+                    let (y0, v0, half) = (y_m[i], v_m_s[i], half_d_m[i]);
+                    let (y1, v1, fault) = free_step(&drag, &grain[i], y0, v0, half, top_m[i], lim);
+                    bad |= live[i] && fault;
                     // Deposition (the bed does not rise in ideal Stokes).
                     let lands = on_bed(y1, half, floor);
                     let (y2, v2) = if lands { (floor + half, 0.0) } else { (y1, v1) };
-                    x.y_m[i] = if x.live[i] { y2 } else { y0 };
-                    x.v_m_s[i] = if x.live[i] { v2 } else { v0 };
-                    moved += x.live[i] as u64;
-                    x.live[i] &= !lands;
+                    y_m[i] = if live[i] { y2 } else { y0 };
+                    v_m_s[i] = if live[i] { v2 } else { v0 };
+                    moved += live[i] as u64;
+                    live[i] &= !lands;
                 }
                 if bad {
-                    return (moved, bad);
+                    break 'runs;
                 }
             }
         }
-        (moved, bad)
+        let lanes = Lanes {
+            grain,
+            y_m,
+            v_m_s,
+            half_d_m,
+            top_m,
+            live,
+        };
+        (lanes, moved, bad)
     }
 }
