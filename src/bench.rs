@@ -320,115 +320,132 @@ fn sedimentation(
             ov.push("sample.contacts=false".into());
             ov.push("sample.lubrication=false".into());
         }
-        let p = prepare(
-            &root.join("scenarios/sedimentation_sample5.toml"),
-            None,
-            &ov,
-        )
-        .map_err(Error::BadInput)?;
-        let peak_reset = reset_peak_rss();
-        let rss0 = rss_bytes();
-        let su = crate::scenes::sedimentation::setup(&p.scenario, &p.path)?;
-        let cpu0 = cpu_time_s();
-        let t0 = Instant::now();
-        let st = crate::scenes::sedimentation::simulate(
-            &p.scenario,
-            &su,
-            crate::scenes::sedimentation::State::initial(&su),
-            &[],
-            &mut (),
-        );
-        let wall = t0.elapsed().as_secs_f64();
-        let cpu1 = cpu_time_s();
-        let rss1 = rss_bytes();
         let name = format!("sedimentation_sample5_{label}");
-        let ng = su.grains.len() as f64;
-        let sg = &st.stages;
-        out.push(fig(&name, "grains", ng, "grains"));
-        out.push(fig(&name, "wall_time_1440min_s", wall, "s"));
-        if let (Some(c0), Some(c1)) = (cpu0, cpu1) {
-            // On a shared machine the wall time counts the other processes too.
-            out.push(fig(&name, "cpu_time_1440min_s", c1 - c0, "s"));
-            // The suspended grain-steps per CPU second of the whole run (every stage, all
-            // threads): what load on a shared machine changes least.
-            out.push(fig(
-                &name,
-                "run_grain_steps_per_cpu_s",
-                st.stages.grain_steps as f64 / (c1 - c0).max(1e-9),
-                "grain-steps/CPU-s",
-            ));
-        }
-        out.push(fig(&name, "steps", st.steps as f64, "steps"));
-        // N × steps: the grain-steps of an update that visits every grain at every step (the
-        // figure of issue 17's 5.5e7 grain-steps/s).
-        out.push(fig(
-            &name,
-            "all_grains_times_steps_per_s",
-            ng * st.steps as f64 / wall.max(1e-9),
-            "grain-steps/s",
-        ));
-        out.push(fig(
-            &name,
-            "free_update_grain_steps",
-            sg.grain_steps as f64,
-            "grain-steps",
-        ));
-        out.push(fig(
-            &name,
-            "free_update_grain_steps_per_s",
-            sg.grain_steps as f64 / sg.free_update_s.max(1e-9),
-            "grain-steps/s",
-        ));
-        out.push(fig(
-            &name,
-            "run_grain_steps_per_s",
-            sg.grain_steps as f64 / wall.max(1e-9),
-            "grain-steps/s",
-        ));
-        for (q, v) in [
-            ("stage_step_size_s", sg.step_size_s),
-            ("stage_voidage_s", sg.voidage_s),
-            ("stage_free_update_s", sg.free_update_s),
-            ("stage_fault_scan_s", sg.fault_scan_s),
-            ("stage_contacts_s", sg.contacts_s),
-            ("stage_deposit_events_s", sg.deposit_events_s),
-        ] {
-            out.push(fig(&name, q, v, "s"));
-        }
-        if let (true, Some((_, before)), Some((peak, _))) = (peak_reset, rss0, rss1) {
-            out.push(fig(&name, "peak_rss_bytes", peak, "B"));
-            out.push(fig(&name, "peak_rss_bytes_per_grain", peak / ng, "B/grain"));
-            out.push(fig(
-                &name,
-                "peak_rss_above_start_bytes_per_grain",
-                (peak - before) / ng,
-                "B/grain",
-            ));
-        }
-        if contacts == Some(true) {
-            out.push(fig(
-                &name,
-                "contact_pairs",
-                st.contacts.pairs as f64,
-                "pairs",
-            ));
-            out.push(fig(
-                &name,
-                "contact_grains_handed",
-                st.contacts.grains as f64,
-                "grains",
-            ));
-            out.push(fig(
-                &name,
-                "contact_rapier_steps",
-                st.contacts.rapier_steps as f64,
-                "steps",
-            ));
-            out.push(fig(&name, "contact_wall_time_s", st.contacts.wall_s, "s"));
-        }
+        sedimentation_case(root, &name, &ov, contacts == Some(true), out)?;
     }
-
     Ok(())
+}
+
+/// One run of [`sedimentation`] with the overrides `ov`, its figures under `name` (with the
+/// contact statistics if `contacts`).
+fn sedimentation_case(
+    root: &Path,
+    name: &str,
+    ov: &[String],
+    contacts: bool,
+    out: &mut Vec<Figure>,
+) -> Result<(), Error> {
+    let p = prepare(&root.join("scenarios/sedimentation_sample5.toml"), None, ov)
+        .map_err(Error::BadInput)?;
+    let peak_reset = reset_peak_rss();
+    let rss0 = rss_bytes();
+    let su = crate::scenes::sedimentation::setup(&p.scenario, &p.path)?;
+    let cpu0 = cpu_time_s();
+    let t0 = Instant::now();
+    let st = crate::scenes::sedimentation::simulate(
+        &p.scenario,
+        &su,
+        crate::scenes::sedimentation::State::initial(&su),
+        &[],
+        &mut (),
+    );
+    let wall = t0.elapsed().as_secs_f64();
+    let cpu = cpu0.zip(cpu_time_s()).map(|(c0, c1)| c1 - c0);
+    let rss1 = rss_bytes();
+    let ng = su.grains.len() as f64;
+    sedimentation_figures(name, ng, &st, wall, cpu, out);
+    if let (true, Some((_, before)), Some((peak, _))) = (peak_reset, rss0, rss1) {
+        out.push(fig(name, "peak_rss_bytes", peak, "B"));
+        out.push(fig(name, "peak_rss_bytes_per_grain", peak / ng, "B/grain"));
+        out.push(fig(
+            name,
+            "peak_rss_above_start_bytes_per_grain",
+            (peak - before) / ng,
+            "B/grain",
+        ));
+    }
+    if contacts {
+        let c = &st.contacts;
+        out.push(fig(name, "contact_pairs", c.pairs as f64, "pairs"));
+        out.push(fig(
+            name,
+            "contact_grains_handed",
+            c.grains as f64,
+            "grains",
+        ));
+        out.push(fig(
+            name,
+            "contact_rapier_steps",
+            c.rapier_steps as f64,
+            "steps",
+        ));
+        out.push(fig(name, "contact_wall_time_s", c.wall_s, "s"));
+    }
+    Ok(())
+}
+
+/// The time figures of a run of [`sedimentation`] of `ng` grains ending in `st`, after `wall`
+/// seconds of wall time and `cpu` of CPU time (where known).
+fn sedimentation_figures(
+    name: &str,
+    ng: f64,
+    st: &crate::scenes::sedimentation::State,
+    wall: f64,
+    cpu: Option<f64>,
+    out: &mut Vec<Figure>,
+) {
+    let sg = &st.stages;
+    out.push(fig(name, "grains", ng, "grains"));
+    out.push(fig(name, "wall_time_1440min_s", wall, "s"));
+    if let Some(cpu) = cpu {
+        // On a shared machine the wall time counts the other processes too.
+        out.push(fig(name, "cpu_time_1440min_s", cpu, "s"));
+        // The suspended grain-steps per CPU second of the whole run (every stage, all
+        // threads): what load on a shared machine changes least.
+        let per_cpu = sg.grain_steps as f64 / cpu.max(1e-9);
+        out.push(fig(
+            name,
+            "run_grain_steps_per_cpu_s",
+            per_cpu,
+            "grain-steps/CPU-s",
+        ));
+    }
+    out.push(fig(name, "steps", st.steps as f64, "steps"));
+    // N × steps: the grain-steps of an update that visits every grain at every step (the
+    // figure of issue 17's 5.5e7 grain-steps/s).
+    let all = ng * st.steps as f64 / wall.max(1e-9);
+    out.push(fig(
+        name,
+        "all_grains_times_steps_per_s",
+        all,
+        "grain-steps/s",
+    ));
+    let gs = sg.grain_steps as f64;
+    out.push(fig(name, "free_update_grain_steps", gs, "grain-steps"));
+    let per_update = gs / sg.free_update_s.max(1e-9);
+    out.push(fig(
+        name,
+        "free_update_grain_steps_per_s",
+        per_update,
+        "grain-steps/s",
+    ));
+    let per_wall = gs / wall.max(1e-9);
+    out.push(fig(
+        name,
+        "run_grain_steps_per_s",
+        per_wall,
+        "grain-steps/s",
+    ));
+    for (q, v) in [
+        ("stage_step_size_s", sg.step_size_s),
+        ("stage_voidage_s", sg.voidage_s),
+        ("stage_free_update_s", sg.free_update_s),
+        ("stage_fault_scan_s", sg.fault_scan_s),
+        ("stage_contacts_s", sg.contacts_s),
+        ("stage_deposit_events_s", sg.deposit_events_s),
+    ] {
+        out.push(fig(name, q, v, "s"));
+    }
 }
 
 /// The cost of the transient forces on a free body's step (issue 16): ten Cate's E4 sphere

@@ -4,13 +4,12 @@ use super::contacts::{ContactStage, StageEnd};
 use super::observer::Observer;
 use super::schedule::Schedule;
 use super::setup::Setup;
-use super::state::State;
+use super::state::{Laps, Stage, State};
 use super::step::{advance_clock, clock_after, IdealCache, Interval, StepStart, Stepper};
 use super::suspension::Suspension;
 use super::voidage::VoidageGrid;
 use crate::dynamics::Integrator;
-use crate::scenario::{SampleSpec, Scenario};
-use std::time::Instant;
+use crate::scenario::Scenario;
 
 /// Runs scenario `s` (prepared as `setup`, whose spec gives the `[sample]` settings) from
 /// `state` (the initial one, [`State::initial`], or one saved by a checkpoint) to `time.end_s`,
@@ -22,17 +21,20 @@ use std::time::Instant;
 /// state only (the per-grain updates are independent, the sums serial).
 ///
 /// Each step: schedule (next event) → voidage grid and step size → free update → fault scan →
-/// contact stage (pairs, clusters, their solve) → deposition → clock and events.
+/// contact stage (pairs, clusters, their solve) → deposition → clock and events. The free
+/// update of every grain is that of [`super::step::kernel`]; the loop that visits the grains
+/// follows the run's modes ([`StepLoop::Chosen`]):
 ///
-/// In ideal-Stokes with the exponential integrator, the grains do not interact and every step
-/// size is known in advance, so the steps up to the next event are made at once, grain by grain
-/// ([`Stepper::ideal_interval`], the same arithmetic in the same order: the same result bit for
-/// bit); `obs` is then told once per interval, at its end.
+/// - full physics without contacts (the default): the suspended grains are stepped packed apart
+///   from the state ([`Suspension`]), their heights and speeds reaching the state only when
+///   something reads them there (events, checkpoints, a fault, the end);
+/// - ideal Stokes with the exponential integrator: the grains do not interact and every step
+///   size is known in advance, so the steps up to the next event are made at once, grain by
+///   grain ([`Stepper::ideal_interval`]); `obs` is then told once per interval, at its end;
+/// - otherwise (contacts, other integrators in ideal Stokes), every grain of the state at every
+///   step ([`StepLoop::PerGrain`]).
 ///
-/// In full physics without contacts (the default), the suspended grains are stepped packed
-/// apart from the state ([`Suspension`], the loop of `Packed::simulate`): the same steps, the
-/// same result bit for bit, with the grains' heights and speeds reaching the state only when
-/// something reads them there (events, checkpoints, a fault, the end).
+/// Every loop gives the same result, bit for bit, where more than one applies.
 pub fn simulate(
     s: &Scenario,
     setup: &Setup,
@@ -40,144 +42,52 @@ pub fn simulate(
     reading_times_s: &[f64],
     obs: &mut impl Observer,
 ) -> State {
-    let sm: &SampleSpec = &setup.spec.sample;
+    simulate_on(StepLoop::Chosen, s, setup, state, reading_times_s, obs)
+}
+
+/// The loop that visits the grains at each step ([`simulate_on`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StepLoop {
+    /// The loop the run's modes call for (see [`simulate`]).
+    Chosen,
+    /// Every grain of the state at every step, whatever the modes: the loop the others must
+    /// agree with (runs with contacts take it anyway).
+    PerGrain,
+}
+
+/// [`simulate`], the grains visited by the loop `step_loop`.
+pub fn simulate_on(
+    step_loop: StepLoop,
+    s: &Scenario,
+    setup: &Setup,
+    state: State,
+    reading_times_s: &[f64],
+    obs: &mut impl Observer,
+) -> State {
+    let sm = &setup.spec.sample;
     let mut st = state;
     st.interrupted = false;
-    let schedule = Schedule::new(s, sm, reading_times_s);
     let stepper = Stepper::new(s, sm, setup, &st);
+    let run = Run {
+        setup,
+        schedule: &Schedule::new(s, sm, reading_times_s),
+        stepper: &stepper,
+    };
     let mut grid = voidage_grid(setup, &stepper, &st);
-    let with_contacts = !stepper.ideal && sm.contacts;
-    if !stepper.ideal && !with_contacts {
+    let chosen = step_loop == StepLoop::Chosen;
+    if chosen && !stepper.ideal && !sm.contacts {
         if let Some((suspension, suspect)) = Suspension::new(&st, &grid, &stepper, setup) {
-            let run = Packed {
-                setup,
-                schedule: &schedule,
-                stepper: &stepper,
-            };
-            return run.simulate(st, suspension, suspect, &mut grid, obs);
+            return run.packed(st, suspension, suspect, &mut grid, obs);
         }
     }
-    let mut contacts = ContactStage::new(sm, setup, &stepper);
-    let mut start = StepStart::default();
-    let mut by_interval = stepper.ideal && stepper.integrator == Integrator::Exponential;
-    let (speeds, volumes) = if stepper.ideal {
-        (Vec::new(), Vec::new())
+    if chosen && stepper.ideal && stepper.integrator == Integrator::Exponential {
+        match run.intervals(st, obs) {
+            (st, Interval::Fault) => run.per_grain(st, &mut grid, obs),
+            (st, _) => st,
+        }
     } else {
-        (stepper.stokes_speeds_m_s(&st), grid.grain_volumes_m3(&st))
-    };
-    let cache = if by_interval {
-        IdealCache::new(&stepper, &st)
-    } else {
-        IdealCache::default()
-    };
-    let mut runs: Vec<(f64, u64)> = Vec::new();
-    // The grains the per-step passes visit: every grain (without contacts, full physics steps
-    // the suspended grains packed instead, above).
-    let active: Vec<usize> = (0..st.grains.len()).collect();
-    // The largest suspended speed after the last deposition (full physics), for the next step.
-    let mut vmax: Option<f64> = None;
-    while schedule.running(&st) {
-        if crate::interrupt::requested() {
-            st.interrupted = true;
-            break;
-        }
-        let next_event = schedule.next_event_s(&st);
-        if by_interval {
-            interval_runs(&stepper, &schedule, st.time_s, next_event, &mut runs);
-            let t0 = Instant::now();
-            start.capture_all(&st);
-            let (end, moved) = stepper.ideal_interval(&mut st, setup, &runs, &cache);
-            st.stages.free_update_s += t0.elapsed().as_secs_f64();
-            match end {
-                Interval::Done => {
-                    st.stages.grain_steps += moved;
-                    let t0 = Instant::now();
-                    for &(dt, count) in &runs {
-                        for _ in 0..count {
-                            advance_clock(&mut st, dt, next_event);
-                        }
-                    }
-                    schedule.dispatch(&mut st, obs);
-                    obs.wants_grains();
-                    obs.step(&st);
-                    st.stages.deposit_events_s += t0.elapsed().as_secs_f64();
-                    continue;
-                }
-                Interval::Interrupted => {
-                    start.rewind_all(&mut st);
-                    st.interrupted = true;
-                    break;
-                }
-                Interval::Fault => {
-                    // Redo the interval step by step: the fault scan reports the grain.
-                    start.rewind_all(&mut st);
-                    by_interval = false;
-                }
-            }
-        }
-        let t0 = Instant::now();
-        let dt = match vmax {
-            Some(v) => stepper.step_with_vmax_s(st.time_s, next_event, v),
-            None => stepper.step_size_s(&st, next_event, &speeds),
-        };
-        let t1 = Instant::now();
-        st.stages.step_size_s += (t1 - t0).as_secs_f64();
-        if !stepper.ideal {
-            grid.fill(&st, &volumes, &active);
-        }
-        start.capture(&st);
-        let t2 = Instant::now();
-        st.stages.voidage_s += (t2 - t1).as_secs_f64();
-        let Some((moved, suspect)) = stepper.free_update(&mut st, setup, &grid, dt, &active) else {
-            // Interrupted within the step: back to its start, which stays resumable.
-            start.rewind(&mut st);
-            st.interrupted = true;
-            break;
-        };
-        st.stages.grain_steps += moved;
-        let t3 = Instant::now();
-        st.stages.free_update_s += (t3 - t2).as_secs_f64();
-        // Faults of the free update (the contact solve's clusters the engine checks itself),
-        // tested grain by grain in the update; the scan names the first.
-        if suspect {
-            if let Some(u) = stepper.grain_fault(&st, setup, dt, Some(stepper.speed_bound_m_s)) {
-                st.fault = Some(u);
-                break;
-            }
-        }
-        let t4 = Instant::now();
-        st.stages.fault_scan_s += (t4 - t3).as_secs_f64();
-        if with_contacts {
-            match contacts.run(&mut st, &start, &grid, dt) {
-                StageEnd::Interrupted => {
-                    st.interrupted = true;
-                    break;
-                }
-                // A small grain squeezed by a large one may briefly move faster than the free
-                // bound (its speed is the cluster engine's to check).
-                StageEnd::Done { moved: true } => {
-                    if let Some(u) = stepper.grain_fault(&st, setup, dt, None) {
-                        st.fault = Some(u);
-                        break;
-                    }
-                }
-                StageEnd::Done { moved: false } => {}
-            }
-        }
-        let t5 = Instant::now();
-        st.stages.contacts_s += (t5 - t4).as_secs_f64();
-        if stepper.ideal {
-            stepper.deposit(&mut st, &active);
-        } else {
-            vmax = Some(stepper.deposit_vmax(&mut st, &speeds, &active));
-        }
-        advance_clock(&mut st, dt, next_event);
-        schedule.dispatch(&mut st, obs);
-        obs.wants_grains();
-        obs.step(&st);
-        st.stages.deposit_events_s += t5.elapsed().as_secs_f64();
+        run.per_grain(st, &mut grid, obs)
     }
-    st
 }
 
 /// The voidage grid of a run of `setup` with the step constants `stepper`, from `st` (its
@@ -194,22 +104,42 @@ fn voidage_grid(setup: &Setup, stepper: &Stepper, st: &State) -> VoidageGrid {
     .with_terminal_tables(st, stepper.grain_density_kg_m3, stepper.gravity_m_s2)
 }
 
-/// The step loop of full physics without contacts, on the suspended grains packed in a
-/// [`Suspension`]: the same steps as the loop of [`simulate`], with the same arithmetic on the
-/// same grains in the same order (the same result, bit for bit), but each pass streams through
-/// the suspended grains only, and their heights and speeds reach the state only when something
-/// reads them there. One step of 10⁷ grains takes well under a second, so an interrupt request
-/// is honoured between steps (nothing to undo).
-struct Packed<'a> {
+/// What every loop of a run reads: the cylinder, the events and the step constants.
+struct Run<'a> {
     setup: &'a Setup,
     schedule: &'a Schedule,
     stepper: &'a Stepper,
 }
 
-impl Packed<'_> {
-    /// Runs from `st`, whose suspended grains are `sus` (`suspect`: a grain of `st` fails the
-    /// fault test already), with the voidage grid `grid`, telling `obs` as [`simulate`] does.
-    fn simulate(
+impl Run<'_> {
+    /// Ends a step of `dt_s` towards `next_event_s`: the clock, the events due (the grains of
+    /// `st` current for them: `write_back` puts them there), then `obs` told of the step.
+    fn end_step(
+        &self,
+        st: &mut State,
+        dt_s: f64,
+        next_event_s: f64,
+        obs: &mut impl Observer,
+        mut write_back: impl FnMut(&mut State),
+    ) {
+        advance_clock(st, dt_s, next_event_s);
+        if self.schedule.due(st) {
+            write_back(st);
+        }
+        self.schedule.dispatch(st, obs);
+        if obs.wants_grains() {
+            write_back(st);
+        }
+        obs.step(st);
+    }
+
+    /// The step loop of full physics without contacts, on the suspended grains packed in a
+    /// [`Suspension`] (`sus`; `suspect`: a grain of `st` fails the fault test already), with the
+    /// voidage grid `grid`: each pass streams through the suspended grains only, and their
+    /// heights and speeds reach the state only when something reads them there. One step of
+    /// 10⁷ grains takes well under a second, so an interrupt request is honoured between steps
+    /// (nothing to undo).
+    fn packed(
         &self,
         mut st: State,
         mut sus: Suspension,
@@ -217,25 +147,23 @@ impl Packed<'_> {
         grid: &mut VoidageGrid,
         obs: &mut impl Observer,
     ) -> State {
-        let (setup, schedule, stepper) = (self.setup, self.schedule, self.stepper);
+        let (setup, stepper) = (self.setup, self.stepper);
         let mut vmax = sus.vmax_m_s();
         // A settled grain fails the fault test: the next free update's scan reports it.
         let mut pending = suspect;
-        while schedule.running(&st) {
+        while self.schedule.running(&st) {
             if crate::interrupt::requested() {
                 st.interrupted = true;
                 break;
             }
-            let next_event = schedule.next_event_s(&st);
-            let t0 = Instant::now();
+            let next_event = self.schedule.next_event_s(&st);
+            let mut laps = Laps::start();
             let dt = stepper.step_with_vmax_s(st.time_s, next_event, vmax);
             sus.fill(grid);
-            let t1 = Instant::now();
-            st.stages.voidage_s += (t1 - t0).as_secs_f64();
+            laps.lap(&mut st.stages, Stage::Voidage);
             let (moved, bad) = sus.free_update(stepper, grid, setup, st.bed_height_m, dt);
             st.stages.grain_steps += moved;
-            let t2 = Instant::now();
-            st.stages.free_update_s += (t2 - t1).as_secs_f64();
+            laps.lap(&mut st.stages, Stage::FreeUpdate);
             if bad || pending {
                 sus.write_back(&mut st);
                 if let Some(u) = stepper.grain_fault(&st, setup, dt, Some(stepper.speed_bound_m_s))
@@ -244,23 +172,166 @@ impl Packed<'_> {
                     break;
                 }
             }
-            let t3 = Instant::now();
-            st.stages.fault_scan_s += (t3 - t2).as_secs_f64();
+            laps.lap(&mut st.stages, Stage::FaultScan);
             (vmax, pending) = sus.deposit_vmax(&mut st, stepper, setup);
-            advance_clock(&mut st, dt, next_event);
-            if schedule.due(&st) {
-                sus.write_back(&mut st);
-            }
-            schedule.dispatch(&mut st, obs);
-            if obs.wants_grains() {
-                sus.write_back(&mut st);
-            }
-            obs.step(&st);
-            st.stages.deposit_events_s += t3.elapsed().as_secs_f64();
+            self.end_step(&mut st, dt, next_event, obs, |st| sus.write_back(st));
+            laps.lap(&mut st.stages, Stage::DepositEvents);
         }
         sus.write_back(&mut st);
         st
     }
+
+    /// The step loop of ideal Stokes with the exponential integrator, by intervals between two
+    /// events ([`Stepper::ideal_interval`]); `obs` is told once per interval, at its end.
+    /// Returns the state and how the last interval ended: on [`Interval::Fault`] the state is
+    /// at the start of that interval, for the per-grain loop to redo it step by step (its fault
+    /// scan reports the grain).
+    fn intervals(&self, mut st: State, obs: &mut impl Observer) -> (State, Interval) {
+        let cache = IdealCache::new(self.stepper, &st);
+        let mut start = StepStart::default();
+        let mut runs: Vec<(f64, u64)> = Vec::new();
+        while self.schedule.running(&st) {
+            if crate::interrupt::requested() {
+                st.interrupted = true;
+                break;
+            }
+            let next_event = self.schedule.next_event_s(&st);
+            interval_runs(
+                self.stepper,
+                self.schedule,
+                st.time_s,
+                next_event,
+                &mut runs,
+            );
+            let mut laps = Laps::start();
+            start.capture_all(&st);
+            let (end, moved) = self
+                .stepper
+                .ideal_interval(&mut st, self.setup, &runs, &cache);
+            laps.lap(&mut st.stages, Stage::FreeUpdate);
+            if end != Interval::Done {
+                start.rewind_all(&mut st);
+                st.interrupted = end == Interval::Interrupted;
+                return (st, end);
+            }
+            st.stages.grain_steps += moved;
+            for &(dt, count) in &runs {
+                for _ in 0..count {
+                    advance_clock(&mut st, dt, next_event);
+                }
+            }
+            self.schedule.dispatch(&mut st, obs);
+            obs.wants_grains();
+            obs.step(&st);
+            laps.lap(&mut st.stages, Stage::DepositEvents);
+        }
+        (st, Interval::Done)
+    }
+
+    /// The step loop over every grain of the state ([`StepLoop::PerGrain`]), with the contact
+    /// stage if the run has contacts, and the voidage grid `grid`.
+    fn per_grain(&self, mut st: State, grid: &mut VoidageGrid, obs: &mut impl Observer) -> State {
+        let (setup, stepper) = (self.setup, self.stepper);
+        let sm = &setup.spec.sample;
+        let mut contacts =
+            (!stepper.ideal && sm.contacts).then(|| ContactStage::new(sm, setup, stepper));
+        let (speeds, volumes) = if stepper.ideal {
+            (Vec::new(), Vec::new())
+        } else {
+            (stepper.stokes_speeds_m_s(&st), grid.grain_volumes_m3(&st))
+        };
+        // The grains the per-step passes visit: every grain.
+        let active: Vec<usize> = (0..st.grains.len()).collect();
+        let mut start = StepStart::default();
+        // The largest suspended speed (full physics), for the next step.
+        let mut vmax = stepper.vmax_m_s(&st, &speeds);
+        while self.schedule.running(&st) {
+            if crate::interrupt::requested() {
+                st.interrupted = true;
+                break;
+            }
+            let next_event = self.schedule.next_event_s(&st);
+            let mut laps = Laps::start();
+            let dt = stepper.step_with_vmax_s(st.time_s, next_event, vmax);
+            laps.lap(&mut st.stages, Stage::StepSize);
+            if !stepper.ideal {
+                grid.fill(&st, &volumes, &active);
+            }
+            start.capture(&st);
+            laps.lap(&mut st.stages, Stage::Voidage);
+            let step = Move {
+                grid,
+                dt_s: dt,
+                active: &active,
+                start: &start,
+            };
+            if !self.move_grains(&mut st, &step, contacts.as_mut(), &mut laps) {
+                break;
+            }
+            vmax = stepper.deposit_vmax(&mut st, &speeds, &active);
+            self.end_step(&mut st, dt, next_event, obs, |_| {});
+            laps.lap(&mut st.stages, Stage::DepositEvents);
+        }
+        st
+    }
+
+    /// The free update of the step `m` of the per-grain loop, its fault scan and (with
+    /// `contacts`) the contact stage, each lap timed in `laps`. False if the run stops here:
+    /// interrupted (the step undone) or in a fault (reported in `st`).
+    fn move_grains(
+        &self,
+        st: &mut State,
+        m: &Move,
+        contacts: Option<&mut ContactStage>,
+        laps: &mut Laps,
+    ) -> bool {
+        let (setup, stepper, dt) = (self.setup, self.stepper, m.dt_s);
+        let Some((moved, suspect)) = stepper.free_update(st, setup, m.grid, dt, m.active) else {
+            // Interrupted within the step: back to its start, which stays resumable.
+            m.start.rewind(st);
+            st.interrupted = true;
+            return false;
+        };
+        st.stages.grain_steps += moved;
+        laps.lap(&mut st.stages, Stage::FreeUpdate);
+        // Faults of the free update (the contact solve's clusters the engine checks itself),
+        // tested grain by grain in the update; the scan names the first.
+        if suspect {
+            st.fault = stepper.grain_fault(st, setup, dt, Some(stepper.speed_bound_m_s));
+            if st.fault.is_some() {
+                return false;
+            }
+        }
+        laps.lap(&mut st.stages, Stage::FaultScan);
+        if let Some(contacts) = contacts {
+            match contacts.run(st, m.start, m.grid, dt) {
+                StageEnd::Interrupted => {
+                    st.interrupted = true;
+                    return false;
+                }
+                // A small grain squeezed by a large one may briefly move faster than the free
+                // bound (its speed is the cluster engine's to check).
+                StageEnd::Done { moved: true } => {
+                    st.fault = stepper.grain_fault(st, setup, dt, None);
+                    if st.fault.is_some() {
+                        return false;
+                    }
+                }
+                StageEnd::Done { moved: false } => {}
+            }
+        }
+        laps.lap(&mut st.stages, Stage::Contacts);
+        true
+    }
+}
+
+/// One step of the per-grain loop: the voidage grid, the step (s), the grains visited and
+/// their state at the step's start.
+struct Move<'a> {
+    grid: &'a VoidageGrid,
+    dt_s: f64,
+    active: &'a [usize],
+    start: &'a StepStart,
 }
 
 /// The steps from `t_s` up to the event `next_event_s` (or the end of the run), as the step loop

@@ -101,6 +101,56 @@ pub struct StageTimes {
     pub deposit_events_s: f64,
 }
 
+impl StageTimes {
+    /// Adds `s` seconds to the wall time of `stage`.
+    pub fn add(&mut self, stage: Stage, s: f64) {
+        *match stage {
+            Stage::StepSize => &mut self.step_size_s,
+            Stage::Voidage => &mut self.voidage_s,
+            Stage::FreeUpdate => &mut self.free_update_s,
+            Stage::FaultScan => &mut self.fault_scan_s,
+            Stage::Contacts => &mut self.contacts_s,
+            Stage::DepositEvents => &mut self.deposit_events_s,
+        } += s;
+    }
+}
+
+/// A stage of the step loop, as [`StageTimes`] counts its wall time.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stage {
+    /// Step size ([`StageTimes::step_size_s`]).
+    StepSize,
+    /// Voidage grid fill ([`StageTimes::voidage_s`]).
+    Voidage,
+    /// Free update ([`StageTimes::free_update_s`]).
+    FreeUpdate,
+    /// Fault scan ([`StageTimes::fault_scan_s`]).
+    FaultScan,
+    /// Contact stage ([`StageTimes::contacts_s`]).
+    Contacts,
+    /// Deposition, clock and events ([`StageTimes::deposit_events_s`]).
+    DepositEvents,
+}
+
+/// The stopwatch of the stages of one step: each [`Laps::lap`] adds the wall time since the
+/// previous lap (or the start) to a stage of [`StageTimes`]. The physics never reads it.
+#[derive(Clone, Copy, Debug)]
+pub struct Laps(std::time::Instant);
+
+impl Laps {
+    /// Starts the stopwatch now.
+    pub fn start() -> Self {
+        Self(std::time::Instant::now())
+    }
+
+    /// Adds the wall time since the previous lap to `stage` of `times`, and starts the next lap.
+    pub fn lap(&mut self, times: &mut StageTimes, stage: Stage) {
+        let now = std::time::Instant::now();
+        times.add(stage, (now - self.0).as_secs_f64());
+        self.0 = now;
+    }
+}
+
 /// How much the contact and lubrication pipeline did over a run.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ContactStats {

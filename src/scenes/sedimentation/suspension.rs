@@ -9,13 +9,14 @@
 //! A grain leaves when it settles: deposition writes it into the [`State`] and drops it. The
 //! heights and speeds of the grains still suspended are written back into the [`State`] only when
 //! something reads them there ([`Suspension::write_back`]: the records, snapshots, readings,
-//! checkpoints, a fault report and the end of the run). Every pass does the same arithmetic, on
-//! the same grains, in the same order as the per-grain passes over the [`State`]
-//! ([`Stepper::free_update`], [`VoidageGrid::fill`], [`Stepper::deposit_vmax`]): the results are
-//! the same, bit for bit.
+//! checkpoints, a fault report and the end of the run). Each grain's free update and deposition
+//! are those of [`super::step::kernel`], as in the per-grain passes over the [`State`]
+//! ([`Stepper::free_update`], [`VoidageGrid::fill`], [`Stepper::deposit_vmax`]), on the same
+//! grains in the same order: the results are the same, bit for bit.
 
 use super::setup::Setup;
 use super::state::State;
+use super::step::kernel::{after_step, bed_rise_m, free_step, on_bed, CellDrag, CellGrain, Limits};
 use super::step::{Stepper, INTERRUPT_CHECK_GRAINS};
 use super::voidage::VoidageGrid;
 use crate::dynamics::terminal::{exponential_near_terminal_lanes, TerminalTable};
@@ -158,7 +159,7 @@ impl Suspension {
         );
     }
 
-    /// The free update of every suspended grain over `dt_s` ([`Stepper::grain_step`]) above the
+    /// The free update of every suspended grain over `dt_s` ([`free_step`] with [`CellDrag`]) above the
     /// bed surface `floor_m` (a grain reaching it stops on it; deposition then flags it), in
     /// parallel by chunks of [`INTERRUPT_CHECK_GRAINS`] grains, with each grain's new voidage
     /// cell. Returns the grains advanced and whether any now fails the test of
@@ -172,10 +173,10 @@ impl Suspension {
         floor_m: f64,
         dt_s: f64,
     ) -> (u64, bool) {
-        let fast = stepper.fast_path(grid);
+        let drag = CellDrag::new(stepper, grid, dt_s);
+        let fast = drag.fast;
         let ctx = Update {
-            stepper,
-            grid,
+            drag,
             kinds: self
                 .kinds
                 .iter()
@@ -190,9 +191,10 @@ impl Suspension {
                     }
                 })
                 .collect(),
-            fast,
-            floor_m,
-            dt_s,
+            lim: Limits {
+                floor_m,
+                speed_bound_m_s: stepper.speed_bound_m_s,
+            },
         };
         let suspect = AtomicBool::new(false);
         let n = INTERRUPT_CHECK_GRAINS;
@@ -251,13 +253,14 @@ impl Suspension {
                 let j = chunk * n + k as usize;
                 let kind = self.kinds[self.kind[j] as usize];
                 let (y, v, d) = (self.y_m[j], self.v_m_s[j], kind.diameter_m);
-                if y - 0.5 * d <= st.bed_height_m + 1e-15 {
+                let half_d = 0.5 * d;
+                if on_bed(y, half_d, st.bed_height_m) {
                     let i = self.index[j] as usize;
                     let gr = &mut st.grains[i];
-                    gr.y_m = st.bed_height_m + 0.5 * d;
+                    gr.y_m = st.bed_height_m + half_d;
                     st.velocity_m_s[i] = 0.0;
                     st.settled[i] = true;
-                    st.bed_height_m += gr.weight * sphere_volume_m3(d) / stepper.bed_area_m2;
+                    st.bed_height_m += bed_rise_m(gr.weight, d, stepper.bed_area_m2);
                     suspect |= stepper.is_faulty(&st.grains[i], 0.0, setup);
                     self.cell[j] = GONE;
                     self.gone += 1;
@@ -317,16 +320,12 @@ impl Suspension {
 
 /// The constants of one free update ([`Suspension::free_update`]).
 struct Update<'a> {
-    stepper: &'a Stepper,
-    grid: &'a VoidageGrid,
+    /// The drag of the step.
+    drag: CellDrag<'a>,
     /// What the update reads of each kind ([`KindStep`]).
     kinds: Vec<KindStep<'a>>,
-    /// [`Stepper::fast_path`].
-    fast: bool,
-    /// Bed surface, m.
-    floor_m: f64,
-    /// Step, s.
-    dt_s: f64,
+    /// The bed surface and the speed bound.
+    lim: Limits,
 }
 
 /// What the free update reads of one grain kind, computed once per step: the same operations
@@ -380,16 +379,16 @@ impl Chunk<'_> {
             kinds,
         } = self;
         let len = ys.len();
-        let voidage = u.grid.voidages();
+        let voidage = u.drag.grid.voidages();
         let kind_of = |j: usize| &u.kinds[ks[j] as usize];
         // Grains with a terminal-state table, `LANES` at a time (the same steps as
-        // `Stepper::grain_step` gives them one by one); the others one by one. A settled
+        // `CellDrag` gives them one by one); the others one by one. A settled
         // entry's lane computes a step that is not used.
         let mut k = 0;
         while k + LANES <= len {
             let lanes: [&KindStep; LANES] = std::array::from_fn(|l| kind_of(k + l));
             let tables = lanes.map(|q| q.table);
-            let steps = if u.fast && tables.iter().all(Option::is_some) {
+            let steps = if u.drag.fast && tables.iter().all(Option::is_some) {
                 let tables = tables.map(|t| t.expect("all tables present"));
                 exponential_near_terminal_lanes(
                     tables,
@@ -400,51 +399,62 @@ impl Chunk<'_> {
                     lanes.map(|q| q.dt_over_mass),
                     tables.map(|t| t.body_force_n),
                     std::array::from_fn(|l| vs[k + l]),
-                    u.dt_s,
+                    u.drag.dt_s,
                 )
             } else {
                 [None; LANES]
             };
             for (l, step) in steps.into_iter().enumerate() {
                 let j = k + l;
-                if cs[j] != GONE {
-                    let step =
-                        step.unwrap_or_else(|| grain_step(u, &kinds[ks[j] as usize], cs[j], vs[j]));
-                    finish(u, lanes[l], reach, j, step, ys, vs, cs, found);
+                if cs[j] == GONE {
+                    continue;
+                }
+                match step {
+                    Some(step) => finish(u, lanes[l], reach, j, step, ys, vs, cs, found),
+                    None => {
+                        let kind = &kinds[ks[j] as usize];
+                        one_grain(u, kind, lanes[l], reach, j, ys, vs, cs, found)
+                    }
                 }
             }
             k += LANES;
         }
         for j in k..len {
             if cs[j] != GONE {
-                let step = grain_step(u, &kinds[ks[j] as usize], cs[j], vs[j]);
-                finish(u, kind_of(j), reach, j, step, ys, vs, cs, found);
+                let kind = &kinds[ks[j] as usize];
+                one_grain(u, kind, kind_of(j), reach, j, ys, vs, cs, found);
             }
         }
     }
 }
 
-/// [`Stepper::grain_step`] of a grain of `kind` in cell `cell` at speed `v_m_s`: (new velocity,
-/// m/s; displacement, m). Out of line: the lanes cover nearly every grain-step (all but the
-/// first step from rest and steps after a large change of voidage, 0.4 % in sample 5).
+/// The free update ([`free_step`] with [`CellDrag`]) of entry `j` of kind `kind` (its
+/// constants `q`) outside the lanes. Out of line: the lanes cover nearly every grain-step (all
+/// but the first step from rest and steps after a large change of voidage, 0.4 % in sample 5).
 #[cold]
 #[inline(never)]
-fn grain_step(u: &Update, kind: &Kind, cell: u32, v_m_s: f64) -> (f64, f64) {
-    u.stepper.grain_step(
-        u.grid,
-        u.fast,
-        kind.diameter_m,
-        kind.class,
-        cell as usize,
-        v_m_s,
-        u.dt_s,
-    )
+#[allow(clippy::too_many_arguments)]
+fn one_grain(
+    u: &Update,
+    kind: &Kind,
+    q: &KindStep,
+    reach: f64,
+    j: usize,
+    ys: &mut [f64],
+    vs: &mut [f64],
+    cs: &mut [u32],
+    found: &mut Found,
+) {
+    let g = CellGrain {
+        diameter_m: kind.diameter_m,
+        class: kind.class,
+        cell: cs[j] as usize,
+    };
+    let moved = free_step(&u.drag, &g, ys[j], vs[j], q.half_d_m, q.top_m, u.lim);
+    record(u, q, reach, j, moved, ys, vs, cs, found);
 }
 
-/// Applies `(v1, dx)` to entry `j` of kind `q` (stopping it on the bed surface), finds its new
-/// cell, and lists it in `found` as within `reach` of the bed or counts its speed; records
-/// whether it now fails the test of [`Stepper::grain_fault`] (as [`Stepper::is_faulty`]; its
-/// horizontal position, constant, was tested by [`Suspension::new`]).
+/// Entry `j` of kind `q` after its step `(v1, dx)` ([`after_step`]).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn finish(
@@ -452,26 +462,41 @@ fn finish(
     q: &KindStep,
     reach: f64,
     j: usize,
-    (v1, dx): (f64, f64),
+    step: (f64, f64),
     ys: &mut [f64],
     vs: &mut [f64],
     cs: &mut [u32],
     found: &mut Found,
 ) {
-    let (y, v) = (&mut ys[j], &mut vs[j]);
-    *v = v1;
-    *y += dx;
-    if *y - q.half_d_m <= u.floor_m {
-        *y = u.floor_m + q.half_d_m;
-    }
+    let moved = after_step(ys[j], step, q.half_d_m, q.top_m, u.lim);
+    record(u, q, reach, j, moved, ys, vs, cs, found);
+}
+
+/// Stores entry `j`'s new height and speed, finds its new cell, and lists it in `found` as
+/// within `reach` of the bed or counts its speed; records whether it now fails the test of
+/// [`Stepper::grain_fault`] (`fault`; its horizontal position, constant, was tested by
+/// [`Suspension::new`]).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn record(
+    u: &Update,
+    q: &KindStep,
+    reach: f64,
+    j: usize,
+    (y, v, fault): (f64, f64, bool),
+    ys: &mut [f64],
+    vs: &mut [f64],
+    cs: &mut [u32],
+    found: &mut Found,
+) {
+    (ys[j], vs[j]) = (y, v);
     if y.is_finite() {
-        cs[j] = u.grid.cell_after(cs[j] as usize, *y) as u32;
+        cs[j] = u.drag.grid.cell_after(cs[j] as usize, y) as u32;
     }
-    if *y - q.half_d_m <= reach {
+    if y - q.half_d_m <= reach {
         found.near.push(j as u32);
     } else {
         found.vmax = found.vmax.max(v.abs().max(q.stokes_m_s));
     }
-    found.bad |=
-        !(y.is_finite() && v.is_finite()) || v.abs() > u.stepper.speed_bound_m_s || *y > q.top_m;
+    found.bad |= fault;
 }

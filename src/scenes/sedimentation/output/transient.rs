@@ -238,7 +238,6 @@ pub fn picked(diameters_m: &[f64]) -> Vec<f64> {
 /// Writes `transient.csv`/`.svg` (the curves of six of the `diameters_m`) and
 /// `terminal_time.csv`/`.svg` (t_95 of every diameter) into `stage`; `name` heads the titles.
 pub fn write_all(stage: &StagedDir, name: &str, k: Grains, diameters_m: &[f64]) -> io::Result<()> {
-    let dir = |f: &str| stage.path(f);
     let mut ds = diameters_m.to_vec();
     ds.sort_by(f64::total_cmp);
     ds.dedup();
@@ -247,8 +246,16 @@ pub fn write_all(stage: &StagedDir, name: &str, k: Grains, diameters_m: &[f64]) 
         .iter()
         .filter_map(|d| all.iter().find(|t| t.diameter_m == *d))
         .collect();
+    write_transient(stage, name, &shown)?;
+    write_terminal_csv(stage, &k, &all)?;
+    write_terminal_svg(stage, name, &all, (ds[0], ds[ds.len() - 1]))?;
+    write_table1(stage, &k)
+}
+
+/// `transient.csv` and `transient.svg`: the velocity from rest of the diameters `shown`.
+fn write_transient(stage: &StagedDir, name: &str, shown: &[&Transient]) -> io::Result<()> {
     let mut rows = Vec::new();
-    for t in &shown {
+    for t in shown {
         for &(time, v) in &t.curve {
             rows.push(vec![
                 num(t.diameter_m),
@@ -260,47 +267,13 @@ pub fn write_all(stage: &StagedDir, name: &str, k: Grains, diameters_m: &[f64]) 
         }
     }
     crate::io::write_csv(
-        &dir("transient.csv"),
+        &stage.path("transient.csv"),
         &[
             "diameter_m",
             "time_s",
             "time_ms",
             "velocity_m_s",
             "velocity_fraction",
-        ],
-        &rows,
-    )?;
-    let rows: Vec<Vec<String>> = all
-        .iter()
-        .map(|t| {
-            vec![
-                num(t.diameter_m),
-                num(t.terminal_m_s),
-                num(reynolds(
-                    k.fluid_density_kg_m3,
-                    t.terminal_m_s,
-                    t.diameter_m,
-                    k.viscosity_pa_s,
-                )),
-                num(t.response_time_s),
-                num(t.t95_s),
-                num(t.response_time_s * 20f64.ln()),
-                num(t.t99_s),
-                num(t.response_time_s * 100f64.ln()),
-            ]
-        })
-        .collect();
-    crate::io::write_csv(
-        &dir("terminal_time.csv"),
-        &[
-            "diameter_m",
-            "terminal_velocity_m_s",
-            "reynolds",
-            "response_time_s",
-            "t95_s",
-            "t95_stokes_s",
-            "t99_s",
-            "t99_stokes_s",
         ],
         &rows,
     )?;
@@ -324,14 +297,64 @@ pub fn write_all(stage: &StagedDir, name: &str, k: Grains, diameters_m: &[f64]) 
         })
         .collect();
     scatter_svg(
-        &dir("transient.svg"),
+        &stage.path("transient.svg"),
         &format!("{name}: velocity from rest in the clear fluid (seed 000 Fig. 4)"),
         "time since release, log scale (ms)",
         "velocity / terminal velocity v/v_t (-)",
         Scale::Log,
         Scale::Linear,
         &series,
-    )?;
+    )
+}
+
+/// `terminal_time.csv`: the terminal velocity, Reynolds number, response time and times to
+/// 95 and 99 % of the terminal velocity of every diameter (`all`) of grains `k`.
+fn write_terminal_csv(stage: &StagedDir, k: &Grains, all: &[Transient]) -> io::Result<()> {
+    let rows: Vec<Vec<String>> = all
+        .iter()
+        .map(|t| {
+            vec![
+                num(t.diameter_m),
+                num(t.terminal_m_s),
+                num(reynolds(
+                    k.fluid_density_kg_m3,
+                    t.terminal_m_s,
+                    t.diameter_m,
+                    k.viscosity_pa_s,
+                )),
+                num(t.response_time_s),
+                num(t.t95_s),
+                num(t.response_time_s * 20f64.ln()),
+                num(t.t99_s),
+                num(t.response_time_s * 100f64.ln()),
+            ]
+        })
+        .collect();
+    crate::io::write_csv(
+        &stage.path("terminal_time.csv"),
+        &[
+            "diameter_m",
+            "terminal_velocity_m_s",
+            "reynolds",
+            "response_time_s",
+            "t95_s",
+            "t95_stokes_s",
+            "t99_s",
+            "t99_stokes_s",
+        ],
+        &rows,
+    )
+}
+
+/// `terminal_time.svg`: the time to 95 % of the terminal velocity of the diameters `all` (about
+/// 25 of them), the Stokes times to 95 and 99 %, and seed 000's Table 1 within `range_m` (the
+/// smallest and largest diameter, m).
+fn write_terminal_svg(
+    stage: &StagedDir,
+    name: &str,
+    all: &[Transient],
+    range_m: (f64, f64),
+) -> io::Result<()> {
     // About 25 of the classes on the chart, so the markers stay apart (all in the CSV).
     let step = (all.len() / 25).max(1);
     Chart::new(format!(
@@ -372,15 +395,14 @@ pub fn write_all(stage: &StagedDir, name: &str, k: Grains, diameters_m: &[f64]) 
         label: "seed 000 Table 1 t_tr (70 µm: 99 %; the others: 95 %)".into(),
         points: SEED_TABLE1
             .iter()
-            .filter(|r| r.0 >= ds[0] && r.0 <= ds[ds.len() - 1])
+            .filter(|r| r.0 >= range_m.0 && r.0 <= range_m.1)
             .map(|r| (r.0 * 1e6, r.1 * 1e3))
             .collect(),
         colour: 1,
         filled: false,
         line: false,
     })
-    .svg(&dir("terminal_time.svg"))?;
-    write_table1(stage, &k)
+    .svg(&stage.path("terminal_time.svg"))
 }
 
 #[cfg(test)]
