@@ -160,8 +160,14 @@ fn a_link_to_a_missing_file_or_heading_is_reported() {
     let (broken, checked) = broken_links(&page);
     assert_eq!(checked, 4);
     assert_eq!(broken.len(), 2, "{broken:?}");
-    assert!(broken[0].contains("missing.md (no such file)"), "{broken:?}");
-    assert!(broken[1].contains("other.md#nothing (no such heading)"), "{broken:?}");
+    assert!(
+        broken[0].contains("missing.md (no such file)"),
+        "{broken:?}"
+    );
+    assert!(
+        broken[1].contains("other.md#nothing (no such heading)"),
+        "{broken:?}"
+    );
 }
 
 /// Every relative link of `README.md` (and the other Markdown files at the top) and of
