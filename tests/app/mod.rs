@@ -4,6 +4,7 @@
 #[cfg(unix)]
 mod checkpoint;
 pub(crate) mod console;
+mod doc_links;
 mod fit;
 mod interrupt;
 mod invert;
