@@ -2,16 +2,17 @@
 //! check that every destination folder may be written (settle's own, or new) and estimate the
 //! cost, then run each, stage its outputs and move them into place only on success.
 
+use crate::error::BadInput;
 use crate::error::Error;
 use crate::io::{self as output, StagedDir};
 use crate::scenario::inputs as spheres;
-use crate::scenario::{self, Kind, Scenario, ScenarioError, SceneSpec};
+use crate::scenario::{self, Kind, Scenario, SceneSpec};
 use crate::scenes::free_settling::{self, output as out_fs};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-pub use crate::scenes::{Prepared, RunContext, SceneReport};
+use crate::scenes::{Prepared, RunContext};
 
 /// Scenario names refused because the layout of the output folder uses them: `checkpoint`
 /// (the checkpoints of a long run) and `combined` (the joint summary of a several-file run).
@@ -45,9 +46,9 @@ pub struct RunRequest {
 
 /// Refuses names the output layout reserves ([`RESERVED_NAMES`]) and names too long for a
 /// folder ([`MAX_NAME_BYTES`]).
-fn check_name(s: &Scenario, path: &Path) -> Result<(), ScenarioError> {
+fn check_name(s: &Scenario, path: &Path) -> Result<(), BadInput> {
     if RESERVED_NAMES.contains(&s.name.as_str()) {
-        return Err(ScenarioError::new(
+        return Err(BadInput::new(
             path,
             Some("name"),
             format!(
@@ -59,7 +60,7 @@ fn check_name(s: &Scenario, path: &Path) -> Result<(), ScenarioError> {
         ));
     }
     if s.name.len() > MAX_NAME_BYTES {
-        return Err(ScenarioError::new(
+        return Err(BadInput::new(
             path,
             Some("name"),
             format!(
@@ -75,14 +76,10 @@ fn check_name(s: &Scenario, path: &Path) -> Result<(), ScenarioError> {
 /// its input files (`spheres_csv`, a sedimentation's `sample.csv`), and refuses reserved and
 /// over-long names: every bad input is found here, before anything runs. `path` may be a run
 /// record (`OUT/NAME/run.toml`): its effective scenario runs again, the overrides on top.
-pub fn prepare(
-    path: &Path,
-    dt_s: Option<f64>,
-    overrides: &[String],
-) -> Result<Prepared, ScenarioError> {
+pub fn prepare(path: &Path, dt_s: Option<f64>, overrides: &[String]) -> Result<Prepared, BadInput> {
     let mut ov = overrides.to_vec();
     if let Some(dt) = dt_s.filter(|d| !d.is_finite()) {
-        return Err(ScenarioError::new(
+        return Err(BadInput::new(
             path,
             Some("time.dt_s"),
             format!("--dt {dt} is out of range: allowed 0 < dt_s ≤ time.end_s s"),
@@ -130,7 +127,7 @@ pub struct FileReport {
     pub out: PathBuf,
     /// Wall time of the simulation, s.
     pub wall_time_s: f64,
-    /// Validity warnings ([`SceneReport::warnings`]).
+    /// Validity warnings ([`crate::scenes::SceneReport::warnings`]).
     pub warnings: Vec<String>,
 }
 
@@ -148,7 +145,7 @@ struct RunMeta<'a> {
     wall_time_s: f64,
     /// Continued from a checkpoint (`--resume`).
     resumed: bool,
-    /// Validity warnings of the run ([`SceneReport::warnings`]); empty when none.
+    /// Validity warnings of the run ([`crate::scenes::SceneReport::warnings`]); empty when none.
     warnings: &'a [String],
     /// The overrides as given (`set`: the `--set` list; `dt_s`: `--dt`), already applied to
     /// `[scenario]`.
@@ -363,7 +360,7 @@ fn prepare_all(req: &RunRequest) -> Result<Vec<Prepared>, Error> {
     let mut names = std::collections::HashSet::new();
     for p in &prepared {
         if !names.insert(p.scenario.name.clone()) {
-            return Err(Error::BadInput(ScenarioError::new(
+            return Err(Error::BadInput(BadInput::new(
                 &p.path,
                 Some("name"),
                 format!(

@@ -5,8 +5,8 @@
 //! machine's physical memory). A run estimated to be long is announced on stderr before it
 //! starts ([`Cost::is_long`], [`Cost::describe`]).
 
-use super::load::ScenarioError;
 use super::schema::{Kind, Scenario};
+use crate::error::BadInput;
 use std::path::Path;
 
 /// Wall time above which a run is refused without `--force`, s (24 h).
@@ -243,7 +243,7 @@ pub fn physical_memory_bytes() -> Option<f64> {
 /// Refuses a scenario whose estimate exceeds the limits: [`MAX_WALL_S`] and
 /// [`MAX_MEMORY_BYTES`] unless `force`, and the machine's physical memory always. The error names
 /// the file, the key that drives the cost and the estimate.
-pub fn check(s: &Scenario, file: &Path, force: bool) -> Result<Cost, ScenarioError> {
+pub fn check(s: &Scenario, file: &Path, force: bool) -> Result<Cost, BadInput> {
     let c = estimate(s);
     let key = match s.kind {
         Kind::Sedimentation => "sample.particles",
@@ -269,7 +269,7 @@ pub fn check(s: &Scenario, file: &Path, force: bool) -> Result<Cost, ScenarioErr
     );
     if let Some(ram) = physical_memory_bytes() {
         if c.memory_bytes > ram {
-            return Err(ScenarioError::new(
+            return Err(BadInput::new(
                 file,
                 Some(key),
                 format!(
@@ -283,7 +283,7 @@ pub fn check(s: &Scenario, file: &Path, force: bool) -> Result<Cost, ScenarioErr
         return Ok(c);
     }
     if c.memory_bytes > MAX_MEMORY_BYTES {
-        return Err(ScenarioError::new(
+        return Err(BadInput::new(
             file,
             Some(key),
             format!(
@@ -293,7 +293,7 @@ pub fn check(s: &Scenario, file: &Path, force: bool) -> Result<Cost, ScenarioErr
         ));
     }
     if c.disk_bytes > MAX_DISK_BYTES {
-        return Err(ScenarioError::new(
+        return Err(BadInput::new(
             file,
             Some(key),
             format!(
@@ -325,7 +325,7 @@ pub fn check(s: &Scenario, file: &Path, force: bool) -> Result<Cost, ScenarioErr
                 "raise the step, shorten time.end_s, or run with --force",
             )
         };
-        return Err(ScenarioError::new(
+        return Err(BadInput::new(
             file,
             Some(key),
             format!(

@@ -20,12 +20,11 @@ mod spec;
 mod validate;
 
 pub use load::{
-    apply_override, is_key_path, load, load_str, parse, parse_str, record_table, Overrides,
-    ScenarioError,
+    apply_override, is_key_path, load, load_str, parse, parse_str, record_table, Overrides, Parsed,
 };
 pub use schema::*;
 pub use spec::{
-    FreeSettlingSpec, FunnelPourSpec, Parsed, RestitutionSpec, SceneSpec, SedimentationSpec,
+    FreeSettlingSpec, FunnelPourSpec, RestitutionSpec, SceneSpec, SedimentationSpec,
     TiltFrictionSpec,
 };
 pub(crate) use validate::check_sphere;

@@ -3,37 +3,10 @@
 //! and checked, and the fluid's rheology with its parameters; it never re-asserts what
 //! validation already established.
 
-use super::load::ScenarioError;
 use super::schema::{
     Contacts, Container, FunnelSpec, InstrumentsSpec, Measure, Release, Repeats,
-    RestitutionDropSpec, RheologyModel, SampleSpec, Scenario, SphereSpec, TiltSpec,
+    RestitutionDropSpec, SampleSpec, SphereSpec, TiltSpec,
 };
-use std::path::Path;
-
-/// A validated scenario with its typed parts: the scene spec of its kind and the rheology of
-/// its fluid. The dimension is `scenario.dimension` (a [`super::Dim`]).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Parsed {
-    /// The scenario as read (overrides applied); written back to `run.toml`.
-    pub scenario: Scenario,
-    /// What the scenario's kind needs, typed.
-    pub scene: SceneSpec,
-    /// The fluid's rheology with its parameters.
-    pub rheology: RheologyModel,
-}
-
-impl Parsed {
-    /// Validates `scenario` (`file` names it in errors) and builds its typed parts: the same
-    /// checks as [`super::load`], for a scenario built or changed in code.
-    pub fn new(scenario: Scenario, file: &Path) -> Result<Self, ScenarioError> {
-        let (scene, rheology) = super::validate::validate(&scenario, file)?;
-        Ok(Self {
-            scenario,
-            scene,
-            rheology,
-        })
-    }
-}
 
 /// One spec per kind of scene: the tables the kind needs, present and checked.
 // One value per scenario file: the size of the largest variant does not matter.
@@ -167,14 +140,16 @@ impl SceneSpec {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scenario::{Dim, Kind};
+    use crate::error::BadInput;
+    use crate::scenario::{Dim, Kind, Parsed, RheologyModel};
+    use std::path::Path;
     use std::path::PathBuf;
 
     fn root() -> PathBuf {
         PathBuf::from(env!("CARGO_MANIFEST_DIR"))
     }
 
-    fn parse(file: &str, set: &[&str]) -> Result<Parsed, ScenarioError> {
+    fn parse(file: &str, set: &[&str]) -> Result<Parsed, BadInput> {
         let set: Vec<String> = set.iter().map(|s| s.to_string()).collect();
         crate::scenario::parse(&root().join("scenarios").join(file), &set)
     }

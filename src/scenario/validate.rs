@@ -3,9 +3,9 @@
 //! names the file, the key and the allowed range.
 
 use super::check::Check;
-use super::load::ScenarioError;
 use super::schema::*;
 use super::spec::*;
+use crate::error::BadInput;
 use std::path::Path;
 
 pub use super::check::MAX_STEPS;
@@ -61,7 +61,7 @@ pub fn table_used_by(key: &str, kind: Kind) -> bool {
 
 /// Refuses a top-level table (of `present`, the keys of the file after `--set`) that `kind`
 /// does not use, naming the table and the kind and listing the tables it uses.
-pub fn check_tables(kind: Kind, present: &[&str], file: &Path) -> Result<(), ScenarioError> {
+pub fn check_tables(kind: Kind, present: &[&str], file: &Path) -> Result<(), BadInput> {
     for key in present {
         if let Some((_, kinds)) = TABLE_KINDS.iter().find(|(t, _)| t == key) {
             if !kinds.contains(&kind) {
@@ -70,7 +70,7 @@ pub fn check_tables(kind: Kind, present: &[&str], file: &Path) -> Result<(), Sce
                     .filter(|(_, k)| k.contains(&kind))
                     .map(|(t, _)| format!("[{t}]"))
                     .collect();
-                return Err(ScenarioError::new(
+                return Err(BadInput::new(
                     file,
                     Some(key),
                     format!(
@@ -88,7 +88,7 @@ pub fn check_tables(kind: Kind, present: &[&str], file: &Path) -> Result<(), Sce
 
 /// Validates ranges and cross-table rules, and builds the typed parts of the scenario: the
 /// spec of its kind and the rheology of its fluid.
-pub fn validate(s: &Scenario, file: &Path) -> Result<(SceneSpec, RheologyModel), ScenarioError> {
+pub fn validate(s: &Scenario, file: &Path) -> Result<(SceneSpec, RheologyModel), BadInput> {
     let c = Check { file };
     s.check_common(&c)?;
     let rheology = s.fluid.check(&c)?;
@@ -139,7 +139,7 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(SceneSpec, RheologyModel),
 }
 
 /// The kind's own tables: present, and checked; the kind's spec built from them.
-fn check_kind(c: &Check, s: &Scenario) -> Result<SceneSpec, ScenarioError> {
+fn check_kind(c: &Check, s: &Scenario) -> Result<SceneSpec, BadInput> {
     let missing = |key: &str, what: &str| {
         c.err(
             key,
@@ -234,7 +234,7 @@ fn check_kind(c: &Check, s: &Scenario) -> Result<SceneSpec, ScenarioError> {
 
 /// The tables of kind `sedimentation`: `[sample]`, a `[container]` with its width, dimension 2,
 /// `[instruments]` if given.
-fn sedimentation(c: &Check, s: &Scenario) -> Result<SceneSpec, ScenarioError> {
+fn sedimentation(c: &Check, s: &Scenario) -> Result<SceneSpec, BadInput> {
     let missing = |key: &str, what: &str| {
         c.err(
             key,
@@ -283,13 +283,13 @@ pub(crate) fn check_sphere(
     key: &str,
     sp: &SphereSpec,
     s: &Scenario,
-) -> Result<(), ScenarioError> {
+) -> Result<(), BadInput> {
     sp.check(&Check { file }, key, s)
 }
 
 /// Kinds with contacts run in a Rapier 3D world: a [contacts] table (returned), dimension 3,
 /// engine `auto` or `rapier`.
-fn contact_scene_3d(c: &Check, s: &Scenario) -> Result<Contacts, ScenarioError> {
+fn contact_scene_3d(c: &Check, s: &Scenario) -> Result<Contacts, BadInput> {
     let kind = s.kind.name();
     let Some(contacts) = &s.contacts else {
         return Err(c.err(

@@ -34,7 +34,8 @@ pub use targets::{has_reference, Target, SWEEPABLE, SWEEPABLE_NAMES};
 
 use crate::error::Error;
 use crate::io::StagedDir;
-use crate::run::{prepare, Prepared};
+use crate::run::prepare;
+use crate::scenes::Prepared;
 use std::path::{Path, PathBuf};
 
 /// Runs `cases` of a sweepable scenario (in parallel) and returns their rows, without

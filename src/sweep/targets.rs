@@ -7,9 +7,9 @@
 use super::plan::Case;
 use super::table::{rel, Row, Status};
 use crate::error::Error;
-use crate::run::Prepared;
 use crate::scenario::{FunnelPourSpec, Kind, SceneSpec};
 use crate::scenes::free_settling::{self, Halt, RunOptions, SphereResult};
+use crate::scenes::Prepared;
 use std::time::Instant;
 
 /// The kinds a sweep can run.

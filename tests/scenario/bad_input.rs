@@ -381,7 +381,7 @@ case!(
 );
 
 /// A bad sample CSV is refused by the scenario layer's reader with its row, column and range
-/// (a `ScenarioError`: exit 2), before the run reads it.
+/// (a `BadInput`: exit 2), before the run reads it.
 #[test]
 fn sample_csv_percent_out_of_range() {
     let path = good("sedimentation_sample1.toml");

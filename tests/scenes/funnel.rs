@@ -340,7 +340,7 @@ fn a_ball_dropped_into_paste_through_rapier_stops_where_the_drop_scene_stops_it(
 
 const SCENARIO: &str = "scenarios/paste_68_balls.toml";
 
-fn small(extra: &[&str]) -> settle::run::Prepared {
+fn small(extra: &[&str]) -> settle::scenes::Prepared {
     let mut ov: Vec<String> = [
         "funnel.count=8",
         "funnel.fill_time_s=0.15",

@@ -1,7 +1,7 @@
 //! Contact properties: `[contacts]`.
 
-use super::super::check::{cc, Check};
-use super::super::load::ScenarioError;
+use crate::error::BadInput;
+use crate::scenario::check::{cc, Check};
 use serde::{Deserialize, Serialize};
 
 fn default_reference_speed() -> f64 {
@@ -45,7 +45,7 @@ impl Contacts {
 
 impl Contacts {
     /// Restitution and its speed law, friction and rolling resistance within their ranges.
-    pub(crate) fn check(&self, c: &Check) -> Result<(), ScenarioError> {
+    pub(crate) fn check(&self, c: &Check) -> Result<(), BadInput> {
         c.table(
             "contacts",
             &[

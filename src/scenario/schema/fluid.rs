@@ -1,8 +1,8 @@
 //! The fluid and the drag law: `[fluid]` and `[drag]`.
 
-use super::super::check::{cc, oc, Check};
-use super::super::load::ScenarioError;
 use super::Physics;
+use crate::error::BadInput;
+use crate::scenario::check::{cc, oc, Check};
 use serde::{Deserialize, Serialize};
 
 pub use crate::fluid::Submergence;
@@ -188,7 +188,7 @@ impl Fluid {
 
     /// Density, and the viscosities the rheology needs (and no other): the rheology with its
     /// parameters.
-    pub(crate) fn check(&self, c: &Check) -> Result<RheologyModel, ScenarioError> {
+    pub(crate) fn check(&self, c: &Check) -> Result<RheologyModel, BadInput> {
         c.range(
             "fluid.density_kg_m3",
             self.density_kg_m3,
@@ -248,7 +248,7 @@ impl Fluid {
     }
 
     /// `consistency_pa_sn` and `flow_index` belong to a Herschel–Bulkley fluid only.
-    fn no_herschel_bulkley(&self, c: &Check) -> Result<(), ScenarioError> {
+    fn no_herschel_bulkley(&self, c: &Check) -> Result<(), BadInput> {
         let msg = "only allowed with rheology = \"herschel-bulkley\"";
         for (key, x) in [
             ("fluid.consistency_pa_sn", self.consistency_pa_sn),
@@ -262,7 +262,7 @@ impl Fluid {
     }
 
     /// τ_y, K and n of a Herschel–Bulkley fluid, and no Newtonian or Bingham viscosity.
-    fn check_herschel_bulkley(&self, c: &Check) -> Result<RheologyModel, ScenarioError> {
+    fn check_herschel_bulkley(&self, c: &Check) -> Result<RheologyModel, BadInput> {
         let need = |key: &str, x: Option<f64>, what: &str| {
             x.ok_or_else(|| {
                 c.err(
@@ -368,12 +368,7 @@ impl Drag {
 
     /// Voidage in (0, 1]; a yield-stress law exactly for a yield-stress fluid (unless
     /// `ideal-stokes`), and a law that takes the fluid's rheogram.
-    pub(crate) fn check(
-        &self,
-        c: &Check,
-        fluid: &Fluid,
-        physics: Physics,
-    ) -> Result<(), ScenarioError> {
+    pub(crate) fn check(&self, c: &Check, fluid: &Fluid, physics: Physics) -> Result<(), BadInput> {
         c.range("drag.voidage", self.voidage, oc(0.0, 1.0, ""))?;
         const YIELD_LAWS: &str =
             "`bingham-fedem`, `bingham-additive`, `ansley-smith`, `wilson-2003`";

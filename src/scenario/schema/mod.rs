@@ -23,8 +23,8 @@ pub use time::Time;
 pub use transient::{Confinement, History, HistoryReynolds, Transient, Wall};
 
 use super::check::{oc, Check, Range};
-use super::load::ScenarioError;
 use crate::dynamics::Integrator;
+use crate::error::BadInput;
 use serde::{Deserialize, Serialize};
 
 /// Standard gravity used when a scenario does not set `gravity_m_s2`, m/s².
@@ -294,7 +294,7 @@ impl Scenario {
 
     /// Checks the top-level keys `name` and `gravity_m_s2` (`dimension` is checked as it is
     /// parsed: 2 or 3 only).
-    pub(crate) fn check_common(&self, c: &Check) -> Result<(), ScenarioError> {
+    pub(crate) fn check_common(&self, c: &Check) -> Result<(), BadInput> {
         let name_ok = !self.name.is_empty()
             && !self.name.starts_with('.')
             && self
@@ -327,7 +327,7 @@ impl Kind {
 
 impl Record {
     /// `every_s` within (0, end_s].
-    pub(crate) fn check(&self, c: &Check, end_s: f64) -> Result<(), ScenarioError> {
+    pub(crate) fn check(&self, c: &Check, end_s: f64) -> Result<(), BadInput> {
         match self.every_s {
             Some(e) => c.range("record.every_s", e, oc(0.0, end_s, "s")),
             None => Ok(()),
@@ -337,7 +337,7 @@ impl Record {
 
 impl SweepSpec {
     /// Every `dt_s` within (0, end_s], `tol` within (0, 1].
-    pub(crate) fn check(&self, c: &Check, end_s: f64) -> Result<(), ScenarioError> {
+    pub(crate) fn check(&self, c: &Check, end_s: f64) -> Result<(), BadInput> {
         c.each("sweep.dt_s", &self.dt_s, oc(0.0, end_s, "s"))?;
         match self.tol {
             Some(t) => c.range("sweep.tol", t, oc(0.0, 1.0, "")),
@@ -358,7 +358,7 @@ mod tests {
 
     const STOKES: &str = include_str!("../../../scenarios/stokes_single.toml");
 
-    fn load(text: &str, set: &[&str]) -> Result<Scenario, ScenarioError> {
+    fn load(text: &str, set: &[&str]) -> Result<Scenario, BadInput> {
         let set: Vec<String> = set.iter().map(|s| s.to_string()).collect();
         crate::scenario::load_str(text, Path::new("t.toml"), &set)
     }

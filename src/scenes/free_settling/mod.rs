@@ -52,6 +52,7 @@ pub mod charts;
 pub mod output;
 pub mod setup;
 pub mod simulate;
+mod submerged;
 mod transient;
 
 pub use setup::{release_depth_m, RunOptions};

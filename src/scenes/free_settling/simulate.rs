@@ -4,7 +4,7 @@
 //! with one dispatch on the dimension and the engine.
 
 use super::setup::{uses_rapier, RunOptions, SphereSetup};
-use super::transient::{added_mass_kg, submerged_step};
+use super::submerged::{added_mass_kg, analytic_at, submerged_step};
 use crate::contact::rayleigh_time_s;
 use crate::dynamics::{advance, explicit_stable_dt_s, Monitor, Motion, Step, Unstable};
 use crate::engine::{dim2, dim3, EngineSettings, SphereWorld};
@@ -125,13 +125,6 @@ impl From<Unstable> for Halt {
     fn from(u: Unstable) -> Self {
         Self::Unstable(u)
     }
-}
-
-/// Stokes solution for a sphere started at speed v₀ (downward): returns (v(t), distance(t)).
-pub(super) fn stokes_analytic(vt: f64, tau: f64, v0: f64, t: f64) -> (f64, f64) {
-    let e = (-t / tau).exp();
-    let em1 = -(-t / tau).exp_m1();
-    (vt + (v0 - vt) * e, vt * t + (v0 - vt) * tau * em1)
 }
 
 /// Runs every sphere of a free-settling scenario on the free engine, in parallel (rayon);
@@ -305,7 +298,7 @@ fn run_sphere_with<const D: usize>(
 
 /// A time-series row, with the Stokes solution beside it when the law is Stokes.
 fn sample<const D: usize>(su: &SphereSetup<D>, t: f64, depth: f64, vel: f64) -> Sample {
-    let an = super::transient::analytic_at(su, t);
+    let an = analytic_at(su, t);
     Sample {
         time_s: t,
         depth_m: depth,
@@ -450,12 +443,11 @@ fn locate_events<const D: usize>(
                 let part = advance(opts.integrator, &su.drag, su.m_kg, &su.w_n, &st.v, tp - t);
                 -part.velocity_m_s[D - 1]
             };
-            let an = super::transient::analytic_at(su, tp).map(|a| a.0);
+            let an = analytic_at(su, tp).map(|a| a.0);
             st.probes.push((tp, speed, an));
         }
     }
-    if let (Some((vt, _)), Some((va, _))) = (su.analytic, super::transient::analytic_at(su, t_new))
-    {
+    if let (Some((vt, _)), Some((va, _))) = (su.analytic, analytic_at(su, t_new)) {
         st.max_err = st.max_err.max((speed1 - va).abs() / vt.abs());
     }
 }

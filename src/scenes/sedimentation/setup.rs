@@ -1,11 +1,10 @@
 //! The typed setup of a sedimentation run: geometry, the sample's representative grains, the
 //! fluid viscosity, and the default record times.
 
+use crate::error::BadInput;
 use crate::sample::{discretize, representative_grains, Distribution, Grain, SizeClass};
 use crate::scenario::inputs::read_sample;
-use crate::scenario::{
-    Contacts, Parsed, RheologyModel, Scenario, ScenarioError, SceneSpec, SedimentationSpec,
-};
+use crate::scenario::{Contacts, Parsed, RheologyModel, Scenario, SceneSpec, SedimentationSpec};
 use std::path::Path;
 
 /// Largest travel of the fastest grain of a contact cluster per Rapier step, in diameters of
@@ -91,10 +90,10 @@ impl GrainContacts {
 /// Builds the sample of scenario `s` (the file `path`), reading its `sample.csv`
 /// ([`crate::scenario::inputs::read_sample`]); see [`setup_with`]. The scenario is validated
 /// here: one that is invalid or of another kind is a bad input.
-pub fn setup(s: &Scenario, path: &Path) -> Result<Setup, ScenarioError> {
+pub fn setup(s: &Scenario, path: &Path) -> Result<Setup, BadInput> {
     let parsed = Parsed::new(s.clone(), path)?;
     let SceneSpec::Sedimentation(spec) = &parsed.scene else {
-        return Err(ScenarioError::new(
+        return Err(BadInput::new(
             path,
             Some("kind"),
             format!(
@@ -109,10 +108,7 @@ pub fn setup(s: &Scenario, path: &Path) -> Result<Setup, ScenarioError> {
 
 /// Builds the sample of a prepared sedimentation scenario of spec `spec` from the distribution
 /// read while it was prepared ([`crate::scenes::Prepared::sample`]; read now if absent).
-pub fn setup_of(
-    p: &crate::scenes::Prepared,
-    spec: &SedimentationSpec,
-) -> Result<Setup, ScenarioError> {
+pub fn setup_of(p: &crate::scenes::Prepared, spec: &SedimentationSpec) -> Result<Setup, BadInput> {
     let distribution = match &p.sample {
         Some(d) => d.clone(),
         None => read_sample(&spec.sample, &p.path)?,

@@ -30,7 +30,8 @@ use super::plan::{Case, Shard};
 use super::targets::Target;
 use crate::error::{BadInput, Error};
 use crate::io::StagedDir;
-use crate::run::{prepare, Prepared};
+use crate::run::prepare;
+use crate::scenes::Prepared;
 use std::path::{Path, PathBuf};
 
 /// Name prefix of the part files of a sharded parameter sweep.

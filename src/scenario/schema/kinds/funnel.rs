@@ -1,8 +1,8 @@
 //! Kind `funnel_pour`: `[funnel]` and `[repeats]`.
 
-use super::super::super::check::{cc, oc, Check};
-use super::super::super::load::ScenarioError;
 use super::super::Scenario;
+use crate::error::BadInput;
+use crate::scenario::check::{cc, oc, Check};
 use serde::{Deserialize, Serialize};
 
 /// Funnel pour (f-EDEM §4.2, Fig. 17): the funnel is not described in the source; see the
@@ -94,7 +94,7 @@ fn one_usize() -> usize {
 impl FunnelSpec {
     /// Counts and geometry in range: the outlet wider than the largest ball and at most the
     /// top, bins and planes within the cylinder (`container`, checked present by the caller).
-    pub(crate) fn check(&self, c: &Check, s: &Scenario) -> Result<(), ScenarioError> {
+    pub(crate) fn check(&self, c: &Check, s: &Scenario) -> Result<(), BadInput> {
         let Some(ct) = s.container.as_ref() else {
             return Err(c.err(
                 "container",
@@ -178,7 +178,7 @@ impl FunnelSpec {
 
 impl Repeats {
     /// `1 ≤ count ≤ 10 000`.
-    pub(crate) fn check(&self, c: &Check) -> Result<(), ScenarioError> {
+    pub(crate) fn check(&self, c: &Check) -> Result<(), BadInput> {
         c.count_in("repeats.count", self.count, 1, 10_000)
     }
 }

@@ -1,7 +1,7 @@
 //! Kind `restitution_drop`: `[restitution_drop]`.
 
-use super::super::super::check::{cc, oc, Check};
-use super::super::super::load::ScenarioError;
+use crate::error::BadInput;
+use crate::scenario::check::{cc, oc, Check};
 use serde::{Deserialize, Serialize};
 
 /// Restitution drop test (f-EDEM Appendix II): one ball (the scenario's single `[[spheres]]`)
@@ -30,7 +30,7 @@ fn default_rebound_tolerance() -> f64 {
 impl RestitutionDropSpec {
     /// At least one drop height in (0, 100] m; measured rebounds one per height (or none) in
     /// [0, 100] m; tolerance in (0, 1].
-    pub(crate) fn check(&self, c: &Check) -> Result<(), ScenarioError> {
+    pub(crate) fn check(&self, c: &Check) -> Result<(), BadInput> {
         if self.drop_heights_m.is_empty() {
             return Err(c.err(
                 "restitution_drop.drop_heights_m",

@@ -1,9 +1,9 @@
 //! Kind `sedimentation`: `[sample]` and `[instruments]`.
 
-use super::super::super::check::{oc, Check};
-use super::super::super::load::ScenarioError;
 use super::super::{within_run, Scenario};
+use crate::error::BadInput;
 use crate::instruments::hydrometer::{Hydrometer, HydrometerSpec};
+use crate::scenario::check::{oc, Check};
 use serde::{Deserialize, Serialize};
 
 /// The laboratory instruments of a sedimentation run (seed 000 §4.5): the ASTM E100 152H
@@ -202,7 +202,7 @@ impl SampleSpec {
 
     /// Mass, density (denser than the fluid), counts, fractions, lubrication cut-offs and times
     /// in range.
-    pub(crate) fn check(&self, c: &Check, s: &Scenario) -> Result<(), ScenarioError> {
+    pub(crate) fn check(&self, c: &Check, s: &Scenario) -> Result<(), BadInput> {
         c.range("sample.mass_kg", self.mass_kg, oc(0.0, 1e3, "kg"))?;
         c.range(
             "sample.density_kg_m3",
@@ -339,7 +339,7 @@ impl InstrumentsSpec {
     /// and taper, [`Hydrometer::new`]) at most the cylinder's inside diameter `b`
     /// (`container.width_m`, the 2D projection's width) less [`BULB_WALL_CLEARANCE_M`] on each
     /// side. The error names the bulb length that would fit with the same volume and taper.
-    fn check_bulb_fits(&self, c: &Check, s: &Scenario, b: f64) -> Result<(), ScenarioError> {
+    fn check_bulb_fits(&self, c: &Check, s: &Scenario, b: f64) -> Result<(), BadInput> {
         let allowed = b - 2.0 * BULB_WALL_CLEARANCE_M;
         let diameter = |len: f64| {
             let spec = HydrometerSpec {
@@ -396,7 +396,7 @@ impl InstrumentsSpec {
         sample: &SampleSpec,
         h: f64,
         b: f64,
-    ) -> Result<(), ScenarioError> {
+    ) -> Result<(), BadInput> {
         let run = within_run(s.time.end_s);
         c.each(
             "instruments.hydrometer_times_s",

@@ -1,8 +1,8 @@
 //! Kind `tilt_friction`: `[tilt]`.
 
-use super::super::super::check::{cc, oc, Check, MAX_STEPS};
-use super::super::super::load::ScenarioError;
 use super::super::Scenario;
+use crate::error::BadInput;
+use crate::scenario::check::{cc, oc, Check, MAX_STEPS};
 use serde::{Deserialize, Serialize};
 
 /// Tilt friction test (f-EDEM Appendix III): a cuboid block at rest on a fixed plate tilted by
@@ -42,7 +42,7 @@ impl TiltSpec {
     /// Three edge lengths in (0, 10] m, density, at least one angle in [0°, 90°), a duration
     /// of at least one step and at most [`MAX_STEPS`] steps, slide distance and bisection
     /// tolerance in range.
-    pub(crate) fn check(&self, c: &Check, s: &Scenario) -> Result<(), ScenarioError> {
+    pub(crate) fn check(&self, c: &Check, s: &Scenario) -> Result<(), BadInput> {
         if self.block_size_m.len() != 3 {
             return Err(c.err(
                 "tilt.block_size_m",
