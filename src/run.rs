@@ -190,13 +190,13 @@ pub fn run_one_with(p: &Prepared, out_dir: &Path, ctx: &RunContext) -> Result<Fi
     let stage =
         StagedDir::new(out_dir, &s.name).map_err(|e| Error::Io(out_dir.join(&s.name), e))?;
     let io = |e: std::io::Error| Error::Io(stage.dest().to_path_buf(), e);
-    use crate::scenes::{funnel, restitution_drop, sedimentation, tilt_friction};
+    use crate::scenes::{funnel_pour, restitution_drop, sedimentation, tilt_friction};
     // The one match on the kind: each scene receives its typed spec.
     let (results, report) = match &p.scene {
-        SceneSpec::FreeSettling(_) | SceneSpec::Drop(_) => free_settling::run_scene(p, &stage)?,
+        SceneSpec::FreeSettling(_) => free_settling::run_scene(p, &stage)?,
         SceneSpec::RestitutionDrop(r) => (Vec::new(), restitution_drop::run(p, r, &stage)?),
         SceneSpec::TiltFriction(t) => (Vec::new(), tilt_friction::run(p, t, &stage)?),
-        SceneSpec::FunnelPour(f) => (Vec::new(), funnel::run(p, f, &stage, ctx)?),
+        SceneSpec::FunnelPour(f) => (Vec::new(), funnel_pour::run(p, f, &stage, ctx)?),
         SceneSpec::Sedimentation(sd) => (Vec::new(), sedimentation::run(p, sd, &stage, ctx)?),
     };
     let wall = t0.elapsed().as_secs_f64();

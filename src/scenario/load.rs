@@ -3,8 +3,8 @@
 //! a `[run]` table) loads as its `[scenario]` table, the effective scenario of that run
 //! ([`record_table`] writes it), so that `settle run OUT/NAME/run.toml` reruns the same case.
 
+use super::kinds::SceneSpec;
 use super::schema::{RheologyModel, Scenario};
-use super::spec::SceneSpec;
 use super::validate::{check_tables, table_used_by, validate};
 use crate::error::BadInput;
 use serde::Serialize;

@@ -14,18 +14,15 @@
 mod check;
 pub mod cost;
 pub mod inputs;
+mod kinds;
 mod load;
 mod schema;
-mod spec;
 mod validate;
 
+pub use kinds::{info, sweepable_names, KindInfo, SceneSpec, KINDS};
 pub use load::{
     apply_override, is_key_path, load, load_str, parse, parse_str, record_table, Overrides, Parsed,
 };
 pub use schema::*;
-pub use spec::{
-    FreeSettlingSpec, FunnelPourSpec, RestitutionSpec, SceneSpec, SedimentationSpec,
-    TiltFrictionSpec,
-};
 pub(crate) use validate::check_sphere;
-pub use validate::{kind_name, MAX_STEPS};
+pub use validate::MAX_STEPS;

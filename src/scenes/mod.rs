@@ -1,7 +1,7 @@
 //! Scene builders and runners, one module per scenario kind.
 
 pub mod free_settling;
-pub mod funnel;
+pub mod funnel_pour;
 pub mod restitution_drop;
 pub mod sedimentation;
 pub mod tilt_friction;

@@ -30,7 +30,7 @@ pub use args::{parse_dt, parse_dt_range, parse_shard, parse_tol, Args, BadValue,
 pub use plan::{dt_range, grid, shard, Case, DtRange, Plan, Shard, DEFAULT_TOL};
 pub use report::{charts, write_results, Context};
 pub use table::{finish, from_csv, read_rows, rel, to_csv, write_rows, Row, Status, HEADER};
-pub use targets::{has_reference, Target, SWEEPABLE, SWEEPABLE_NAMES};
+pub use targets::{has_reference, Target};
 
 use crate::error::Error;
 use crate::io::StagedDir;

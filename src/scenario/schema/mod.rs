@@ -13,11 +13,17 @@ mod transient;
 pub use bodies::{Container, ReferenceSpec, Release, SphereSpec, SpheresCsv};
 pub use contacts::Contacts;
 pub use fluid::{Drag, DragLawName, Fluid, Rheology, RheologyModel, StaticCriterion, Submergence};
-pub use kinds::funnel::{FunnelSpec, Repeats};
-pub use kinds::restitution_drop::RestitutionDropSpec;
+pub(crate) use kinds::free_settling;
+pub use kinds::free_settling::{Entry, FreeSettlingSpec};
+pub(crate) use kinds::funnel_pour;
+pub use kinds::funnel_pour::{FunnelPourSpec, FunnelSpec, Repeats};
+pub(crate) use kinds::restitution_drop;
+pub use kinds::restitution_drop::{RestitutionDropSpec, RestitutionSpec};
+pub(crate) use kinds::sedimentation;
 pub(crate) use kinds::sedimentation::trim_default_times;
-pub use kinds::sedimentation::{InstrumentsSpec, SampleSpec};
-pub use kinds::tilt::TiltSpec;
+pub use kinds::sedimentation::{InstrumentsSpec, SampleSpec, SedimentationSpec};
+pub(crate) use kinds::tilt_friction;
+pub use kinds::tilt_friction::{TiltFrictionSpec, TiltSpec};
 pub use measure::Measure;
 pub use time::Time;
 pub use transient::{Confinement, History, HistoryReynolds, Transient, Wall};
@@ -280,10 +286,10 @@ impl Scenario {
     /// sedimentation, whose grain contacts run in their own solve) and Rapier for the contact
     /// kinds (restitution drop, tilt, funnel pour).
     pub fn engine(&self) -> Engine {
-        match (self.kind, self.engine) {
-            (_, EngineChoice::Rapier) => Engine::Rapier,
-            (Kind::FreeSettling | Kind::Drop | Kind::Sedimentation, _) => Engine::Free,
-            (Kind::RestitutionDrop | Kind::TiltFriction | Kind::FunnelPour, _) => Engine::Rapier,
+        if self.engine == EngineChoice::Rapier || crate::scenario::info(self.kind).rapier {
+            Engine::Rapier
+        } else {
+            Engine::Free
         }
     }
 
@@ -314,14 +320,7 @@ impl Scenario {
 impl Kind {
     /// The name of the kind as written in scenario files (`free_settling`, …).
     pub fn name(self) -> &'static str {
-        match self {
-            Kind::FreeSettling => "free_settling",
-            Kind::Drop => "drop",
-            Kind::RestitutionDrop => "restitution_drop",
-            Kind::TiltFriction => "tilt_friction",
-            Kind::FunnelPour => "funnel_pour",
-            Kind::Sedimentation => "sedimentation",
-        }
+        crate::scenario::info(self).name
     }
 }
 

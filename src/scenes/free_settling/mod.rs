@@ -49,6 +49,7 @@
 //! [`run_scene`] is the entry point of `settle run`.
 
 pub mod charts;
+pub mod console;
 pub mod output;
 pub mod setup;
 pub mod simulate;

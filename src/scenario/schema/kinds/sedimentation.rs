@@ -1,6 +1,6 @@
 //! Kind `sedimentation`: `[sample]` and `[instruments]`.
 
-use super::super::{within_run, Scenario};
+use super::super::{within_run, Contacts, Container, Dim, Scenario};
 use crate::error::BadInput;
 use crate::instruments::hydrometer::{Hydrometer, HydrometerSpec};
 use crate::scenario::check::{oc, Check};
@@ -508,4 +508,64 @@ impl InstrumentsSpec {
             ),
         )
     }
+}
+
+/// The 2D projection of the sedimentation cylinder (kind `sedimentation`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SedimentationSpec {
+    /// The soil sample (`[sample]`).
+    pub sample: SampleSpec,
+    /// Width B of the projected cylinder, m (`container.width_m`).
+    pub width_m: f64,
+    /// Height H of the fluid column, m (`container.height_m`).
+    pub height_m: f64,
+    /// The hydrometer, buoyancy sphere and pipette (`[instruments]`; absent: every default).
+    pub instruments: InstrumentsSpec,
+    /// The grain contacts (`[contacts]`; absent: the scene's defaults).
+    pub contacts: Option<Contacts>,
+}
+
+/// The spec of a `sedimentation` scenario: `[sample]`, a `[container]` with its width,
+/// dimension 2, `[instruments]` if given.
+pub(crate) fn spec(c: &Check, s: &Scenario) -> Result<SedimentationSpec, BadInput> {
+    let missing = |key: &str, what: &str| {
+        c.err(
+            key,
+            format!("missing: kind = \"sedimentation\" needs {what}"),
+        )
+    };
+    let sm = s.sample.as_ref().ok_or_else(|| {
+        missing(
+            "sample",
+            "a [sample] table (csv, sample, mass_kg, density_kg_m3)",
+        )
+    })?;
+    let (h, b) = match &s.container {
+        Some(Container {
+            height_m,
+            width_m: Some(b),
+            ..
+        }) => (*height_m, *b),
+        _ => {
+            return Err(missing(
+                "container.width_m",
+                "a [container] with width_m (B) and height_m (H)",
+            ))
+        }
+    };
+    if s.dimension != Dim::Two {
+        return Err(c.err("dimension", "kind = \"sedimentation\" is the 2D projection of the cylinder (seed 000 §4.4): allowed 2"));
+    }
+    sm.check(c, s)?;
+    let instruments = s.instruments.clone().unwrap_or_default();
+    if s.instruments.is_some() {
+        instruments.check(c, s, sm, h, b)?;
+    }
+    Ok(SedimentationSpec {
+        sample: sm.clone(),
+        width_m: b,
+        height_m: h,
+        instruments,
+        contacts: s.contacts.clone(),
+    })
 }

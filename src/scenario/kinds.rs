@@ -1,23 +1,27 @@
-//! The typed scenario: what each kind needs, built once at the end of validation ("parse,
-//! don't validate"). A scene receives its own spec, with every table its kind needs present
-//! and checked, and the fluid's rheology with its parameters; it never re-asserts what
-//! validation already established.
+//! The registry of scene kinds: one [`KindInfo`] per kind in [`KINDS`], the one place that
+//! maps a kind to its name, the tables it reads, the typed spec built from them, its scene
+//! folder, its example scenario, its outputs and its reference page. Validation, the run
+//! record, the engine choice, sweeps and the docs tests all read it; the scenes dispatch on
+//! the [`SceneSpec`] it builds (`crate::scenes::run_scene`).
+//!
+//! Adding a kind: `CONTRIBUTING.md`, "Add a scene kind"; `tests/scenario/registry.rs` fails
+//! when a registered kind lacks one of its pieces.
 
+use super::check::Check;
 use super::schema::{
-    Contacts, Container, FunnelSpec, InstrumentsSpec, Measure, Release, Repeats,
-    RestitutionDropSpec, SampleSpec, SphereSpec, TiltSpec,
+    free_settling, funnel_pour, restitution_drop, sedimentation, tilt_friction, FreeSettlingSpec,
+    FunnelPourSpec, Kind, RestitutionSpec, Scenario, SedimentationSpec, TiltFrictionSpec,
 };
+use crate::error::BadInput;
 
 /// One spec per kind of scene: the tables the kind needs, present and checked.
 // One value per scenario file: the size of the largest variant does not matter.
 #[allow(clippy::large_enum_variant)]
 #[derive(Clone, Debug, PartialEq)]
 pub enum SceneSpec {
-    /// Kind `free_settling`: spheres released submerged.
+    /// Kinds `free_settling` and `drop` ([`FreeSettlingSpec::entry`] tells them apart): spheres
+    /// released submerged, or dropped through air into the fluid.
     FreeSettling(FreeSettlingSpec),
-    /// Kind `drop`: spheres dropped through air into the fluid (`release.fall_heights_m` holds
-    /// at least one height).
-    Drop(FreeSettlingSpec),
     /// Kind `restitution_drop`.
     RestitutionDrop(RestitutionSpec),
     /// Kind `tilt_friction`.
@@ -28,79 +32,191 @@ pub enum SceneSpec {
     Sedimentation(SedimentationSpec),
 }
 
-/// Free settling and drops: each sphere alone in the fluid, no contacts.
-#[derive(Clone, Debug, PartialEq)]
-pub struct FreeSettlingSpec {
-    /// The container (its bottom stops a sphere), or `None` for an unbounded fluid.
-    pub container: Option<Container>,
-    /// Release depth, speed and (drops) fall heights.
-    pub release: Release,
-    /// Probe times, detector section and steadiness window, if any.
-    pub measure: Option<Measure>,
+/// What the code knows about one kind of scene.
+#[derive(Clone, Copy, Debug)]
+pub struct KindInfo {
+    /// The kind.
+    pub kind: Kind,
+    /// Its name in scenario files (`kind = "…"`, as serde reads it), and the stem of its
+    /// reference page `docs/scenarios/<name>.md`.
+    pub name: &'static str,
+    /// Its scene's folder under `src/scenes/`: the kind's name, except for `drop`, a mode of
+    /// `free_settling` ([`super::Entry::Drop`]).
+    pub folder: &'static str,
+    /// The optional top-level tables it reads (a table not listed for a kind is refused; the
+    /// tables every kind reads, `[fluid]`, `[drag]`, `[time]`, are not listed), in the order
+    /// the error message lists them.
+    pub tables: &'static [&'static str],
+    /// Needs spheres: at least one `[[spheres]]` table or a `[spheres_csv]` file.
+    pub needs_spheres: bool,
+    /// Its bodies touch: `engine = "auto"` resolves to Rapier.
+    pub rapier: bool,
+    /// `settle sweep` can run it (`crate::sweep::targets`).
+    pub sweepable: bool,
+    /// Its example scenario, a file of `scenarios/`.
+    pub example: &'static str,
+    /// Files every run of the kind writes (besides `run.toml` and `report.html`), each named on
+    /// its reference page.
+    pub outputs: &'static [&'static str],
+    /// Builds the kind's spec from a scenario whose common tables were checked.
+    pub(crate) spec: fn(&Check, &Scenario) -> Result<SceneSpec, BadInput>,
 }
 
-/// A ball dropped on a plate in air (kind `restitution_drop`).
-#[derive(Clone, Debug, PartialEq)]
-pub struct RestitutionSpec {
-    /// The `[restitution_drop]` table: heights, measurements, tolerance.
-    pub drop: RestitutionDropSpec,
-    /// The ball: the scenario's one `[[spheres]]` entry.
-    pub ball: SphereSpec,
-    /// The contact properties (`[contacts]`).
-    pub contacts: Contacts,
+/// Every kind, in the order of [`Kind`].
+pub const KINDS: &[KindInfo] = &[
+    KindInfo {
+        kind: Kind::FreeSettling,
+        name: "free_settling",
+        folder: "free_settling",
+        tables: &[
+            "container",
+            "release",
+            "spheres",
+            "spheres_csv",
+            "measure",
+            "record",
+            "sweep",
+            "transient",
+            "reference",
+        ],
+        needs_spheres: true,
+        rapier: false,
+        sweepable: true,
+        example: "stokes_single.toml",
+        outputs: &["summary.csv", "timeseries.csv", "velocity.svg"],
+        spec: |c, s| Ok(SceneSpec::FreeSettling(free_settling::free_settling(c, s)?)),
+    },
+    KindInfo {
+        kind: Kind::Drop,
+        name: "drop",
+        folder: "free_settling",
+        tables: &[
+            "container",
+            "release",
+            "spheres",
+            "spheres_csv",
+            "measure",
+            "record",
+            "sweep",
+            "transient",
+        ],
+        needs_spheres: true,
+        rapier: false,
+        sweepable: true,
+        example: "paste_single_ball.toml",
+        outputs: &["summary.csv", "timeseries.csv", "settling_distance.svg"],
+        spec: |c, s| Ok(SceneSpec::FreeSettling(free_settling::drop(c, s)?)),
+    },
+    KindInfo {
+        kind: Kind::RestitutionDrop,
+        name: "restitution_drop",
+        folder: "restitution_drop",
+        tables: &[
+            "spheres",
+            "spheres_csv",
+            "contacts",
+            "restitution_drop",
+            "transient",
+        ],
+        needs_spheres: true,
+        rapier: true,
+        sweepable: false,
+        example: "restitution_drop.toml",
+        outputs: &["summary.csv", "fit.csv", "rebound_height.svg"],
+        spec: |c, s| Ok(SceneSpec::RestitutionDrop(restitution_drop::spec(c, s)?)),
+    },
+    KindInfo {
+        kind: Kind::TiltFriction,
+        name: "tilt_friction",
+        folder: "tilt_friction",
+        tables: &["contacts", "tilt"],
+        needs_spheres: false,
+        rapier: true,
+        sweepable: false,
+        example: "tilt_friction.toml",
+        outputs: &["summary.csv", "threshold.csv", "tilt_displacement.svg"],
+        spec: |c, s| Ok(SceneSpec::TiltFriction(tilt_friction::spec(c, s)?)),
+    },
+    KindInfo {
+        kind: Kind::FunnelPour,
+        name: "funnel_pour",
+        folder: "funnel_pour",
+        tables: &[
+            "container",
+            "spheres",
+            "spheres_csv",
+            "record",
+            "sweep",
+            "contacts",
+            "funnel",
+            "repeats",
+            "transient",
+        ],
+        needs_spheres: true,
+        rapier: true,
+        sweepable: true,
+        example: "paste_68_balls.toml",
+        outputs: &[
+            "balls.csv",
+            "counts.csv",
+            "presence.csv",
+            "z_distribution.csv",
+        ],
+        spec: |c, s| Ok(SceneSpec::FunnelPour(funnel_pour::spec(c, s)?)),
+    },
+    KindInfo {
+        kind: Kind::Sedimentation,
+        name: "sedimentation",
+        folder: "sedimentation",
+        tables: &["container", "contacts", "sample", "instruments"],
+        needs_spheres: false,
+        rapier: false,
+        sweepable: false,
+        example: "sedimentation_sample1.toml",
+        outputs: &[
+            "summary.csv",
+            "readings.csv",
+            "granulometry.csv",
+            "cylinder.csv",
+            "instruments.csv",
+        ],
+        spec: |c, s| Ok(SceneSpec::Sedimentation(sedimentation::spec(c, s)?)),
+    },
+];
+
+/// The registry entry of `kind`.
+pub fn info(kind: Kind) -> &'static KindInfo {
+    // Every variant of `Kind` has an entry (tests/scenario/registry.rs); the first entry stands
+    // in for none, which cannot happen.
+    KINDS.iter().find(|k| k.kind == kind).unwrap_or(&KINDS[0])
 }
 
-/// A block on a tilted plate (kind `tilt_friction`).
-#[derive(Clone, Debug, PartialEq)]
-pub struct TiltFrictionSpec {
-    /// The `[tilt]` table: block, angles, duration, slide distance, bisection tolerance.
-    pub tilt: TiltSpec,
-    /// The block's edge lengths [x, y, z], m (`tilt.block_size_m`).
-    pub block_size_m: [f64; 3],
-    /// The contact properties (`[contacts]`).
-    pub contacts: Contacts,
-}
-
-/// Balls poured from a funnel into the fluid-filled cylinder (kind `funnel_pour`).
-#[derive(Clone, Debug, PartialEq)]
-pub struct FunnelPourSpec {
-    /// The `[funnel]` table: ball count and funnel geometry.
-    pub funnel: FunnelSpec,
-    /// Radius of the cylinder, m (half of `container.diameter_m`).
-    pub cylinder_radius_m: f64,
-    /// Height of the fluid column, m (`container.height_m`).
-    pub height_m: f64,
-    /// The contact properties (`[contacts]`).
-    pub contacts: Contacts,
-    /// Repeats and their first seed (`[repeats]`; absent: one run, seed 0).
-    pub repeats: Repeats,
-}
-
-/// The 2D projection of the sedimentation cylinder (kind `sedimentation`).
-#[derive(Clone, Debug, PartialEq)]
-pub struct SedimentationSpec {
-    /// The soil sample (`[sample]`).
-    pub sample: SampleSpec,
-    /// Width B of the projected cylinder, m (`container.width_m`).
-    pub width_m: f64,
-    /// Height H of the fluid column, m (`container.height_m`).
-    pub height_m: f64,
-    /// The hydrometer, buoyancy sphere and pipette (`[instruments]`; absent: every default).
-    pub instruments: InstrumentsSpec,
-    /// The grain contacts (`[contacts]`; absent: the scene's defaults).
-    pub contacts: Option<Contacts>,
+/// The names of the kinds `settle sweep` can run.
+pub fn sweepable_names() -> Vec<&'static str> {
+    KINDS
+        .iter()
+        .filter(|k| k.sweepable)
+        .map(|k| k.name)
+        .collect()
 }
 
 impl SceneSpec {
     /// The kind's name as written in scenario files.
     pub fn kind_name(&self) -> &'static str {
+        self.kind().name()
+    }
+
+    /// The kind of the scenario this spec was built from.
+    pub fn kind(&self) -> Kind {
         match self {
-            SceneSpec::FreeSettling(_) => "free_settling",
-            SceneSpec::Drop(_) => "drop",
-            SceneSpec::RestitutionDrop(_) => "restitution_drop",
-            SceneSpec::TiltFriction(_) => "tilt_friction",
-            SceneSpec::FunnelPour(_) => "funnel_pour",
-            SceneSpec::Sedimentation(_) => "sedimentation",
+            SceneSpec::FreeSettling(f) => match f.entry {
+                super::Entry::Submerged => Kind::FreeSettling,
+                super::Entry::Drop => Kind::Drop,
+            },
+            SceneSpec::RestitutionDrop(_) => Kind::RestitutionDrop,
+            SceneSpec::TiltFriction(_) => Kind::TiltFriction,
+            SceneSpec::FunnelPour(_) => Kind::FunnelPour,
+            SceneSpec::Sedimentation(_) => Kind::Sedimentation,
         }
     }
 
@@ -223,7 +339,11 @@ mod tests {
             &["kind=drop", "release.fall_heights_m=[0.0]"],
         )
         .unwrap();
-        assert!(matches!(p.scene, SceneSpec::Drop(_)), "{:?}", p.scene);
+        assert!(
+            matches!(&p.scene, SceneSpec::FreeSettling(f) if f.entry == crate::scenario::Entry::Drop),
+            "{:?}",
+            p.scene
+        );
     }
 
     #[test]
