@@ -6,7 +6,7 @@ use crate::error::BadInput;
 use crate::error::Error;
 use crate::io::{self as output, StagedDir};
 use crate::scenario::inputs as spheres;
-use crate::scenario::{self, Kind, Scenario, SceneSpec};
+use crate::scenario::{self, Kind, Scenario};
 use crate::scenes::free_settling::{self, output as out_fs};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -95,16 +95,11 @@ pub fn prepare(path: &Path, dt_s: Option<f64>, overrides: &[String]) -> Result<P
     } = scenario::parse(path, &ov)?;
     check_name(&scenario, path)?;
     let spheres = spheres::spheres(&scenario, path)?;
-    let sample = match &scene {
-        SceneSpec::Sedimentation(sd) => Some(spheres::read_sample(&sd.sample, path)?),
-        _ => None,
-    };
     let reference = spheres::read_reference(&scenario, path)?;
     Ok(Prepared {
         path: path.to_path_buf(),
         scenario,
         spheres,
-        sample,
         scene,
         rheology,
         reference,
@@ -190,15 +185,7 @@ pub fn run_one_with(p: &Prepared, out_dir: &Path, ctx: &RunContext) -> Result<Fi
     let stage =
         StagedDir::new(out_dir, &s.name).map_err(|e| Error::Io(out_dir.join(&s.name), e))?;
     let io = |e: std::io::Error| Error::Io(stage.dest().to_path_buf(), e);
-    use crate::scenes::{funnel_pour, restitution_drop, sedimentation, tilt_friction};
-    // The one match on the kind: each scene receives its typed spec.
-    let (results, report) = match &p.scene {
-        SceneSpec::FreeSettling(_) => free_settling::run_scene(p, &stage)?,
-        SceneSpec::RestitutionDrop(r) => (Vec::new(), restitution_drop::run(p, r, &stage)?),
-        SceneSpec::TiltFriction(t) => (Vec::new(), tilt_friction::run(p, t, &stage)?),
-        SceneSpec::FunnelPour(f) => (Vec::new(), funnel_pour::run(p, f, &stage, ctx)?),
-        SceneSpec::Sedimentation(sd) => (Vec::new(), sedimentation::run(p, sd, &stage, ctx)?),
-    };
+    let (results, report) = crate::scenes::run_scene(p, &stage, ctx)?;
     let wall = t0.elapsed().as_secs_f64();
     let meta = RunToml {
         run: RunMeta {
@@ -259,7 +246,7 @@ fn commit(stage: StagedDir, file: &Path) -> Result<PathBuf, Error> {
 }
 
 /// Runs every file of a request. All files are validated, their destinations checked
-/// ([`check_destinations`]) and their cost estimated ([`crate::scenario::cost`]) before any
+/// ([`check_destinations`]) and their cost estimated ([`crate::scenes::cost`]) before any
 /// runs; with several files a combined `summary.csv` and `metrics.csv` go to
 /// `out_dir/combined/`. Checkpoints go to `out_dir/checkpoint/` (every `checkpoint_every_s`, and
 /// when interrupted) and are removed once every file has completed.
@@ -369,11 +356,11 @@ fn prepare_all(req: &RunRequest) -> Result<Vec<Prepared>, Error> {
                 ),
             )));
         }
-        let cost = scenario::cost::estimate(&p.scenario);
+        let cost = crate::scenes::cost::estimate(&p.scenario);
         if !req.quiet && cost.is_long() {
             eprintln!("{}: {}", p.path.display(), cost.describe());
         }
-        scenario::cost::check(&p.scenario, &p.path, req.force).map_err(Error::BadInput)?;
+        crate::scenes::cost::check(&p.scenario, &p.path, req.force).map_err(Error::BadInput)?;
     }
     Ok(prepared)
 }

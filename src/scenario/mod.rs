@@ -12,7 +12,6 @@
 //! and its [`RheologyModel`]; the dimension is read straight into a [`Dim`].
 
 mod check;
-pub mod cost;
 pub mod inputs;
 mod kinds;
 mod load;

@@ -1,5 +1,6 @@
 //! Scene builders and runners, one module per scenario kind.
 
+pub mod cost;
 pub mod free_settling;
 pub mod funnel_pour;
 pub mod restitution_drop;
@@ -9,7 +10,7 @@ pub mod validity;
 
 use crate::fluid::newtonian::CdCorrelation;
 use crate::fluid::{DragLaw, SphereDrag};
-use crate::scenario::{DragLawName, Physics, RheologyModel, Scenario, SceneSpec};
+use crate::scenario::{DragLawName, Kind, Physics, RheologyModel, Scenario, SceneSpec};
 use std::path::PathBuf;
 
 /// A loaded scenario ready to run: the effective scenario and its input files, read and checked.
@@ -21,9 +22,6 @@ pub struct Prepared {
     pub scenario: Scenario,
     /// Its spheres (free settling and drops; read from `spheres_csv` when given).
     pub spheres: Vec<crate::scenario::inputs::SphereCase>,
-    /// The particle-size distribution of a sedimentation scenario, read from `sample.csv`
-    /// while the scenario is prepared (None for other kinds).
-    pub sample: Option<crate::sample::Distribution>,
     /// What the scenario's kind needs, typed ([`crate::scenario::Parsed::scene`]).
     pub scene: SceneSpec,
     /// The fluid's rheology with its parameters ([`crate::scenario::Parsed::rheology`]).
@@ -109,4 +107,33 @@ pub fn added_mass_coefficient(s: &Scenario) -> f64 {
     s.transient
         .as_ref()
         .map_or(0.0, |t| t.added_mass_coefficient_on())
+}
+
+/// Runs the scene of `p` into the staging folder `stage`: the one match on the kind's spec,
+/// each scene receiving its own. Free settling and drops also return their per-sphere results
+/// (for the console table and the combined outputs of a several-file run).
+pub fn run_scene(
+    p: &Prepared,
+    stage: &crate::io::StagedDir,
+    ctx: &RunContext,
+) -> Result<(Vec<free_settling::SphereResult>, SceneReport), crate::error::Error> {
+    Ok(match &p.scene {
+        SceneSpec::FreeSettling(_) => free_settling::run_scene(p, stage)?,
+        SceneSpec::RestitutionDrop(r) => (Vec::new(), restitution_drop::run(p, r, stage)?),
+        SceneSpec::TiltFriction(t) => (Vec::new(), tilt_friction::run(p, t, stage)?),
+        SceneSpec::FunnelPour(f) => (Vec::new(), funnel_pour::run(p, f, stage, ctx)?),
+        SceneSpec::Sedimentation(sd) => (Vec::new(), sedimentation::run(p, sd, stage, ctx)?),
+    })
+}
+
+/// The load of scenario `s` as its kind's scene estimates it (`scenes/<kind>/cost.rs`), for
+/// [`cost::estimate`] and [`cost::check`].
+pub fn load(s: &Scenario) -> cost::Load {
+    match s.kind {
+        Kind::FreeSettling | Kind::Drop => free_settling::cost::load(s),
+        Kind::RestitutionDrop => restitution_drop::cost::load(s),
+        Kind::TiltFriction => tilt_friction::cost::load(s),
+        Kind::FunnelPour => funnel_pour::cost::load(s),
+        Kind::Sedimentation => sedimentation::cost::load(s),
+    }
 }

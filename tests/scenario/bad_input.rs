@@ -381,17 +381,16 @@ case!(
 );
 
 /// A bad sample CSV is refused by the scenario layer's reader with its row, column and range
-/// (a `BadInput`: exit 2), before the run reads it.
+/// (a `BadInput`: exit 2) as the scenario is loaded (the sample is part of the typed
+/// sedimentation spec), before anything runs.
 #[test]
 fn sample_csv_percent_out_of_range() {
     let path = good("sedimentation_sample1.toml");
-    let s = settle::scenario::load(
+    let e = settle::scenario::load(
         &path,
         &["sample.csv=\"../tests/bad_scenarios/bad_sample_percent.csv\"".to_string()],
     )
-    .expect("a good scenario");
-    let e = settle::scenario::inputs::read_sample(s.sample.as_ref().expect("[sample]"), &path)
-        .expect_err("percent finer 120 must be refused");
+    .expect_err("percent finer 120 must be refused");
     let line = e.to_string();
     assert_eq!(e.key.as_deref(), Some("sample.csv"), "{line}");
     for w in [

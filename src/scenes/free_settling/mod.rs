@@ -50,6 +50,7 @@
 
 pub mod charts;
 pub mod console;
+pub mod cost;
 pub mod output;
 pub mod setup;
 pub mod simulate;

@@ -50,6 +50,7 @@
 //! [`output`] (the files); and for this kind [`fit`] (the measured against the simulated
 //! rebounds).
 
+pub mod cost;
 pub mod fit;
 pub mod output;
 pub mod setup;

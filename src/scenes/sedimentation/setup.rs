@@ -3,7 +3,6 @@
 
 use crate::error::BadInput;
 use crate::sample::{discretize, representative_grains, Distribution, Grain, SizeClass};
-use crate::scenario::inputs::read_sample;
 use crate::scenario::{Contacts, Parsed, RheologyModel, Scenario, SceneSpec, SedimentationSpec};
 use std::path::Path;
 
@@ -87,9 +86,10 @@ impl GrainContacts {
     }
 }
 
-/// Builds the sample of scenario `s` (the file `path`), reading its `sample.csv`
-/// ([`crate::scenario::inputs::read_sample`]); see [`setup_with`]. The scenario is validated
-/// here: one that is invalid or of another kind is a bad input.
+/// Builds the sample of a raw scenario `s` (the file `path`), for a caller that holds no
+/// prepared scenario (benchmarks, tests): `s` is parsed here, once (validated, its
+/// `sample.csv` read); one that is invalid or of another kind is a bad input. A run goes
+/// through [`setup_of`] and parses nothing again.
 pub fn setup(s: &Scenario, path: &Path) -> Result<Setup, BadInput> {
     let parsed = Parsed::new(s.clone(), path)?;
     let SceneSpec::Sedimentation(spec) = &parsed.scene else {
@@ -102,23 +102,18 @@ pub fn setup(s: &Scenario, path: &Path) -> Result<Setup, BadInput> {
             ),
         ));
     };
-    let distribution = read_sample(&spec.sample, path)?;
-    Ok(setup_with(spec, parsed.rheology, distribution))
+    Ok(setup_with(spec, parsed.rheology, spec.distribution.clone()))
 }
 
-/// Builds the sample of a prepared sedimentation scenario of spec `spec` from the distribution
-/// read while it was prepared ([`crate::scenes::Prepared::sample`]; read now if absent).
-pub fn setup_of(p: &crate::scenes::Prepared, spec: &SedimentationSpec) -> Result<Setup, BadInput> {
-    let distribution = match &p.sample {
-        Some(d) => d.clone(),
-        None => read_sample(&spec.sample, &p.path)?,
-    };
-    Ok(setup_with(spec, p.rheology, distribution))
+/// Builds the sample of a prepared sedimentation scenario of spec `spec` (its distribution
+/// read as the scenario was parsed).
+pub fn setup_of(p: &crate::scenes::Prepared, spec: &SedimentationSpec) -> Setup {
+    setup_with(spec, p.rheology, spec.distribution.clone())
 }
 
 /// Builds the sample of a sedimentation scenario of spec `spec` in a fluid of rheology
-/// `rheology` from its particle-size `distribution` (read while the scenario was prepared,
-/// [`crate::scenes::Prepared::sample`]).
+/// `rheology` from its particle-size `distribution` (normally [`SedimentationSpec::distribution`],
+/// read as the scenario was parsed).
 pub fn setup_with(
     spec: &SedimentationSpec,
     rheology: RheologyModel,

@@ -27,6 +27,7 @@
 //! `summary.csv` (one row per angle run, the given angles and the bisection's), `threshold.csv`
 //! and `tilt_displacement.svg` (see [`output`]).
 
+pub mod cost;
 pub mod output;
 pub mod search;
 pub mod setup;

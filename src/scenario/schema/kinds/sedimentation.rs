@@ -3,7 +3,9 @@
 use super::super::{within_run, Contacts, Container, Dim, Scenario};
 use crate::error::BadInput;
 use crate::instruments::hydrometer::{Hydrometer, HydrometerSpec};
+use crate::sample::Distribution;
 use crate::scenario::check::{oc, Check};
+use crate::scenario::inputs::read_sample;
 use serde::{Deserialize, Serialize};
 
 /// The laboratory instruments of a sedimentation run (seed 000 §4.5): the ASTM E100 152H
@@ -523,10 +525,13 @@ pub struct SedimentationSpec {
     pub instruments: InstrumentsSpec,
     /// The grain contacts (`[contacts]`; absent: the scene's defaults).
     pub contacts: Option<Contacts>,
+    /// The particle-size distribution of the sample, read from `sample.csv` (relative to the
+    /// scenario file) once, as the scenario is parsed.
+    pub distribution: Distribution,
 }
 
 /// The spec of a `sedimentation` scenario: `[sample]`, a `[container]` with its width,
-/// dimension 2, `[instruments]` if given.
+/// dimension 2, `[instruments]` if given, and the sample's distribution read from its CSV.
 pub(crate) fn spec(c: &Check, s: &Scenario) -> Result<SedimentationSpec, BadInput> {
     let missing = |key: &str, what: &str| {
         c.err(
@@ -567,5 +572,6 @@ pub(crate) fn spec(c: &Check, s: &Scenario) -> Result<SedimentationSpec, BadInpu
         height_m: h,
         instruments,
         contacts: s.contacts.clone(),
+        distribution: read_sample(sm, c.file)?,
     })
 }
