@@ -90,6 +90,7 @@ pub fn prepare(path: &Path, dt_s: Option<f64>, overrides: &[String]) -> Result<P
     }
     let scenario::Parsed {
         scenario,
+        common,
         scene,
         rheology,
     } = scenario::parse(path, &ov)?;
@@ -99,6 +100,7 @@ pub fn prepare(path: &Path, dt_s: Option<f64>, overrides: &[String]) -> Result<P
     Ok(Prepared {
         path: path.to_path_buf(),
         scenario,
+        common,
         spheres,
         scene,
         rheology,
@@ -436,9 +438,7 @@ fn write_combined(out_dir: &Path, reports: &[FileReport]) -> Result<(), Error> {
     out_fs::write_summary(&stage.path("summary.csv"), &rows).map_err(io)?;
     out_fs::write_combined_charts(
         &stage,
-        reports
-            .iter()
-            .map(|r| (&r.prepared.scenario, &r.results[..])),
+        reports.iter().map(|r| (&r.prepared.common, &r.results[..])),
     )
     .map_err(io)?;
     let stats = out_fs::metrics(&all);

@@ -3,6 +3,7 @@
 //! a `[run]` table) loads as its `[scenario]` table, the effective scenario of that run
 //! ([`record_table`] writes it), so that `settle run OUT/NAME/run.toml` reruns the same case.
 
+use super::common::Common;
 use super::kinds::SceneSpec;
 use super::schema::{RheologyModel, Scenario};
 use super::validate::{check_tables, table_used_by, validate};
@@ -21,15 +22,17 @@ pub struct Overrides {
     pub dt_s: Option<f64>,
 }
 
-/// A validated scenario with its typed parts: the scene spec of its kind and the rheology of
-/// its fluid. The dimension is `scenario.dimension` (a [`super::Dim`]).
+/// A validated scenario with its typed parts: the common part every kind reads, the scene
+/// spec of its kind and the rheology of its fluid.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Parsed {
-    /// The scenario as read (overrides applied); written back to `run.toml`.
+    /// The scenario as read (overrides applied): the record written back to `run.toml`.
     pub scenario: Scenario,
+    /// What every kind reads, typed.
+    pub common: Common,
     /// What the scenario's kind needs, typed.
     pub scene: SceneSpec,
-    /// The fluid's rheology with its parameters.
+    /// The fluid's rheology with its parameters (also [`Common::rheology`]).
     pub rheology: RheologyModel,
 }
 
@@ -39,6 +42,7 @@ impl Parsed {
     pub fn new(scenario: Scenario, file: &Path) -> Result<Self, BadInput> {
         let (scene, rheology) = validate(&scenario, file)?;
         Ok(Self {
+            common: Common::of(&scenario, rheology),
             scenario,
             scene,
             rheology,

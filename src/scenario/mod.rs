@@ -12,12 +12,14 @@
 //! and its [`RheologyModel`]; the dimension is read straight into a [`Dim`].
 
 mod check;
+mod common;
 pub mod inputs;
 mod kinds;
 mod load;
 mod schema;
 mod validate;
 
+pub use common::Common;
 pub use kinds::{info, sweepable_names, KindInfo, SceneSpec, KINDS};
 pub use load::{
     apply_override, is_key_path, load, load_str, parse, parse_str, record_table, Overrides, Parsed,

@@ -517,7 +517,7 @@ fn set_transient_in_the_rapier_scenes() {
     for file in ["restitution_drop.toml", "paste_68_balls.toml"] {
         let on = ["transient.added_mass=true".to_string()];
         let p = settle::run::prepare(&good(file), None, &on).expect("added mass accepted");
-        assert_eq!(settle::scenes::added_mass_coefficient(&p.scenario), 0.5);
+        assert_eq!(p.common.added_mass_coefficient(), 0.5);
         let o = settle_run(&[good(file)], &["--set", "transient.history=basset"]);
         assert_refused(
             &o,

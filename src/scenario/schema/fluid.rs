@@ -321,22 +321,35 @@ impl RheologyModel {
 
     /// The rheogram of a yield-stress fluid (Bingham: n = 1, K = η_B); None for a Newtonian one.
     pub fn yield_fluid(&self) -> Option<crate::fluid::bingham::YieldFluid> {
+        match self {
+            RheologyModel::Newtonian { .. } => None,
+            _ => Some(self.rheogram()),
+        }
+    }
+
+    /// The rheogram τ = τ_y + K γ̇ⁿ of the fluid: Bingham n = 1, K = η_B; Herschel–Bulkley as
+    /// given; a Newtonian fluid is its limit τ_y = 0, K = η, n = 1.
+    pub fn rheogram(&self) -> crate::fluid::bingham::YieldFluid {
         use crate::fluid::bingham::YieldFluid;
         match *self {
-            RheologyModel::Newtonian { .. } => None,
+            RheologyModel::Newtonian { viscosity_pa_s } => YieldFluid {
+                yield_stress_pa: 0.0,
+                consistency_pa_sn: viscosity_pa_s,
+                flow_index: 1.0,
+            },
             RheologyModel::Bingham {
                 plastic_viscosity_pa_s,
                 yield_stress_pa,
-            } => Some(YieldFluid::bingham(yield_stress_pa, plastic_viscosity_pa_s)),
+            } => YieldFluid::bingham(yield_stress_pa, plastic_viscosity_pa_s),
             RheologyModel::HerschelBulkley {
                 yield_stress_pa,
                 consistency_pa_sn,
                 flow_index,
-            } => Some(YieldFluid {
+            } => YieldFluid {
                 yield_stress_pa,
                 consistency_pa_sn,
                 flow_index,
-            }),
+            },
         }
     }
 
@@ -355,15 +368,44 @@ impl RheologyModel {
 }
 
 impl Drag {
-    /// The drag law of a yield-stress law name other than `bingham-fedem` in a fluid of
-    /// rheology `rheology` (with the static criterion); None for the other names or a Newtonian
-    /// fluid.
-    pub fn plastic_law(&self, rheology: RheologyModel) -> Option<crate::fluid::DragLaw> {
-        Some(crate::fluid::DragLaw::Plastic {
-            law: self.law.plastic()?,
-            fluid: rheology.yield_fluid()?,
+    /// The drag law of this table in a fluid of rheology `rheology`, after the `physics` switch
+    /// (`ideal-stokes` turns every law into Stokes drag with the fluid's viscosity, or its
+    /// plastic viscosity for a Bingham fluid). Total: a yield-stress law takes the fluid's
+    /// rheogram ([`RheologyModel::rheogram`]; validation allows it only in a yield-stress fluid).
+    pub fn law(&self, rheology: RheologyModel, physics: Physics) -> crate::fluid::DragLaw {
+        use crate::fluid::bingham::PlasticLaw;
+        use crate::fluid::newtonian::CdCorrelation;
+        use crate::fluid::DragLaw;
+        let mu = rheology.drag_viscosity_pa_s();
+        if physics == Physics::IdealStokes {
+            return DragLaw::Stokes { viscosity_pa_s: mu };
+        }
+        let correlation = |cd| DragLaw::Correlation {
+            viscosity_pa_s: mu,
+            cd,
+        };
+        let plastic = |law| DragLaw::Plastic {
+            law,
+            fluid: rheology.rheogram(),
             beris: self.static_criterion == StaticCriterion::Beris,
-        })
+        };
+        match self.law {
+            DragLawName::Stokes => DragLaw::Stokes { viscosity_pa_s: mu },
+            DragLawName::Dallavalle => DragLaw::Dallavalle {
+                viscosity_pa_s: mu,
+                voidage: self.voidage,
+            },
+            DragLawName::SchillerNaumann => correlation(CdCorrelation::SchillerNaumann),
+            DragLawName::CliftGauvin => correlation(CdCorrelation::CliftGauvin),
+            DragLawName::Morrison => correlation(CdCorrelation::Morrison),
+            DragLawName::BinghamFedem => DragLaw::Bingham {
+                yield_stress_pa: rheology.yield_stress_pa(),
+                plastic_viscosity_pa_s: mu,
+            },
+            DragLawName::BinghamAdditive => plastic(PlasticLaw::Additive),
+            DragLawName::AnsleySmith => plastic(PlasticLaw::AnsleySmith),
+            DragLawName::Wilson2003 => plastic(PlasticLaw::Wilson),
+        }
     }
 
     /// Voidage in (0, 1]; a yield-stress law exactly for a yield-stress fluid (unless

@@ -3,7 +3,7 @@
 //! decide whether to stop — and the runners over all spheres (rayon, results in input order),
 //! with one dispatch on the dimension and the engine.
 
-use super::setup::{uses_rapier, RunOptions, SphereSetup};
+use super::setup::{typed, uses_rapier, RunOptions, Scene, SphereSetup};
 use super::submerged::{added_mass_kg, analytic_at, submerged_step};
 use crate::contact::rayleigh_time_s;
 use crate::dynamics::{advance, explicit_stable_dt_s, Monitor, Motion, Step, Unstable};
@@ -135,7 +135,18 @@ pub fn run(
     cases: &[SphereCase],
     opts: RunOptions,
 ) -> Result<Vec<SphereResult>, Unstable> {
-    run_cases(scenario, rheology, cases, opts, false, false).map_err(uninterruptible)
+    let (c, f) = typed(scenario, rheology);
+    run_cases(
+        Scene {
+            common: &c,
+            spec: &f,
+        },
+        cases,
+        opts,
+        false,
+        false,
+    )
+    .map_err(uninterruptible)
 }
 
 /// Runs every sphere through its own Rapier world with the force hook (`engine = "rapier"`):
@@ -147,7 +158,18 @@ pub fn run_rapier(
     cases: &[SphereCase],
     opts: RunOptions,
 ) -> Result<Vec<SphereResult>, Unstable> {
-    run_cases(scenario, rheology, cases, opts, true, false).map_err(uninterruptible)
+    let (c, f) = typed(scenario, rheology);
+    run_cases(
+        Scene {
+            common: &c,
+            spec: &f,
+        },
+        cases,
+        opts,
+        true,
+        false,
+    )
+    .map_err(uninterruptible)
 }
 
 /// Runs every sphere on the engine the scenario asks for, stopping within
@@ -158,7 +180,24 @@ pub fn run_interruptible(
     cases: &[SphereCase],
     opts: RunOptions,
 ) -> Result<Vec<SphereResult>, Halt> {
-    run_cases(scenario, rheology, cases, opts, uses_rapier(scenario), true)
+    let (c, f) = typed(scenario, rheology);
+    run_scene_cases(
+        Scene {
+            common: &c,
+            spec: &f,
+        },
+        cases,
+        opts,
+    )
+}
+
+/// [`run_interruptible`] of the typed scene `sc`: the entry of a prepared scenario.
+pub fn run_scene_cases(
+    sc: Scene,
+    cases: &[SphereCase],
+    opts: RunOptions,
+) -> Result<Vec<SphereResult>, Halt> {
+    run_cases(sc, cases, opts, uses_rapier(sc.common), true)
 }
 
 fn uninterruptible(h: Halt) -> Unstable {
@@ -171,20 +210,19 @@ fn uninterruptible(h: Halt) -> Unstable {
 /// The one dispatch on dimension and engine: every case in parallel, results in input order,
 /// the first halt wins.
 fn run_cases(
-    scenario: &Scenario,
-    rheology: RheologyModel,
+    sc: Scene,
     cases: &[SphereCase],
     opts: RunOptions,
     rapier: bool,
     interruptible: bool,
 ) -> Result<Vec<SphereResult>, Halt> {
     use rayon::prelude::*;
-    let (s, rh, on) = (scenario, rheology, interruptible);
-    let one = |c: &SphereCase| match (s.dimension, rapier) {
-        (Dim::Two, false) => run_sphere_with::<2>(s, rh, c, opts, None, on),
-        (Dim::Three, false) => run_sphere_with::<3>(s, rh, c, opts, None, on),
-        (Dim::Two, true) => rapier_sphere::<2, dim2::World>(s, rh, c, opts, on),
-        (Dim::Three, true) => rapier_sphere::<3, dim3::World>(s, rh, c, opts, on),
+    let on = interruptible;
+    let one = |c: &SphereCase| match (sc.common.dimension, rapier) {
+        (Dim::Two, false) => run_sphere_with::<2>(sc, c, opts, None, on),
+        (Dim::Three, false) => run_sphere_with::<3>(sc, c, opts, None, on),
+        (Dim::Two, true) => rapier_sphere::<2, dim2::World>(sc, c, opts, on),
+        (Dim::Three, true) => rapier_sphere::<3, dim3::World>(sc, c, opts, on),
     };
     cases.par_iter().map(one).collect()
 }
@@ -196,7 +234,12 @@ pub fn run_sphere<const D: usize>(
     case: &SphereCase,
     opts: RunOptions,
 ) -> Result<SphereResult, Unstable> {
-    run_sphere_with::<D>(scenario, rheology, case, opts, None, false).map_err(uninterruptible)
+    let (c, f) = typed(scenario, rheology);
+    let sc = Scene {
+        common: &c,
+        spec: &f,
+    };
+    run_sphere_with::<D>(sc, case, opts, None, false).map_err(uninterruptible)
 }
 
 /// A step taken by an engine instead of [`advance`]: given dt, advance the sphere and report its
@@ -230,14 +273,13 @@ struct State<const D: usize> {
 
 /// The loop of one sphere, with the steps taken by `external` (a Rapier world) when given.
 fn run_sphere_with<const D: usize>(
-    scenario: &Scenario,
-    rheology: RheologyModel,
+    sc: Scene,
     case: &SphereCase,
     opts: RunOptions,
     mut external: Option<ExternalStep<'_, D>>,
     interruptible: bool,
 ) -> Result<SphereResult, Halt> {
-    let su = SphereSetup::<D>::new(scenario, rheology, case, opts);
+    let su = SphereSetup::<D>::new(sc, case, opts);
     let d = su.d_m;
     let mut st = State {
         v: su.down * su.v0_m_s,
@@ -577,16 +619,15 @@ fn finish<const D: usize>(
 /// One sphere through its own Rapier world `W` with the force hook: the loop of
 /// [`run_sphere_with`] with Rapier taking the steps.
 fn rapier_sphere<const D: usize, W: SphereWorld<D>>(
-    scenario: &Scenario,
-    rheology: RheologyModel,
+    sc: Scene,
     case: &SphereCase,
     opts: RunOptions,
     interruptible: bool,
 ) -> Result<SphereResult, Halt> {
     let d = case.spec.diameter_m;
-    let drag = super::super::sphere_drag(scenario, rheology, d);
-    let g = scenario.gravity_m_s2;
-    let depth0 = super::release_depth_m(scenario, case);
+    let drag = sc.common.sphere_drag(d);
+    let g = sc.common.gravity_m_s2;
+    let depth0 = super::release_depth_m(sc.spec, case);
     let v_max = drag
         .balance_speed(
             (sphere_mass_kg(d, case.spec.density_kg_m3)
@@ -595,14 +636,14 @@ fn rapier_sphere<const D: usize, W: SphereWorld<D>>(
                 * g,
         )
         .speed_m_s
-        .max(scenario.release.velocity_m_s);
+        .max(sc.spec.release.velocity_m_s);
     let mut up = SVector::<f64, D>::zeros();
     up[D - 1] = 1.0;
     let (mut world, id) = W::with_sphere(
         EngineSettings::for_scene(d, 2.0 * v_max),
         g,
         -up * depth0,
-        -up * scenario.release.velocity_m_s,
+        -up * sc.spec.release.velocity_m_s,
         d,
         case.spec.density_kg_m3,
         drag,
@@ -629,12 +670,5 @@ fn rapier_sphere<const D: usize, W: SphereWorld<D>>(
         prev = x;
         Ok(out)
     };
-    run_sphere_with::<D>(
-        scenario,
-        rheology,
-        case,
-        opts,
-        Some(&mut step),
-        interruptible,
-    )
+    run_sphere_with::<D>(sc, case, opts, Some(&mut step), interruptible)
 }

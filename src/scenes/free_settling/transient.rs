@@ -16,6 +16,7 @@
 //! inertia (added mass alone) or the Basset closed form ([`BassetProblem`], history on, released
 //! from rest); none with the wall.
 
+use super::setup::Scene;
 use crate::dynamics::transient::{
     basset_coefficient, basset_kernel, mei_adrian_kernel_sum, MeiAdrianTable, TransientBody,
     TransientModel,
@@ -23,7 +24,7 @@ use crate::dynamics::transient::{
 use crate::fluid::transient::wall::haberman_sayre_factor;
 use crate::fluid::transient::BassetProblem;
 use crate::fluid::{DragLaw, SphereDrag};
-use crate::scenario::{Confinement, History, HistoryReynolds, Scenario, Wall};
+use crate::scenario::{Confinement, History, HistoryReynolds, Wall};
 
 /// The transient forces of one sphere, fixed at release.
 #[derive(Clone, Debug)]
@@ -44,8 +45,9 @@ pub(super) struct TransientSetup {
 
 impl TransientSetup {
     /// The setup of a sphere of diameter `d_m`, mass `m_kg`, displaced fluid mass `m_f_kg`
-    /// and drag `drag` in `scenario`; None when `[transient]` is absent or all off.
-    pub fn new(s: &Scenario, d_m: f64, m_kg: f64, m_f_kg: f64, drag: &SphereDrag) -> Option<Self> {
+    /// and drag `drag` in the scene `sc`; None when `[transient]` is absent or all off.
+    pub fn new(sc: Scene, d_m: f64, m_kg: f64, m_f_kg: f64, drag: &SphereDrag) -> Option<Self> {
+        let (s, f) = (sc.common, sc.spec);
         let t = s.transient.as_ref().filter(|t| t.any())?;
         let cm = if t.added_mass {
             t.added_mass_coefficient
@@ -54,9 +56,9 @@ impl TransientSetup {
         };
         let added = cm * m_f_kg;
         let mu = drag.law.viscosity_pa_s();
-        let c_h = basset_coefficient(d_m, s.fluid.density_kg_m3, mu);
+        let c_h = basset_coefficient(d_m, s.fluid_density_kg_m3, mu);
         let k = 3.0 * std::f64::consts::PI * mu * d_m;
-        let nu = mu / s.fluid.density_kg_m3;
+        let nu = mu / s.fluid_density_kg_m3;
         let (tau_d, inertia) = (d_m * d_m / nu, m_kg + added);
         // Re at the terminal speed of the quasi-steady drag in an unbounded fluid.
         let re_t = || {
@@ -73,7 +75,7 @@ impl TransientSetup {
             History::Off => None,
             History::Basset => Some(basset_kernel(inertia, k, c_h, s.time.end_s)),
             History::MeiAdrian => Some(match &current_re {
-                Some((table, _)) => table.at(s.release.velocity_m_s.abs() * d_m / nu),
+                Some((table, _)) => table.at(f.release.velocity_m_s.abs() * d_m / nu),
                 None => mei_adrian_kernel_sum(inertia, k, c_h, s.time.end_s, tau_d, re_t()),
             }),
         };
@@ -87,10 +89,10 @@ impl TransientSetup {
             && t.history == History::Basset
             && t.wall == Wall::Off
             && t.confinement == Confinement::Off
-            && s.release.velocity_m_s == 0.0)
+            && f.release.velocity_m_s == 0.0)
             .then(|| {
                 let rho_p = m_kg / (std::f64::consts::PI * d_m.powi(3) / 6.0);
-                BassetProblem::sphere(d_m, rho_p, s.fluid.density_kg_m3, mu, cm, s.gravity_m_s2)
+                BassetProblem::sphere(d_m, rho_p, s.fluid_density_kg_m3, mu, cm, s.gravity_m_s2)
             });
         Some(Self {
             current_re,
@@ -99,7 +101,7 @@ impl TransientSetup {
             wall: t.wall,
             confinement: match t.confinement {
                 Confinement::Off => 1.0,
-                Confinement::HabermanSayre => s
+                Confinement::HabermanSayre => f
                     .container
                     .as_ref()
                     .and_then(|c| c.diameter_m)
