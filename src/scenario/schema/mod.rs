@@ -5,7 +5,15 @@
 mod bodies;
 mod contacts;
 mod fluid;
-mod kinds;
+/// The tables of one kind each, with their checks and the typed spec of the kind built from
+/// them: one file per kind under `kinds/`, named as the kind.
+mod kinds {
+    pub mod free_settling;
+    pub mod funnel_pour;
+    pub mod restitution_drop;
+    pub mod sedimentation;
+    pub mod tilt_friction;
+}
 mod measure;
 mod time;
 mod transient;
