@@ -173,6 +173,7 @@ fn funnel_case(p: &Prepared, f: &FunnelPourSpec, c: &Case) -> Vec<Row> {
     let mut q = p.clone();
     q.scenario.time.dt_s = c.dt_s;
     q.scenario.time.integrator = c.integrator;
+    q.common.time = q.scenario.time.clone();
     let t0 = Instant::now();
     let res = crate::scenes::funnel_pour::run_repeat(&q, f, 0, f.repeats.seed);
     let wall = t0.elapsed().as_secs_f64();
