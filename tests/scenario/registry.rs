@@ -38,14 +38,23 @@ fn missing(k: &Entry, root: &Path) -> Vec<String> {
     // Scene: its folder, declared in scenes/mod.rs, with its cost model.
     let folder = root.join("src/scenes").join(k.folder);
     if !folder.join("mod.rs").is_file() {
-        out.push(format!("{name}: scene folder src/scenes/{}/ (mod.rs)", k.folder));
+        out.push(format!(
+            "{name}: scene folder src/scenes/{}/ (mod.rs)",
+            k.folder
+        ));
     }
     if !folder.join("cost.rs").is_file() {
-        out.push(format!("{name}: cost model src/scenes/{}/cost.rs", k.folder));
+        out.push(format!(
+            "{name}: cost model src/scenes/{}/cost.rs",
+            k.folder
+        ));
     }
     let scenes = std::fs::read_to_string(root.join("src/scenes/mod.rs")).unwrap_or_default();
     if !scenes.contains(&format!("pub mod {};", k.folder)) {
-        out.push(format!("{name}: `pub mod {};` in src/scenes/mod.rs", k.folder));
+        out.push(format!(
+            "{name}: `pub mod {};` in src/scenes/mod.rs",
+            k.folder
+        ));
     }
     // Example scenario: present, of this kind, parsing into this kind's spec.
     let example = root.join("scenarios").join(k.example);
@@ -53,7 +62,10 @@ fn missing(k: &Entry, root: &Path) -> Vec<String> {
         Err(_) => out.push(format!("{name}: example scenario scenarios/{}", k.example)),
         Ok(text) => {
             if !text.contains(&format!("kind = \"{name}\"")) {
-                out.push(format!("{name}: scenarios/{} has kind = \"{name}\"", k.example));
+                out.push(format!(
+                    "{name}: scenarios/{} has kind = \"{name}\"",
+                    k.example
+                ));
             }
             match settle::scenario::parse(&example, &[]) {
                 Ok(p) if p.scene.kind_name() == name => {}
@@ -86,7 +98,9 @@ fn missing(k: &Entry, root: &Path) -> Vec<String> {
     }
     for o in k.outputs {
         if !doc.contains(&format!("`{o}`")) {
-            out.push(format!("{name}: output `{o}` named in docs/scenarios/{name}.md"));
+            out.push(format!(
+                "{name}: output `{o}` named in docs/scenarios/{name}.md"
+            ));
         }
     }
     out

@@ -52,12 +52,14 @@ pub mod charts;
 pub mod console;
 pub mod cost;
 pub mod output;
+mod scene;
 pub mod setup;
 pub mod simulate;
 mod submerged;
 mod transient;
 
-pub use setup::{release_depth_m, RunOptions, Scene};
+pub use scene::Scene;
+pub use setup::{release_depth_m, RunOptions};
 pub use simulate::{
     run, run_interruptible, run_rapier, run_scene_cases, run_sphere, Halt, Sample, SphereResult,
     StopReason,
@@ -75,7 +77,7 @@ pub fn history_states(
     cases: &[crate::scenario::inputs::SphereCase],
 ) -> Option<usize> {
     let c = cases.first()?;
-    let (common, spec) = setup::typed(scenario, rheology);
+    let (common, spec) = scene::typed(scenario, rheology);
     let sc = Scene {
         common: &common,
         spec: &spec,

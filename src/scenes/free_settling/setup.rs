@@ -2,27 +2,12 @@
 //! quantities of one sphere fixed at release (drag, weights, force balance, schedule,
 //! detectors).
 
+use super::scene::Scene;
 use crate::dynamics::Integrator;
 use crate::fluid::{sphere_mass_kg, DragLaw, SphereDrag};
 use crate::scenario::inputs::SphereCase;
-use crate::scenario::{Common, Engine, FreeSettlingSpec, RheologyModel, Scenario, Submergence};
+use crate::scenario::{Common, Engine, FreeSettlingSpec, Scenario, Submergence};
 use nalgebra::SVector;
-
-/// What a free-settling run reads: the typed common part and the kind's spec.
-#[derive(Clone, Copy, Debug)]
-pub struct Scene<'a> {
-    /// What every kind reads.
-    pub common: &'a Common,
-    /// Container, release and measurements.
-    pub spec: &'a FreeSettlingSpec,
-}
-
-/// The typed parts of a free-settling or drop scenario `s` whose fluid has rheology
-/// `rheology`, for the functions that take a scenario as read ([`super::run`] and the others):
-/// the same values as [`crate::scenario::Parsed`] holds.
-pub(super) fn typed(s: &Scenario, rheology: RheologyModel) -> (Common, FreeSettlingSpec) {
-    (Common::of(s, rheology), FreeSettlingSpec::of(s))
-}
 
 /// Options of one run that do not belong in the scenario file.
 #[derive(Clone, Copy, Debug)]

@@ -3,7 +3,8 @@
 //! decide whether to stop — and the runners over all spheres (rayon, results in input order),
 //! with one dispatch on the dimension and the engine.
 
-use super::setup::{typed, uses_rapier, RunOptions, Scene, SphereSetup};
+use super::scene::{typed, Scene};
+use super::setup::{uses_rapier, RunOptions, SphereSetup};
 use super::submerged::{added_mass_kg, analytic_at, submerged_step};
 use crate::contact::rayleigh_time_s;
 use crate::dynamics::{advance, explicit_stable_dt_s, Monitor, Motion, Step, Unstable};

@@ -16,7 +16,7 @@
 //! inertia (added mass alone) or the Basset closed form ([`BassetProblem`], history on, released
 //! from rest); none with the wall.
 
-use super::setup::Scene;
+use super::scene::Scene;
 use crate::dynamics::transient::{
     basset_coefficient, basset_kernel, mei_adrian_kernel_sum, MeiAdrianTable, TransientBody,
     TransientModel,
