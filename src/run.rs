@@ -5,7 +5,7 @@
 use crate::error::BadInput;
 use crate::error::Error;
 use crate::io::{self as output, StagedDir};
-use crate::scenario::inputs as spheres;
+use crate::scenario::inputs;
 use crate::scenario::{self, Kind, Scenario};
 use crate::scenes::free_settling::{self, output as out_fs};
 use serde::Serialize;
@@ -95,8 +95,8 @@ pub fn prepare(path: &Path, dt_s: Option<f64>, overrides: &[String]) -> Result<P
         rheology,
     } = scenario::parse(path, &ov)?;
     check_name(&scenario, path)?;
-    let spheres = spheres::spheres(&scenario, path)?;
-    let reference = spheres::read_reference(&scenario, path)?;
+    let spheres = inputs::spheres(&scenario, path)?;
+    let reference = inputs::read_reference(&scenario, path)?;
     Ok(Prepared {
         path: path.to_path_buf(),
         scenario,

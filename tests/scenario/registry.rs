@@ -185,3 +185,39 @@ fn every_kind_is_registered_once_under_its_name() {
         assert_eq!(settle::scenario::info(kind).name, k.name);
     }
 }
+
+/// Scenes read the typed scenario (`Prepared::common` and their spec), not the raw record
+/// `Prepared::scenario`: no `.scenario` field access in `src/scenes/` outside the sedimentation
+/// cylinder (whose simulation, instruments and outputs still take the raw scenario whole).
+#[test]
+fn scenes_read_their_spec_not_the_raw_scenario() {
+    fn walk(dir: &Path, out: &mut Vec<String>) {
+        for e in std::fs::read_dir(dir).unwrap().flatten() {
+            let path = e.path();
+            if path.is_dir() {
+                if !path.ends_with("sedimentation") {
+                    walk(&path, out);
+                }
+                continue;
+            }
+            let text = std::fs::read_to_string(&path).unwrap();
+            for (i, line) in text.lines().enumerate() {
+                let code = line.split("//").next().unwrap_or("");
+                let reads = code.match_indices(".scenario").any(|(at, m)| {
+                    let next = code[at + m.len()..].chars().next();
+                    !next.is_some_and(|c| c.is_alphanumeric() || c == '_' || c == ':')
+                });
+                if reads {
+                    out.push(format!("{}:{}: {}", path.display(), i + 1, line.trim()));
+                }
+            }
+        }
+    }
+    let mut found = Vec::new();
+    walk(&root().join("src/scenes"), &mut found);
+    assert!(
+        found.is_empty(),
+        "raw scenario read by a scene:\n{}",
+        found.join("\n")
+    );
+}
