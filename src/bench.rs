@@ -4,8 +4,9 @@
 use crate::dynamics::{advance, Integrator};
 use crate::error::Error;
 use crate::fluid::{sphere_mass_kg, DragLaw, SphereDrag};
-use crate::run::{prepare, Prepared};
+use crate::run::prepare;
 use crate::scenes::free_settling::{self, RunOptions};
+use crate::scenes::Prepared;
 use nalgebra::Vector3;
 use std::hint::black_box;
 use std::path::{Path, PathBuf};

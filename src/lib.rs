@@ -14,8 +14,8 @@
 //! | 0 infrastructure | [`error`], [`numerics`], [`io`], [`checkpoint`], [`interrupt`], [`progress`] | the error type and exit codes, bracketing root finders, staged output folders, atomic writes, charts, checkpoints, interruption, progress bars; no domain types |
 //! | 1 physics | [`fluid`], [`contact`], [`dynamics`], [`sample`], [`instruments`] | pure functions with their equations: no I/O, no Rapier |
 //! | 2 engine | [`engine`] | the Rapier worlds |
-//! | 3 scenario | [`scenario`] | schema, loading, validation, input files, cost |
-//! | 4 scenes | [`scenes`] | one folder per kind, and the scene API ([`scenes::Prepared`], [`scenes::RunContext`], [`scenes::SceneReport`]) |
+//! | 3 scenario | [`scenario`] | schema, loading, validation, input files, the typed scenario and the registry of kinds |
+//! | 4 scenes | [`scenes`] | one folder per kind (its scene and its cost), and the scene API ([`scenes::Prepared`], [`scenes::RunContext`], [`scenes::SceneReport`]) |
 //! | 5 application | [`run`], [`sweep`], [`bench`](mod@bench), [`reduce`], [`invert`], [`laws`], [`fit`], [`cli`] | the commands |
 
 // Layer 0: infrastructure.

@@ -2,16 +2,17 @@
 //! check that every destination folder may be written (settle's own, or new) and estimate the
 //! cost, then run each, stage its outputs and move them into place only on success.
 
+use crate::error::BadInput;
 use crate::error::Error;
 use crate::io::{self as output, StagedDir};
-use crate::scenario::inputs as spheres;
-use crate::scenario::{self, Kind, Scenario, ScenarioError, SceneSpec};
+use crate::scenario::inputs;
+use crate::scenario::{self, Kind, Scenario};
 use crate::scenes::free_settling::{self, output as out_fs};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-pub use crate::scenes::{Prepared, RunContext, SceneReport};
+use crate::scenes::{Prepared, RunContext};
 
 /// Scenario names refused because the layout of the output folder uses them: `checkpoint`
 /// (the checkpoints of a long run) and `combined` (the joint summary of a several-file run).
@@ -45,9 +46,9 @@ pub struct RunRequest {
 
 /// Refuses names the output layout reserves ([`RESERVED_NAMES`]) and names too long for a
 /// folder ([`MAX_NAME_BYTES`]).
-fn check_name(s: &Scenario, path: &Path) -> Result<(), ScenarioError> {
+fn check_name(s: &Scenario, path: &Path) -> Result<(), BadInput> {
     if RESERVED_NAMES.contains(&s.name.as_str()) {
-        return Err(ScenarioError::new(
+        return Err(BadInput::new(
             path,
             Some("name"),
             format!(
@@ -59,7 +60,7 @@ fn check_name(s: &Scenario, path: &Path) -> Result<(), ScenarioError> {
         ));
     }
     if s.name.len() > MAX_NAME_BYTES {
-        return Err(ScenarioError::new(
+        return Err(BadInput::new(
             path,
             Some("name"),
             format!(
@@ -75,14 +76,10 @@ fn check_name(s: &Scenario, path: &Path) -> Result<(), ScenarioError> {
 /// its input files (`spheres_csv`, a sedimentation's `sample.csv`), and refuses reserved and
 /// over-long names: every bad input is found here, before anything runs. `path` may be a run
 /// record (`OUT/NAME/run.toml`): its effective scenario runs again, the overrides on top.
-pub fn prepare(
-    path: &Path,
-    dt_s: Option<f64>,
-    overrides: &[String],
-) -> Result<Prepared, ScenarioError> {
+pub fn prepare(path: &Path, dt_s: Option<f64>, overrides: &[String]) -> Result<Prepared, BadInput> {
     let mut ov = overrides.to_vec();
     if let Some(dt) = dt_s.filter(|d| !d.is_finite()) {
-        return Err(ScenarioError::new(
+        return Err(BadInput::new(
             path,
             Some("time.dt_s"),
             format!("--dt {dt} is out of range: allowed 0 < dt_s ≤ time.end_s s"),
@@ -93,21 +90,18 @@ pub fn prepare(
     }
     let scenario::Parsed {
         scenario,
+        common,
         scene,
         rheology,
     } = scenario::parse(path, &ov)?;
     check_name(&scenario, path)?;
-    let spheres = spheres::spheres(&scenario, path)?;
-    let sample = match &scene {
-        SceneSpec::Sedimentation(sd) => Some(spheres::read_sample(&sd.sample, path)?),
-        _ => None,
-    };
-    let reference = spheres::read_reference(&scenario, path)?;
+    let spheres = inputs::spheres(&scenario, path)?;
+    let reference = inputs::read_reference(&scenario, path)?;
     Ok(Prepared {
         path: path.to_path_buf(),
         scenario,
+        common,
         spheres,
-        sample,
         scene,
         rheology,
         reference,
@@ -130,7 +124,7 @@ pub struct FileReport {
     pub out: PathBuf,
     /// Wall time of the simulation, s.
     pub wall_time_s: f64,
-    /// Validity warnings ([`SceneReport::warnings`]).
+    /// Validity warnings ([`crate::scenes::SceneReport::warnings`]).
     pub warnings: Vec<String>,
 }
 
@@ -148,7 +142,7 @@ struct RunMeta<'a> {
     wall_time_s: f64,
     /// Continued from a checkpoint (`--resume`).
     resumed: bool,
-    /// Validity warnings of the run ([`SceneReport::warnings`]); empty when none.
+    /// Validity warnings of the run ([`crate::scenes::SceneReport::warnings`]); empty when none.
     warnings: &'a [String],
     /// The overrides as given (`set`: the `--set` list; `dt_s`: `--dt`), already applied to
     /// `[scenario]`.
@@ -193,15 +187,7 @@ pub fn run_one_with(p: &Prepared, out_dir: &Path, ctx: &RunContext) -> Result<Fi
     let stage =
         StagedDir::new(out_dir, &s.name).map_err(|e| Error::Io(out_dir.join(&s.name), e))?;
     let io = |e: std::io::Error| Error::Io(stage.dest().to_path_buf(), e);
-    use crate::scenes::{funnel, restitution_drop, sedimentation, tilt_friction};
-    // The one match on the kind: each scene receives its typed spec.
-    let (results, report) = match &p.scene {
-        SceneSpec::FreeSettling(_) | SceneSpec::Drop(_) => free_settling::run_scene(p, &stage)?,
-        SceneSpec::RestitutionDrop(r) => (Vec::new(), restitution_drop::run(p, r, &stage)?),
-        SceneSpec::TiltFriction(t) => (Vec::new(), tilt_friction::run(p, t, &stage)?),
-        SceneSpec::FunnelPour(f) => (Vec::new(), funnel::run(p, f, &stage, ctx)?),
-        SceneSpec::Sedimentation(sd) => (Vec::new(), sedimentation::run(p, sd, &stage, ctx)?),
-    };
+    let (results, report) = crate::scenes::run_scene(p, &stage, ctx)?;
     let wall = t0.elapsed().as_secs_f64();
     let meta = RunToml {
         run: RunMeta {
@@ -262,7 +248,7 @@ fn commit(stage: StagedDir, file: &Path) -> Result<PathBuf, Error> {
 }
 
 /// Runs every file of a request. All files are validated, their destinations checked
-/// ([`check_destinations`]) and their cost estimated ([`crate::scenario::cost`]) before any
+/// ([`check_destinations`]) and their cost estimated ([`crate::scenes::cost`]) before any
 /// runs; with several files a combined `summary.csv` and `metrics.csv` go to
 /// `out_dir/combined/`. Checkpoints go to `out_dir/checkpoint/` (every `checkpoint_every_s`, and
 /// when interrupted) and are removed once every file has completed.
@@ -363,7 +349,7 @@ fn prepare_all(req: &RunRequest) -> Result<Vec<Prepared>, Error> {
     let mut names = std::collections::HashSet::new();
     for p in &prepared {
         if !names.insert(p.scenario.name.clone()) {
-            return Err(Error::BadInput(ScenarioError::new(
+            return Err(Error::BadInput(BadInput::new(
                 &p.path,
                 Some("name"),
                 format!(
@@ -372,11 +358,11 @@ fn prepare_all(req: &RunRequest) -> Result<Vec<Prepared>, Error> {
                 ),
             )));
         }
-        let cost = scenario::cost::estimate(&p.scenario);
+        let cost = crate::scenes::cost::estimate(&p.scenario);
         if !req.quiet && cost.is_long() {
             eprintln!("{}: {}", p.path.display(), cost.describe());
         }
-        scenario::cost::check(&p.scenario, &p.path, req.force).map_err(Error::BadInput)?;
+        crate::scenes::cost::check(&p.scenario, &p.path, req.force).map_err(Error::BadInput)?;
     }
     Ok(prepared)
 }
@@ -452,9 +438,7 @@ fn write_combined(out_dir: &Path, reports: &[FileReport]) -> Result<(), Error> {
     out_fs::write_summary(&stage.path("summary.csv"), &rows).map_err(io)?;
     out_fs::write_combined_charts(
         &stage,
-        reports
-            .iter()
-            .map(|r| (&r.prepared.scenario, &r.results[..])),
+        reports.iter().map(|r| (&r.prepared.common, &r.results[..])),
     )
     .map_err(io)?;
     let stats = out_fs::metrics(&all);

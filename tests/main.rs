@@ -14,7 +14,7 @@
 //! | `regression` | one file `issue_<N>_<slug>.rs` per fixed item, opening with its symptom |
 //!
 //! Run everything with `cargo test --release`; one area with `cargo test --release --test main
-//! engine::` (a module path prefix: `scenes::funnel::`, `regression::issue_12_`); a single test
+//! engine::` (a module path prefix: `scenes::funnel_pour::`, `regression::issue_12_`); a single test
 //! with its full path and `--exact`. Tests spawn `target/release/settle` through
 //! [`common::settle`]; set `SETTLE_BIN` to run them against another binary (e.g. the one before a
 //! fix).

@@ -5,7 +5,8 @@ use super::measure::{self, Measurement};
 use super::optim::{self, Minimum};
 use super::{Bound, Fit};
 use crate::error::{BadInput, Error};
-use crate::run::{prepare, run_one, Prepared};
+use crate::run::{prepare, run_one};
+use crate::scenes::Prepared;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 

@@ -3,7 +3,7 @@
 //! A table's checks are a list of `(key, value, range)` rows given to [`Check::table`]; list
 //! keys go to [`Check::each`]. The messages read `X is out of range: allowed LO < key ≤ HI UNIT`.
 
-use super::load::ScenarioError;
+use crate::error::BadInput;
 use std::path::Path;
 
 /// Largest number of steps a run may take before it is refused as unbounded.
@@ -58,12 +58,12 @@ impl Range<'_> {
 
 impl Check<'_> {
     /// An error on `key`.
-    pub fn err(&self, key: &str, msg: impl Into<String>) -> ScenarioError {
-        ScenarioError::new(self.file, Some(key), msg)
+    pub fn err(&self, key: &str, msg: impl Into<String>) -> BadInput {
+        BadInput::new(self.file, Some(key), msg)
     }
 
     /// `x` within `r`, or an error naming `key` and the range.
-    pub fn range(&self, key: &str, x: f64, r: Range) -> Result<(), ScenarioError> {
+    pub fn range(&self, key: &str, x: f64, r: Range) -> Result<(), BadInput> {
         if r.holds(x) {
             return Ok(());
         }
@@ -81,7 +81,7 @@ impl Check<'_> {
     }
 
     /// Every `(name, value, range)` row of table `table` (keys `table.name`), in order.
-    pub fn table(&self, table: &str, rows: &[(&str, f64, Range)]) -> Result<(), ScenarioError> {
+    pub fn table(&self, table: &str, rows: &[(&str, f64, Range)]) -> Result<(), BadInput> {
         for &(name, x, r) in rows {
             let key = if table.is_empty() {
                 name.to_string()
@@ -94,7 +94,7 @@ impl Check<'_> {
     }
 
     /// Every element of the list `key` (keys `key[i]`) within `r`.
-    pub fn each(&self, key: &str, xs: &[f64], r: Range) -> Result<(), ScenarioError> {
+    pub fn each(&self, key: &str, xs: &[f64], r: Range) -> Result<(), BadInput> {
         for (i, x) in xs.iter().enumerate() {
             self.range(&format!("{key}[{i}]"), *x, r)?;
         }
@@ -102,7 +102,7 @@ impl Check<'_> {
     }
 
     /// A count with `lo ≤ n ≤ hi`.
-    pub fn count_in(&self, key: &str, n: usize, lo: usize, hi: usize) -> Result<(), ScenarioError> {
+    pub fn count_in(&self, key: &str, n: usize, lo: usize, hi: usize) -> Result<(), BadInput> {
         if (lo..=hi).contains(&n) {
             Ok(())
         } else {

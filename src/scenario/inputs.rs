@@ -5,8 +5,8 @@
 //! the input file, the line of the file and the data row (both 1-based: line 1 is the header,
 //! data row 1 the first line of data), the column (1-based) and what is allowed.
 
-use super::load::ScenarioError;
 use super::schema::{ReferenceSpec, SampleSpec, Scenario, SphereSpec};
+use crate::error::BadInput;
 use crate::sample::Distribution;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -85,8 +85,8 @@ struct CsvInput<'a> {
 }
 
 impl CsvInput<'_> {
-    fn err(&self, msg: impl std::fmt::Display) -> ScenarioError {
-        ScenarioError::new(
+    fn err(&self, msg: impl std::fmt::Display) -> BadInput {
+        BadInput::new(
             self.scenario_path,
             Some(self.key),
             format!("`{}`: {msg}", self.csv_path.display()),
@@ -94,13 +94,13 @@ impl CsvInput<'_> {
     }
 
     /// Opens the CSV (`#` comments, spaces around fields trimmed) and returns its header.
-    fn open(&self) -> Result<(csv::Reader<std::fs::File>, Vec<String>), ScenarioError> {
+    fn open(&self) -> Result<(csv::Reader<std::fs::File>, Vec<String>), BadInput> {
         let mut rdr = csv::ReaderBuilder::new()
             .comment(Some(b'#'))
             .trim(csv::Trim::All)
             .from_path(&self.csv_path)
             .map_err(|e| {
-                ScenarioError::new(
+                BadInput::new(
                     self.scenario_path,
                     Some(self.key),
                     format!(
@@ -124,7 +124,7 @@ impl CsvInput<'_> {
         rec: &csv::StringRecord,
         header: &[String],
         col: usize,
-    ) -> Result<Option<f64>, ScenarioError> {
+    ) -> Result<Option<f64>, BadInput> {
         let raw = rec.get(col).unwrap_or("");
         if raw.is_empty() {
             return Ok(None);
@@ -145,7 +145,7 @@ impl CsvInput<'_> {
         rec: &csv::StringRecord,
         header: &[String],
         col: usize,
-    ) -> Result<f64, ScenarioError> {
+    ) -> Result<f64, BadInput> {
         self.number(rec, header, col)?.ok_or_else(|| {
             self.err(format!(
                 "{}, column {} (`{}`): empty: a number is required",
@@ -170,7 +170,7 @@ fn row_of(rec: &csv::StringRecord) -> String {
 
 /// An error of the csv reader on a row (a row with more or fewer fields than the header, a
 /// field that is not UTF-8), worded as the other row errors: line and data row 1-based.
-fn read_error(input: &CsvInput, e: csv::Error) -> ScenarioError {
+fn read_error(input: &CsvInput, e: csv::Error) -> BadInput {
     let at = |p: &csv::Position| format!("line {} (data row {})", p.line(), p.record());
     match e.kind() {
         csv::ErrorKind::UnequalLengths {
@@ -192,10 +192,7 @@ fn read_error(input: &CsvInput, e: csv::Error) -> ScenarioError {
 
 /// The column of each field of the spheres CSV, from its header; refuses an unknown or
 /// repeated column, and a missing required one, listing the columns it reads.
-fn sphere_columns(
-    input: &CsvInput,
-    header: &[String],
-) -> Result<HashMap<Field, usize>, ScenarioError> {
+fn sphere_columns(input: &CsvInput, header: &[String]) -> Result<HashMap<Field, usize>, BadInput> {
     let known = || {
         SPHERE_COLUMNS
             .iter()
@@ -245,7 +242,7 @@ fn sphere_row(
     header: &[String],
     cols: &HashMap<Field, usize>,
     rec: &csv::StringRecord,
-) -> Result<(String, SphereSpec, String), ScenarioError> {
+) -> Result<(String, SphereSpec, String), BadInput> {
     let opt = |f: Field| match cols.get(&f) {
         Some(&c) => input.number(rec, header, c),
         None => Ok(None),
@@ -291,7 +288,7 @@ fn check_row(
     row: &str,
     spec: &SphereSpec,
     scenario: &Scenario,
-) -> Result<(), ScenarioError> {
+) -> Result<(), BadInput> {
     let label = format!("spheres_csv `{}` {row}", input.csv_path.display());
     super::check_sphere(input.scenario_path, &label, spec, scenario).map_err(|e| {
         let field = e
@@ -316,10 +313,7 @@ fn check_row(
 /// `[spheres_csv]` (of its `suspension` if given; the path is relative to `scenario_path`'s
 /// folder), each checked like an inline sphere; with `release.fall_heights_m`, one case per
 /// sphere and height. Refuses two spheres with one id.
-pub fn spheres(
-    scenario: &Scenario,
-    scenario_path: &Path,
-) -> Result<Vec<SphereCase>, ScenarioError> {
+pub fn spheres(scenario: &Scenario, scenario_path: &Path) -> Result<Vec<SphereCase>, BadInput> {
     let mut out: Vec<SphereCase> = scenario
         .spheres
         .iter()
@@ -335,7 +329,7 @@ pub fn spheres(
     let mut first: HashMap<String, usize> = HashMap::with_capacity(out.len());
     for (i, c) in out.iter().enumerate() {
         if let Some(&j) = first.get(&c.id) {
-            return Err(ScenarioError::new(
+            return Err(BadInput::new(
                 scenario_path,
                 Some(&format!("spheres[{i}].id")),
                 format!(
@@ -428,7 +422,7 @@ pub struct MeasuredCurves {
 pub fn read_reference(
     scenario: &Scenario,
     scenario_path: &Path,
-) -> Result<Option<MeasuredCurves>, ScenarioError> {
+) -> Result<Option<MeasuredCurves>, BadInput> {
     let Some(r) = &scenario.reference else {
         return Ok(None);
     };
@@ -438,14 +432,14 @@ pub fn read_reference(
         gap_csv,
     } = r;
     if source.trim().is_empty() {
-        return Err(ScenarioError::new(
+        return Err(BadInput::new(
             scenario_path,
             Some("reference.source"),
             "empty: name where the measured curves come from (it labels them in the charts)",
         ));
     }
     if velocity_csv.is_none() && gap_csv.is_none() {
-        return Err(ScenarioError::new(
+        return Err(BadInput::new(
             scenario_path,
             Some("reference"),
             "names no file: give velocity_csv, gap_csv or both",
@@ -471,7 +465,7 @@ pub fn read_reference(
 }
 
 /// The (time_s, `column`) pairs of a measured curve's CSV (see [`read_reference`]).
-fn curve(input: &CsvInput, column: &str) -> Result<Vec<(f64, f64)>, ScenarioError> {
+fn curve(input: &CsvInput, column: &str) -> Result<Vec<(f64, f64)>, BadInput> {
     let (mut rdr, header) = input.open()?;
     let find = |name: &str| {
         header.iter().position(|h| h == name).ok_or_else(|| {
@@ -515,10 +509,7 @@ const SAMPLE_COLUMNS: [&str; 3] = ["sample", "diameter_m", "percent_finer"];
 /// the chosen sample (at least two) must have increasing diameters and non-decreasing percent
 /// finer. Errors (key `sample.csv`) name the CSV, the row and column (1-based) and the allowed
 /// range. The distribution is the one [`Distribution::load`] reads from a good file.
-pub fn read_sample(
-    sample: &SampleSpec,
-    scenario_path: &Path,
-) -> Result<Distribution, ScenarioError> {
+pub fn read_sample(sample: &SampleSpec, scenario_path: &Path) -> Result<Distribution, BadInput> {
     let base = scenario_path.parent().unwrap_or(Path::new("."));
     let input = CsvInput {
         scenario_path,

@@ -3,9 +3,11 @@
 //! a `[run]` table) loads as its `[scenario]` table, the effective scenario of that run
 //! ([`record_table`] writes it), so that `settle run OUT/NAME/run.toml` reruns the same case.
 
-use super::schema::Scenario;
-use super::spec::Parsed;
-use super::validate::{check_tables, table_used_by};
+use super::common::Common;
+use super::kinds::SceneSpec;
+use super::schema::{RheologyModel, Scenario};
+use super::validate::{check_tables, table_used_by, validate};
+use crate::error::BadInput;
 use serde::Serialize;
 use std::path::Path;
 
@@ -20,36 +22,60 @@ pub struct Overrides {
     pub dt_s: Option<f64>,
 }
 
-/// A scenario that cannot be run: one line naming the file, the key and what is allowed. The
-/// crate's one bad-input type (exit 2), [`crate::error::BadInput`].
-pub type ScenarioError = crate::error::BadInput;
+/// A validated scenario with its typed parts: the common part every kind reads, the scene
+/// spec of its kind and the rheology of its fluid.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Parsed {
+    /// The scenario as read (overrides applied): the record written back to `run.toml`.
+    pub scenario: Scenario,
+    /// What every kind reads, typed.
+    pub common: Common,
+    /// What the scenario's kind needs, typed.
+    pub scene: SceneSpec,
+    /// The fluid's rheology with its parameters (also [`Common::rheology`]).
+    pub rheology: RheologyModel,
+}
+
+impl Parsed {
+    /// Validates `scenario` (`file` names it in errors) and builds its typed parts: the same
+    /// checks as [`load`], for a scenario built or changed in code.
+    pub fn new(scenario: Scenario, file: &Path) -> Result<Self, BadInput> {
+        let (scene, rheology) = validate(&scenario, file)?;
+        Ok(Self {
+            common: Common::of(&scenario, rheology),
+            scenario,
+            scene,
+            rheology,
+        })
+    }
+}
 
 /// Reads, overrides, parses and validates a scenario file. `overrides` are `KEY=VALUE` strings
 /// (`fluid.viscosity_pa_s=0.002`, `spheres[0].diameter_m=1e-4`, `physics=ideal-stokes`).
-pub fn load(path: &Path, overrides: &[String]) -> Result<Scenario, ScenarioError> {
+pub fn load(path: &Path, overrides: &[String]) -> Result<Scenario, BadInput> {
     parse(path, overrides).map(|p| p.scenario)
 }
 
 /// As [`load`], from the text of a file; `path` names it in errors.
-pub fn load_str(text: &str, path: &Path, overrides: &[String]) -> Result<Scenario, ScenarioError> {
+pub fn load_str(text: &str, path: &Path, overrides: &[String]) -> Result<Scenario, BadInput> {
     parse_str(text, path, overrides).map(|p| p.scenario)
 }
 
 /// As [`load`], with the typed parts of the scenario: the spec of its kind and its rheology.
-pub fn parse(path: &Path, overrides: &[String]) -> Result<Parsed, ScenarioError> {
+pub fn parse(path: &Path, overrides: &[String]) -> Result<Parsed, BadInput> {
     let text = std::fs::read_to_string(path)
-        .map_err(|e| ScenarioError::new(path, None, format!("cannot read the file: {e}")))?;
+        .map_err(|e| BadInput::new(path, None, format!("cannot read the file: {e}")))?;
     parse_str(&text, path, overrides)
 }
 
 /// As [`parse`], from the text of a file; `path` names it in errors.
-pub fn parse_str(text: &str, path: &Path, overrides: &[String]) -> Result<Parsed, ScenarioError> {
+pub fn parse_str(text: &str, path: &Path, overrides: &[String]) -> Result<Parsed, BadInput> {
     let table: toml::Table = text.parse().map_err(|e: toml::de::Error| {
         let line = e
             .span()
             .map(|s| format!("line {}: ", text[..s.start].lines().count().max(1)))
             .unwrap_or_default();
-        ScenarioError::new(
+        BadInput::new(
             path,
             None,
             format!("TOML syntax error: {line}{}", e.message()),
@@ -91,7 +117,7 @@ pub fn parse_str(text: &str, path: &Path, overrides: &[String]) -> Result<Parsed
             _ => key,
         };
         let key = if key == "." { None } else { Some(key) };
-        ScenarioError::new(path, key.as_deref(), msg)
+        BadInput::new(path, key.as_deref(), msg)
     })?;
     super::schema::trim_default_times(&mut scenario, &given);
     Parsed::new(scenario, path)
@@ -101,13 +127,13 @@ pub fn parse_str(text: &str, path: &Path, overrides: &[String]) -> Result<Parsed
 /// table, `OUT/NAME/run.toml`) its `[scenario]` table, the effective scenario of that run with
 /// its overrides already applied; the rest of the record (`[run]`, `[engine_settings]`) is
 /// ignored.
-fn scenario_of_record(mut table: toml::Table, path: &Path) -> Result<toml::Table, ScenarioError> {
+fn scenario_of_record(mut table: toml::Table, path: &Path) -> Result<toml::Table, BadInput> {
     if !table.contains_key("run") {
         return Ok(table);
     }
     match table.remove("scenario") {
         Some(toml::Value::Table(t)) => Ok(t),
-        _ => Err(ScenarioError::new(
+        _ => Err(BadInput::new(
             path,
             Some("scenario"),
             "missing: a file with a [run] table is a run record (OUT/NAME/run.toml) and runs its \
@@ -167,8 +193,8 @@ pub fn apply_override(
     table: &mut toml::Table,
     assignment: &str,
     path: &Path,
-) -> Result<(), ScenarioError> {
-    let bad = |m: String| ScenarioError::new(path, None, m);
+) -> Result<(), BadInput> {
+    let bad = |m: String| BadInput::new(path, None, m);
     let (key, raw) = assignment
         .split_once('=')
         .ok_or_else(|| bad(format!("--set `{assignment}`: expected KEY=VALUE")))?;

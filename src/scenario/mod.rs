@@ -8,25 +8,28 @@
 //! `tests/scenario/schema_docs.rs`.
 //!
 //! Parse, don't validate: [`parse`] returns a [`Parsed`] scenario with the typed parts the
-//! scenes take, the [`SceneSpec`] of its kind (every table the kind needs present and checked)
-//! and its [`RheologyModel`]; the dimension is read straight into a [`Dim`].
+//! scenes take: the [`Common`] part every kind reads (its fluid as a [`RheologyModel`] and a
+//! density, its drag as a [`crate::fluid::DragLaw`], the engine resolved) and the [`SceneSpec`]
+//! of its kind (every table the kind needs present and checked, its input files read); the
+//! dimension is read straight into a [`Dim`]. The raw [`Scenario`] stays beside them as the
+//! record written to `run.toml`.
+//!
+//! What a kind is (its name, tables, spec, scene folder, example, outputs) is written once, in
+//! the registry [`KINDS`].
 
 mod check;
-pub mod cost;
+mod common;
 pub mod inputs;
+mod kinds;
 mod load;
 mod schema;
-mod spec;
 mod validate;
 
+pub use common::Common;
+pub use kinds::{info, sweepable_names, KindInfo, SceneSpec, KINDS};
 pub use load::{
-    apply_override, is_key_path, load, load_str, parse, parse_str, record_table, Overrides,
-    ScenarioError,
+    apply_override, is_key_path, load, load_str, parse, parse_str, record_table, Overrides, Parsed,
 };
 pub use schema::*;
-pub use spec::{
-    FreeSettlingSpec, FunnelPourSpec, Parsed, RestitutionSpec, SceneSpec, SedimentationSpec,
-    TiltFrictionSpec,
-};
 pub(crate) use validate::check_sphere;
-pub use validate::{kind_name, MAX_STEPS};
+pub use validate::MAX_STEPS;

@@ -1,15 +1,14 @@
 //! Scene builders and runners, one module per scenario kind.
 
+pub mod cost;
 pub mod free_settling;
-pub mod funnel;
+pub mod funnel_pour;
 pub mod restitution_drop;
 pub mod sedimentation;
 pub mod tilt_friction;
 pub mod validity;
 
-use crate::fluid::newtonian::CdCorrelation;
-use crate::fluid::{DragLaw, SphereDrag};
-use crate::scenario::{DragLawName, Physics, RheologyModel, Scenario, SceneSpec};
+use crate::scenario::{Kind, RheologyModel, Scenario, SceneSpec};
 use std::path::PathBuf;
 
 /// A loaded scenario ready to run: the effective scenario and its input files, read and checked.
@@ -17,13 +16,14 @@ use std::path::PathBuf;
 pub struct Prepared {
     /// The scenario file.
     pub path: PathBuf,
-    /// The effective scenario (overrides applied).
+    /// The effective scenario (overrides applied): the record written to `run.toml`. Scenes
+    /// read [`Prepared::common`] and their spec ([`Prepared::scene`]), not this (the
+    /// sedimentation cylinder's simulation still takes it whole).
     pub scenario: Scenario,
+    /// What every kind reads, typed ([`crate::scenario::Parsed::common`]).
+    pub common: crate::scenario::Common,
     /// Its spheres (free settling and drops; read from `spheres_csv` when given).
     pub spheres: Vec<crate::scenario::inputs::SphereCase>,
-    /// The particle-size distribution of a sedimentation scenario, read from `sample.csv`
-    /// while the scenario is prepared (None for other kinds).
-    pub sample: Option<crate::sample::Distribution>,
     /// What the scenario's kind needs, typed ([`crate::scenario::Parsed::scene`]).
     pub scene: SceneSpec,
     /// The fluid's rheology with its parameters ([`crate::scenario::Parsed::rheology`]).
@@ -65,48 +65,31 @@ pub struct SceneReport {
     pub warnings: Vec<String>,
 }
 
-/// The drag law a scenario asks for in a fluid of rheology `rheology`, after the `physics`
-/// switch (`ideal-stokes` turns every law into Stokes drag with the fluid's viscosity, or its
-/// plastic viscosity for a Bingham fluid).
-pub fn drag_law(s: &Scenario, rheology: RheologyModel) -> DragLaw {
-    let mu = rheology.drag_viscosity_pa_s();
-    if s.physics == Physics::IdealStokes {
-        return DragLaw::Stokes { viscosity_pa_s: mu };
+/// Runs the scene of `p` into the staging folder `stage`: the one match on the kind's spec,
+/// each scene receiving its own. Free settling and drops also return their per-sphere results
+/// (for the console table and the combined outputs of a several-file run).
+pub fn run_scene(
+    p: &Prepared,
+    stage: &crate::io::StagedDir,
+    ctx: &RunContext,
+) -> Result<(Vec<free_settling::SphereResult>, SceneReport), crate::error::Error> {
+    Ok(match &p.scene {
+        SceneSpec::FreeSettling(f) => free_settling::run_scene(p, f, stage)?,
+        SceneSpec::RestitutionDrop(r) => (Vec::new(), restitution_drop::run(p, r, stage)?),
+        SceneSpec::TiltFriction(t) => (Vec::new(), tilt_friction::run(p, t, stage)?),
+        SceneSpec::FunnelPour(f) => (Vec::new(), funnel_pour::run(p, f, stage, ctx)?),
+        SceneSpec::Sedimentation(sd) => (Vec::new(), sedimentation::run(p, sd, stage, ctx)?),
+    })
+}
+
+/// The load of scenario `s` as its kind's scene estimates it (`scenes/<kind>/cost.rs`), for
+/// [`cost::estimate`] and [`cost::check`].
+pub fn load(s: &Scenario) -> cost::Load {
+    match s.kind {
+        Kind::FreeSettling | Kind::Drop => free_settling::cost::load(s),
+        Kind::RestitutionDrop => restitution_drop::cost::load(s),
+        Kind::TiltFriction => tilt_friction::cost::load(s),
+        Kind::FunnelPour => funnel_pour::cost::load(s),
+        Kind::Sedimentation => sedimentation::cost::load(s),
     }
-    match s.drag.law {
-        DragLawName::Stokes => DragLaw::Stokes { viscosity_pa_s: mu },
-        DragLawName::Dallavalle => DragLaw::Dallavalle {
-            viscosity_pa_s: mu,
-            voidage: s.drag.voidage,
-        },
-        DragLawName::SchillerNaumann => correlation(mu, CdCorrelation::SchillerNaumann),
-        DragLawName::CliftGauvin => correlation(mu, CdCorrelation::CliftGauvin),
-        DragLawName::Morrison => correlation(mu, CdCorrelation::Morrison),
-        DragLawName::BinghamFedem => DragLaw::Bingham {
-            yield_stress_pa: rheology.yield_stress_pa(),
-            plastic_viscosity_pa_s: mu,
-        },
-        DragLawName::BinghamAdditive | DragLawName::AnsleySmith | DragLawName::Wilson2003 => s
-            .drag
-            .plastic_law(rheology)
-            .expect("validated: a yield-stress law in a yield-stress fluid"),
-    }
-}
-
-fn correlation(viscosity_pa_s: f64, cd: CdCorrelation) -> DragLaw {
-    DragLaw::Correlation { viscosity_pa_s, cd }
-}
-
-/// The drag of one sphere of diameter `d_m` in the scenario's fluid of rheology `rheology`.
-pub fn sphere_drag(s: &Scenario, rheology: RheologyModel, d_m: f64) -> SphereDrag {
-    SphereDrag::new(drag_law(s, rheology), d_m, s.fluid.density_kg_m3)
-}
-
-/// The added-mass coefficient C_m of the scenario's Rapier scenes (`transient.added_mass`,
-/// `transient.added_mass_coefficient`; 0 when off or without `[transient]`), for
-/// [`crate::engine::dim3::World::set_added_mass_coefficient`].
-pub fn added_mass_coefficient(s: &Scenario) -> f64 {
-    s.transient
-        .as_ref()
-        .map_or(0.0, |t| t.added_mass_coefficient_on())
 }

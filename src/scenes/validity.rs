@@ -1,7 +1,7 @@
 //! The validity warnings of scenes with spheres: the drag law a scenario uses, checked against
 //! its validated range ([`crate::fluid::validity`]) at the spheres' results.
 
-use super::{drag_law, Prepared};
+use super::Prepared;
 use crate::fluid::validity::{bingham_fedem_warning, correlation_warning, stokes_warning};
 use crate::fluid::DragLaw;
 
@@ -23,14 +23,14 @@ pub struct SphereAt {
 /// number range; a C_d correlation above its stated range; f-EDEM's Bingham drag outside its
 /// validated density and diameter ranges.
 pub fn drag_warnings(p: &Prepared, spheres: &[SphereAt]) -> Vec<String> {
-    let law = drag_law(&p.scenario, p.rheology);
+    let law = p.common.drag;
     let mut out = Vec::new();
     let reynolds = |viscosity_pa_s: f64| -> Vec<(String, f64)> {
         spheres
             .iter()
             .map(|s| {
                 let re = crate::fluid::newtonian::reynolds(
-                    p.scenario.fluid.density_kg_m3,
+                    p.common.fluid_density_kg_m3,
                     s.speed_m_s.abs(),
                     s.diameter_m,
                     viscosity_pa_s,

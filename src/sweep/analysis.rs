@@ -4,7 +4,7 @@
 use super::table::{integrator_rank, Row, Status};
 use crate::contact::rayleigh_time_s;
 use crate::dynamics::Integrator;
-use crate::run::Prepared;
+use crate::scenes::Prepared;
 use std::collections::BTreeMap;
 
 /// Per (integrator, dt): status, wall time, and the largest |error| over bodies for each quantity.

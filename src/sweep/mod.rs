@@ -31,14 +31,15 @@ pub use args::Args;
 pub use plan::{dt_range, grid, shard, Case, Plan, DEFAULT_TOL};
 pub use report::{charts, write_results, Context};
 pub use table::{finish, from_csv, read_rows, rel, to_csv, write_rows, Row, Status, HEADER};
-pub use targets::{has_reference, Target, SWEEPABLE, SWEEPABLE_NAMES};
+pub use targets::{has_reference, Target};
 pub use values::{
     parse_dt, parse_dt_range, parse_shard, parse_tol, BadValue, DtRange, Shard, TOL_ALLOWED,
 };
 
 use crate::error::Error;
 use crate::io::StagedDir;
-use crate::run::{prepare, Prepared};
+use crate::run::prepare;
+use crate::scenes::Prepared;
 use std::path::{Path, PathBuf};
 
 /// Runs `cases` of a sweepable scenario (in parallel) and returns their rows, without

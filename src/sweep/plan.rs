@@ -4,9 +4,9 @@
 use super::args::Args;
 use super::values::Shard;
 use crate::dynamics::Integrator;
+use crate::error::BadInput;
 use crate::error::Error;
-use crate::run::Prepared;
-use crate::scenario::ScenarioError;
+use crate::scenes::Prepared;
 
 /// Tolerance of the recommended dt when neither `--tol` nor `[sweep] tol` gives one: a 1 %
 /// relative error against the finest stable dt.
@@ -97,7 +97,7 @@ impl Plan {
             dts_s = table.map(|s| s.dt_s.clone()).unwrap_or_default();
         }
         if dts_s.is_empty() {
-            return Err(Error::BadInput(ScenarioError::new(
+            return Err(Error::BadInput(BadInput::new(
                 &p.path,
                 Some("sweep.dt_s"),
                 "no time steps to sweep: give --dt or --dt-range, or a [sweep] dt_s list in the scenario",

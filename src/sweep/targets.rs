@@ -7,16 +7,10 @@
 use super::plan::Case;
 use super::table::{rel, Row, Status};
 use crate::error::Error;
-use crate::run::Prepared;
-use crate::scenario::{FunnelPourSpec, Kind, SceneSpec};
+use crate::scenario::{FunnelPourSpec, SceneSpec};
 use crate::scenes::free_settling::{self, Halt, RunOptions, SphereResult};
+use crate::scenes::Prepared;
 use std::time::Instant;
-
-/// The kinds a sweep can run.
-pub const SWEEPABLE: [Kind; 3] = [Kind::FreeSettling, Kind::Drop, Kind::FunnelPour];
-
-/// Their names as written in scenario files.
-pub const SWEEPABLE_NAMES: [&str; 3] = ["free_settling", "drop", "funnel_pour"];
 
 /// How the cases of a scenario run.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -24,7 +18,7 @@ pub enum Target<'a> {
     /// Every sphere alone ([`free_settling::run_interruptible`]): kinds `free_settling` and
     /// `drop`.
     Spheres,
-    /// The first repeat of a funnel pour ([`crate::scenes::funnel::run_repeat`]), of this spec.
+    /// The first repeat of a funnel pour ([`crate::scenes::funnel_pour::run_repeat`]), of this spec.
     FunnelPour(&'a FunnelPourSpec),
 }
 
@@ -32,15 +26,15 @@ impl<'a> Target<'a> {
     /// The target of a prepared scenario, or a bad input (exit 2) naming its file and kind.
     pub fn of(p: &'a Prepared) -> Result<Self, Error> {
         match &p.scene {
-            SceneSpec::FreeSettling(_) | SceneSpec::Drop(_) => Ok(Self::Spheres),
+            SceneSpec::FreeSettling(_) => Ok(Self::Spheres),
             SceneSpec::FunnelPour(f) => Ok(Self::FunnelPour(f)),
             _ => Err(Error::bad_input(
                 &p.path,
                 Some("kind"),
                 format!(
                     "a scenario of kind `{}` cannot be swept; kinds that can: {}; nothing was written",
-                    kind_name(p.scenario.kind),
-                    SWEEPABLE_NAMES.join(", ")
+                    p.scene.kind_name(),
+                    crate::scenario::sweepable_names().join(", ")
                 ),
             )),
         }
@@ -52,14 +46,6 @@ impl<'a> Target<'a> {
             Self::Spheres => spheres_case(p, c),
             Self::FunnelPour(f) => funnel_case(p, f, c),
         }
-    }
-}
-
-/// The kind's name as serde writes it in scenario files.
-fn kind_name(k: Kind) -> String {
-    match toml::Value::try_from(k) {
-        Ok(toml::Value::String(s)) => s,
-        _ => format!("{k:?}"),
     }
 }
 
@@ -187,8 +173,9 @@ fn funnel_case(p: &Prepared, f: &FunnelPourSpec, c: &Case) -> Vec<Row> {
     let mut q = p.clone();
     q.scenario.time.dt_s = c.dt_s;
     q.scenario.time.integrator = c.integrator;
+    q.common.time = q.scenario.time.clone();
     let t0 = Instant::now();
-    let res = crate::scenes::funnel::run_repeat(&q, f, 0, f.repeats.seed);
+    let res = crate::scenes::funnel_pour::run_repeat(&q, f, 0, f.repeats.seed);
     let wall = t0.elapsed().as_secs_f64();
     let row = |status, reason: String, steps, quantity: &str, value| Row {
         steps,
@@ -226,9 +213,12 @@ mod tests {
     use super::*;
 
     #[test]
-    fn sweepable_names_are_the_kinds_names_in_scenario_files() {
-        let names: Vec<String> = SWEEPABLE.iter().map(|&k| kind_name(k)).collect();
-        assert_eq!(names, SWEEPABLE_NAMES);
-        assert_eq!(kind_name(Kind::Sedimentation), "sedimentation");
+    fn the_registry_says_which_kinds_have_a_target() {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+        for k in crate::scenario::KINDS {
+            let p = crate::run::prepare(&root.join("scenarios").join(k.example), None, &[])
+                .unwrap_or_else(|e| panic!("{e}"));
+            assert_eq!(Target::of(&p).is_ok(), k.sweepable, "{}", k.name);
+        }
     }
 }

@@ -302,7 +302,7 @@ fn cost_guard_refuses_runs_beyond_the_limits() {
     )
     .unwrap();
     let path = Path::new("scenarios/paste_68_balls.toml");
-    assert!(settle::scenario::cost::check(&p.scenario, path, false).is_err());
-    let c = settle::scenario::cost::check(&p.scenario, path, true).unwrap();
+    assert!(settle::scenes::cost::check(&p.scenario, path, false).is_err());
+    let c = settle::scenes::cost::check(&p.scenario, path, true).unwrap();
     assert!(c.wall_s > 24.0 * 3600.0, "{c:?}");
 }

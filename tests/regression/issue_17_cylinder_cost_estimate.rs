@@ -11,7 +11,7 @@
 //! time or peak memory, and the estimate must cover it without overstating it by more than the
 //! stated factor.
 
-use settle::scenario::cost::{check, estimate, Cost};
+use settle::scenes::cost::{check, estimate, Cost};
 use std::path::Path;
 
 fn cost(sample: u32, sets: &[&str]) -> Cost {

@@ -381,17 +381,16 @@ case!(
 );
 
 /// A bad sample CSV is refused by the scenario layer's reader with its row, column and range
-/// (a `ScenarioError`: exit 2), before the run reads it.
+/// (a `BadInput`: exit 2) as the scenario is loaded (the sample is part of the typed
+/// sedimentation spec), before anything runs.
 #[test]
 fn sample_csv_percent_out_of_range() {
     let path = good("sedimentation_sample1.toml");
-    let s = settle::scenario::load(
+    let e = settle::scenario::load(
         &path,
         &["sample.csv=\"../tests/bad_scenarios/bad_sample_percent.csv\"".to_string()],
     )
-    .expect("a good scenario");
-    let e = settle::scenario::inputs::read_sample(s.sample.as_ref().expect("[sample]"), &path)
-        .expect_err("percent finer 120 must be refused");
+    .expect_err("percent finer 120 must be refused");
     let line = e.to_string();
     assert_eq!(e.key.as_deref(), Some("sample.csv"), "{line}");
     for w in [
@@ -518,7 +517,7 @@ fn set_transient_in_the_rapier_scenes() {
     for file in ["restitution_drop.toml", "paste_68_balls.toml"] {
         let on = ["transient.added_mass=true".to_string()];
         let p = settle::run::prepare(&good(file), None, &on).expect("added mass accepted");
-        assert_eq!(settle::scenes::added_mass_coefficient(&p.scenario), 0.5);
+        assert_eq!(p.common.added_mass_coefficient(), 0.5);
         let o = settle_run(&[good(file)], &["--set", "transient.history=basset"]);
         assert_refused(
             &o,

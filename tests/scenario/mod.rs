@@ -3,5 +3,6 @@
 mod bad_input;
 mod outputs_docs;
 mod reference_csv;
+mod registry;
 mod schema_docs;
 mod spheres_csv;

@@ -125,3 +125,18 @@ fn sedimentation_outputs_are_documented() {
         "sedimentation",
     );
 }
+
+/// Every registered kind has its outputs checked above (a `check(…, "<kind>")` call), so that a
+/// new kind cannot write undocumented files unnoticed.
+#[test]
+fn every_registered_kind_is_checked_here() {
+    let this = include_str!("outputs_docs.rs");
+    for k in settle::scenario::KINDS {
+        assert!(
+            this.contains(&format!("\"{}\",\n    );", k.name))
+                || this.contains(&format!("], \"{}\");", k.name)),
+            "add a check(\"scenarios/…\", &[…], \"{}\") to tests/scenario/outputs_docs.rs",
+            k.name
+        );
+    }
+}

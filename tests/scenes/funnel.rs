@@ -340,7 +340,7 @@ fn a_ball_dropped_into_paste_through_rapier_stops_where_the_drop_scene_stops_it(
 
 const SCENARIO: &str = "scenarios/paste_68_balls.toml";
 
-fn small(extra: &[&str]) -> settle::run::Prepared {
+fn small(extra: &[&str]) -> settle::scenes::Prepared {
     let mut ov: Vec<String> = [
         "funnel.count=8",
         "funnel.fill_time_s=0.15",
@@ -359,7 +359,7 @@ fn small(extra: &[&str]) -> settle::run::Prepared {
 
 #[test]
 fn the_full_scenario_loads_with_the_documented_geometry() {
-    use settle::scenes::funnel::Geometry;
+    use settle::scenes::funnel_pour::Geometry;
     let p = settle::run::prepare(std::path::Path::new(SCENARIO), None, &[]).expect("scenario");
     let f = p.scenario.funnel.as_ref().unwrap();
     assert_eq!(f.count, 68);
@@ -379,7 +379,7 @@ fn the_full_scenario_loads_with_the_documented_geometry() {
 
 #[test]
 fn random_placement_fills_the_funnel_without_overlap() {
-    use settle::scenes::funnel::{place_balls, Geometry};
+    use settle::scenes::funnel_pour::{place_balls, Geometry};
     let p = settle::run::prepare(std::path::Path::new(SCENARIO), None, &[]).expect("scenario");
     let geo = Geometry::of(p.scene.funnel_pour().expect("funnel_pour"));
     let d = vec![D; 68];
@@ -403,7 +403,7 @@ fn random_placement_fills_the_funnel_without_overlap() {
 
 #[test]
 fn a_small_pour_puts_every_ball_in_the_paste_and_loses_none() {
-    use settle::scenes::funnel::{simulate, Place};
+    use settle::scenes::funnel_pour::{simulate, Place};
     // A 10 cm collar on the cylinder keeps in the balls that bounce off a ball at the surface
     // (without it, 4 of these 16 escape over the rim: see the report of the full scenario).
     let p = small(&["funnel.wall_above_surface_m=0.1", "funnel.fill_time_s=0.3"]);
@@ -436,7 +436,7 @@ fn a_small_pour_puts_every_ball_in_the_paste_and_loses_none() {
 
 #[test]
 fn a_repeat_is_reproducible_from_its_seed() {
-    use settle::scenes::funnel::run_repeat;
+    use settle::scenes::funnel_pour::run_repeat;
     let p = small(&[
         "funnel.count=3",
         "time.end_s=0.05",
@@ -451,7 +451,7 @@ fn a_repeat_is_reproducible_from_its_seed() {
 fn a_zero_added_mass_coefficient_pours_as_added_mass_off_and_a_half_moves_the_balls() {
     // Three balls poured, 0.3 s after opening (some in the paste): `[transient]` with C_m = 0 is
     // the scenario without it, bit for bit; C_m = ½ changes where the balls are.
-    use settle::scenes::funnel::run_repeat;
+    use settle::scenes::funnel_pour::run_repeat;
     let base = [
         "funnel.count=3",
         "time.end_s=0.3",
@@ -475,15 +475,15 @@ fn a_zero_added_mass_coefficient_pours_as_added_mass_off_and_a_half_moves_the_ba
     let in_paste = off
         .balls
         .iter()
-        .filter(|b| b.place == settle::scenes::funnel::Place::Paste);
+        .filter(|b| b.place == settle::scenes::funnel_pour::Place::Paste);
     assert!(in_paste.count() > 0, "{:?}", off.balls);
     assert_ne!(off.balls, half.balls);
 }
 
 #[test]
 fn presence_and_z_histogram_count_what_they_should() {
-    use settle::scenes::funnel::output::{presence, z_histogram};
-    use settle::scenes::funnel::{Ball, Place, RepeatResult};
+    use settle::scenes::funnel_pour::output::{presence, z_histogram};
+    use settle::scenes::funnel_pour::{Ball, Place, RepeatResult};
     let ball = |x: f64, z: f64| Ball {
         diameter_m: D,
         position_m: [x, 0.0, z],
@@ -570,7 +570,7 @@ fn settle_run_writes_the_funnel_outputs() {
 
 /// Median Z of the ball centres in the paste over the repeats of the full 68-ball pour, m.
 fn median_z_in_paste(extra: &[&str]) -> f64 {
-    use settle::scenes::funnel::{simulate, Place};
+    use settle::scenes::funnel_pour::{simulate, Place};
     let mut ov = vec!["repeats.count=2".to_string(), "time.dt_s=1e-4".to_string()];
     ov.extend(extra.iter().map(|s| s.to_string()));
     let p = settle::run::prepare(std::path::Path::new(SCENARIO), None, &ov).expect("scenario");

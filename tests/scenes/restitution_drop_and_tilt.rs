@@ -251,9 +251,9 @@ fn restitution_follows_the_scenario_value() {
             ],
         )
         .unwrap();
-        let setup = Setup::of(p.scene.restitution_drop().unwrap(), p.rheology);
-        let settings = drop_settings(&p.scenario, &setup, 0.188);
-        let o = simulate_drop(&p.scenario, &setup, 0.188, settings).unwrap();
+        let setup = Setup::of(p.scene.restitution_drop().unwrap());
+        let settings = drop_settings(&p.common, &setup, 0.188);
+        let o = simulate_drop(&p.common, &setup, 0.188, settings).unwrap();
         assert!(
             (o.restitution_effective / e - 1.0).abs() < 1e-3,
             "e = {e}: contact e {}",
@@ -288,10 +288,10 @@ fn speed_dependent_restitution_reaches_the_contact() {
         ],
     )
     .unwrap();
-    let setup = Setup::of(p.scene.restitution_drop().unwrap(), p.rheology);
-    let settings = drop_settings(&p.scenario, &setup, 0.398);
+    let setup = Setup::of(p.scene.restitution_drop().unwrap());
+    let settings = drop_settings(&p.common, &setup, 0.398);
     for h in [0.095, 0.398] {
-        let o = simulate_drop(&p.scenario, &setup, h, settings).unwrap();
+        let o = simulate_drop(&p.common, &setup, h, settings).unwrap();
         let e = law.at(o.impact_speed_m_s);
         assert!(
             (o.restitution_effective / e - 1.0).abs() < 1e-3,
@@ -357,7 +357,7 @@ fn tilt_threshold_follows_the_friction() {
         &["contacts.friction=0.5".into()],
     )
     .unwrap();
-    let setup = TiltSetup::from_scenario(&p.scenario, p.scene.tilt_friction().unwrap());
+    let setup = TiltSetup::new(&p.common, p.scene.tilt_friction().unwrap());
     let search = tilt_threshold(&setup, &[20.0, 26.0, 27.0, 35.0], 0.1).unwrap();
     let (lo, hi) = search.bracket.expect("bracketed");
     let expected = 0.5f64.atan().to_degrees();
@@ -376,9 +376,9 @@ fn added_mass_in_the_drop_is_off_bit_for_bit_at_zero_and_tiny_in_air() {
     let drop = |extra: &[&str]| {
         let ov: Vec<String> = extra.iter().map(|s| s.to_string()).collect();
         let p = prepare(Path::new("scenarios/restitution_drop.toml"), None, &ov).unwrap();
-        let setup = Setup::of(p.scene.restitution_drop().unwrap(), p.rheology);
-        let settings = drop_settings(&p.scenario, &setup, 0.398);
-        simulate_drop(&p.scenario, &setup, 0.398, settings).unwrap()
+        let setup = Setup::of(p.scene.restitution_drop().unwrap());
+        let settings = drop_settings(&p.common, &setup, 0.398);
+        simulate_drop(&p.common, &setup, 0.398, settings).unwrap()
     };
     let off = drop(&[]);
     let zero = drop(&[

@@ -1,9 +1,9 @@
 //! The container, the release and the spheres: `[container]`, `[release]`, `[[spheres]]`,
 //! `[spheres_csv]`.
 
-use super::super::check::{cc, oc, Check};
-use super::super::load::ScenarioError;
 use super::{Dim, Kind, Scenario};
+use crate::error::BadInput;
+use crate::scenario::check::{cc, oc, Check};
 use serde::{Deserialize, Serialize};
 
 /// The container.
@@ -100,7 +100,7 @@ pub struct SpheresCsv {
 
 impl Container {
     /// Height, diameter (3D only) and width within (0, 10 km].
-    pub(crate) fn check(&self, c: &Check, dimension: Dim) -> Result<(), ScenarioError> {
+    pub(crate) fn check(&self, c: &Check, dimension: Dim) -> Result<(), BadInput> {
         c.range("container.height_m", self.height_m, oc(0.0, 1e4, "m"))?;
         if let Some(dia) = self.diameter_m {
             if dimension == Dim::Two {
@@ -126,7 +126,7 @@ impl Container {
 impl Release {
     /// Depth and speed in range; fall heights for kind `drop` only, each reached by free fall
     /// within `time.end_s`.
-    pub(crate) fn check(&self, c: &Check, s: &Scenario) -> Result<(), ScenarioError> {
+    pub(crate) fn check(&self, c: &Check, s: &Scenario) -> Result<(), BadInput> {
         c.table(
             "release",
             &[
@@ -174,7 +174,7 @@ impl Release {
 impl SphereSpec {
     /// Checks one sphere; `key` names it (`spheres[0]`, or a CSV row). Besides its own ranges:
     /// narrower than the container and released above its bottom.
-    pub(crate) fn check(&self, c: &Check, key: &str, s: &Scenario) -> Result<(), ScenarioError> {
+    pub(crate) fn check(&self, c: &Check, key: &str, s: &Scenario) -> Result<(), BadInput> {
         c.table(
             key,
             &[

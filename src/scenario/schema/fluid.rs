@@ -1,8 +1,8 @@
 //! The fluid and the drag law: `[fluid]` and `[drag]`.
 
-use super::super::check::{cc, oc, Check};
-use super::super::load::ScenarioError;
 use super::Physics;
+use crate::error::BadInput;
+use crate::scenario::check::{cc, oc, Check};
 use serde::{Deserialize, Serialize};
 
 pub use crate::fluid::Submergence;
@@ -188,7 +188,7 @@ impl Fluid {
 
     /// Density, and the viscosities the rheology needs (and no other): the rheology with its
     /// parameters.
-    pub(crate) fn check(&self, c: &Check) -> Result<RheologyModel, ScenarioError> {
+    pub(crate) fn check(&self, c: &Check) -> Result<RheologyModel, BadInput> {
         c.range(
             "fluid.density_kg_m3",
             self.density_kg_m3,
@@ -248,7 +248,7 @@ impl Fluid {
     }
 
     /// `consistency_pa_sn` and `flow_index` belong to a Herschel–Bulkley fluid only.
-    fn no_herschel_bulkley(&self, c: &Check) -> Result<(), ScenarioError> {
+    fn no_herschel_bulkley(&self, c: &Check) -> Result<(), BadInput> {
         let msg = "only allowed with rheology = \"herschel-bulkley\"";
         for (key, x) in [
             ("fluid.consistency_pa_sn", self.consistency_pa_sn),
@@ -262,7 +262,7 @@ impl Fluid {
     }
 
     /// τ_y, K and n of a Herschel–Bulkley fluid, and no Newtonian or Bingham viscosity.
-    fn check_herschel_bulkley(&self, c: &Check) -> Result<RheologyModel, ScenarioError> {
+    fn check_herschel_bulkley(&self, c: &Check) -> Result<RheologyModel, BadInput> {
         let need = |key: &str, x: Option<f64>, what: &str| {
             x.ok_or_else(|| {
                 c.err(
@@ -321,22 +321,35 @@ impl RheologyModel {
 
     /// The rheogram of a yield-stress fluid (Bingham: n = 1, K = η_B); None for a Newtonian one.
     pub fn yield_fluid(&self) -> Option<crate::fluid::bingham::YieldFluid> {
+        match self {
+            RheologyModel::Newtonian { .. } => None,
+            _ => Some(self.rheogram()),
+        }
+    }
+
+    /// The rheogram τ = τ_y + K γ̇ⁿ of the fluid: Bingham n = 1, K = η_B; Herschel–Bulkley as
+    /// given; a Newtonian fluid is its limit τ_y = 0, K = η, n = 1.
+    pub fn rheogram(&self) -> crate::fluid::bingham::YieldFluid {
         use crate::fluid::bingham::YieldFluid;
         match *self {
-            RheologyModel::Newtonian { .. } => None,
+            RheologyModel::Newtonian { viscosity_pa_s } => YieldFluid {
+                yield_stress_pa: 0.0,
+                consistency_pa_sn: viscosity_pa_s,
+                flow_index: 1.0,
+            },
             RheologyModel::Bingham {
                 plastic_viscosity_pa_s,
                 yield_stress_pa,
-            } => Some(YieldFluid::bingham(yield_stress_pa, plastic_viscosity_pa_s)),
+            } => YieldFluid::bingham(yield_stress_pa, plastic_viscosity_pa_s),
             RheologyModel::HerschelBulkley {
                 yield_stress_pa,
                 consistency_pa_sn,
                 flow_index,
-            } => Some(YieldFluid {
+            } => YieldFluid {
                 yield_stress_pa,
                 consistency_pa_sn,
                 flow_index,
-            }),
+            },
         }
     }
 
@@ -355,25 +368,49 @@ impl RheologyModel {
 }
 
 impl Drag {
-    /// The drag law of a yield-stress law name other than `bingham-fedem` in a fluid of
-    /// rheology `rheology` (with the static criterion); None for the other names or a Newtonian
-    /// fluid.
-    pub fn plastic_law(&self, rheology: RheologyModel) -> Option<crate::fluid::DragLaw> {
-        Some(crate::fluid::DragLaw::Plastic {
-            law: self.law.plastic()?,
-            fluid: rheology.yield_fluid()?,
+    /// The drag law of this table in a fluid of rheology `rheology`, after the `physics` switch
+    /// (`ideal-stokes` turns every law into Stokes drag with the fluid's viscosity, or its
+    /// plastic viscosity for a Bingham fluid). Total: a yield-stress law takes the fluid's
+    /// rheogram ([`RheologyModel::rheogram`]; validation allows it only in a yield-stress fluid).
+    pub fn law(&self, rheology: RheologyModel, physics: Physics) -> crate::fluid::DragLaw {
+        use crate::fluid::bingham::PlasticLaw;
+        use crate::fluid::newtonian::CdCorrelation;
+        use crate::fluid::DragLaw;
+        let mu = rheology.drag_viscosity_pa_s();
+        if physics == Physics::IdealStokes {
+            return DragLaw::Stokes { viscosity_pa_s: mu };
+        }
+        let correlation = |cd| DragLaw::Correlation {
+            viscosity_pa_s: mu,
+            cd,
+        };
+        let plastic = |law| DragLaw::Plastic {
+            law,
+            fluid: rheology.rheogram(),
             beris: self.static_criterion == StaticCriterion::Beris,
-        })
+        };
+        match self.law {
+            DragLawName::Stokes => DragLaw::Stokes { viscosity_pa_s: mu },
+            DragLawName::Dallavalle => DragLaw::Dallavalle {
+                viscosity_pa_s: mu,
+                voidage: self.voidage,
+            },
+            DragLawName::SchillerNaumann => correlation(CdCorrelation::SchillerNaumann),
+            DragLawName::CliftGauvin => correlation(CdCorrelation::CliftGauvin),
+            DragLawName::Morrison => correlation(CdCorrelation::Morrison),
+            DragLawName::BinghamFedem => DragLaw::Bingham {
+                yield_stress_pa: rheology.yield_stress_pa(),
+                plastic_viscosity_pa_s: mu,
+            },
+            DragLawName::BinghamAdditive => plastic(PlasticLaw::Additive),
+            DragLawName::AnsleySmith => plastic(PlasticLaw::AnsleySmith),
+            DragLawName::Wilson2003 => plastic(PlasticLaw::Wilson),
+        }
     }
 
     /// Voidage in (0, 1]; a yield-stress law exactly for a yield-stress fluid (unless
     /// `ideal-stokes`), and a law that takes the fluid's rheogram.
-    pub(crate) fn check(
-        &self,
-        c: &Check,
-        fluid: &Fluid,
-        physics: Physics,
-    ) -> Result<(), ScenarioError> {
+    pub(crate) fn check(&self, c: &Check, fluid: &Fluid, physics: Physics) -> Result<(), BadInput> {
         c.range("drag.voidage", self.voidage, oc(0.0, 1.0, ""))?;
         const YIELD_LAWS: &str =
             "`bingham-fedem`, `bingham-additive`, `ansley-smith`, `wilson-2003`";

@@ -1,8 +1,8 @@
 //! Measurement settings: `[measure]`.
 
-use super::super::check::{cc, oc, Check};
-use super::super::load::ScenarioError;
 use super::within_run;
+use crate::error::BadInput;
+use crate::scenario::check::{cc, oc, Check};
 use serde::{Deserialize, Serialize};
 
 /// Measurement settings.
@@ -46,7 +46,7 @@ fn default_terminal_tol() -> f64 {
 impl Measure {
     /// Both detectors or neither, top above bottom within a container of height `height_m`
     /// (infinite without one); tolerances in (0, 1]; probe times within the run.
-    pub(crate) fn check(&self, c: &Check, height_m: f64, end_s: f64) -> Result<(), ScenarioError> {
+    pub(crate) fn check(&self, c: &Check, height_m: f64, end_s: f64) -> Result<(), BadInput> {
         let both = "missing: give both detectors of the measuring section or neither";
         match (self.section_top_depth_m, self.section_bottom_depth_m) {
             (None, None) => {}

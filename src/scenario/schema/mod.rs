@@ -5,7 +5,15 @@
 mod bodies;
 mod contacts;
 mod fluid;
-mod kinds;
+/// The tables of one kind each, with their checks and the typed spec of the kind built from
+/// them: one file per kind under `kinds/`, named as the kind.
+mod kinds {
+    pub mod free_settling;
+    pub mod funnel_pour;
+    pub mod restitution_drop;
+    pub mod sedimentation;
+    pub mod tilt_friction;
+}
 mod measure;
 mod time;
 mod transient;
@@ -13,18 +21,24 @@ mod transient;
 pub use bodies::{Container, ReferenceSpec, Release, SphereSpec, SpheresCsv};
 pub use contacts::Contacts;
 pub use fluid::{Drag, DragLawName, Fluid, Rheology, RheologyModel, StaticCriterion, Submergence};
-pub use kinds::funnel::{FunnelSpec, Repeats};
-pub use kinds::restitution_drop::RestitutionDropSpec;
+pub(crate) use kinds::free_settling;
+pub use kinds::free_settling::{Entry, FreeSettlingSpec};
+pub(crate) use kinds::funnel_pour;
+pub use kinds::funnel_pour::{FunnelPourSpec, FunnelSpec, Repeats};
+pub(crate) use kinds::restitution_drop;
+pub use kinds::restitution_drop::{RestitutionDropSpec, RestitutionSpec};
+pub(crate) use kinds::sedimentation;
 pub(crate) use kinds::sedimentation::trim_default_times;
-pub use kinds::sedimentation::{InstrumentsSpec, SampleSpec};
-pub use kinds::tilt::TiltSpec;
+pub use kinds::sedimentation::{InstrumentsSpec, SampleSpec, SedimentationSpec};
+pub(crate) use kinds::tilt_friction;
+pub use kinds::tilt_friction::{TiltFrictionSpec, TiltSpec};
 pub use measure::Measure;
 pub use time::Time;
 pub use transient::{Confinement, History, HistoryReynolds, Transient, Wall};
 
 use super::check::{oc, Check, Range};
-use super::load::ScenarioError;
 use crate::dynamics::Integrator;
+use crate::error::BadInput;
 use serde::{Deserialize, Serialize};
 
 /// Standard gravity used when a scenario does not set `gravity_m_s2`, m/s².
@@ -280,10 +294,10 @@ impl Scenario {
     /// sedimentation, whose grain contacts run in their own solve) and Rapier for the contact
     /// kinds (restitution drop, tilt, funnel pour).
     pub fn engine(&self) -> Engine {
-        match (self.kind, self.engine) {
-            (_, EngineChoice::Rapier) => Engine::Rapier,
-            (Kind::FreeSettling | Kind::Drop | Kind::Sedimentation, _) => Engine::Free,
-            (Kind::RestitutionDrop | Kind::TiltFriction | Kind::FunnelPour, _) => Engine::Rapier,
+        if self.engine == EngineChoice::Rapier || crate::scenario::info(self.kind).rapier {
+            Engine::Rapier
+        } else {
+            Engine::Free
         }
     }
 
@@ -294,7 +308,7 @@ impl Scenario {
 
     /// Checks the top-level keys `name` and `gravity_m_s2` (`dimension` is checked as it is
     /// parsed: 2 or 3 only).
-    pub(crate) fn check_common(&self, c: &Check) -> Result<(), ScenarioError> {
+    pub(crate) fn check_common(&self, c: &Check) -> Result<(), BadInput> {
         let name_ok = !self.name.is_empty()
             && !self.name.starts_with('.')
             && self
@@ -314,20 +328,13 @@ impl Scenario {
 impl Kind {
     /// The name of the kind as written in scenario files (`free_settling`, …).
     pub fn name(self) -> &'static str {
-        match self {
-            Kind::FreeSettling => "free_settling",
-            Kind::Drop => "drop",
-            Kind::RestitutionDrop => "restitution_drop",
-            Kind::TiltFriction => "tilt_friction",
-            Kind::FunnelPour => "funnel_pour",
-            Kind::Sedimentation => "sedimentation",
-        }
+        crate::scenario::info(self).name
     }
 }
 
 impl Record {
     /// `every_s` within (0, end_s].
-    pub(crate) fn check(&self, c: &Check, end_s: f64) -> Result<(), ScenarioError> {
+    pub(crate) fn check(&self, c: &Check, end_s: f64) -> Result<(), BadInput> {
         match self.every_s {
             Some(e) => c.range("record.every_s", e, oc(0.0, end_s, "s")),
             None => Ok(()),
@@ -337,7 +344,7 @@ impl Record {
 
 impl SweepSpec {
     /// Every `dt_s` within (0, end_s], `tol` within (0, 1].
-    pub(crate) fn check(&self, c: &Check, end_s: f64) -> Result<(), ScenarioError> {
+    pub(crate) fn check(&self, c: &Check, end_s: f64) -> Result<(), BadInput> {
         c.each("sweep.dt_s", &self.dt_s, oc(0.0, end_s, "s"))?;
         match self.tol {
             Some(t) => c.range("sweep.tol", t, oc(0.0, 1.0, "")),
@@ -358,7 +365,7 @@ mod tests {
 
     const STOKES: &str = include_str!("../../../scenarios/stokes_single.toml");
 
-    fn load(text: &str, set: &[&str]) -> Result<Scenario, ScenarioError> {
+    fn load(text: &str, set: &[&str]) -> Result<Scenario, BadInput> {
         let set: Vec<String> = set.iter().map(|s| s.to_string()).collect();
         crate::scenario::load_str(text, Path::new("t.toml"), &set)
     }

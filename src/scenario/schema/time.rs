@@ -1,8 +1,8 @@
 //! Time settings: `[time]`.
 
-use super::super::check::{oc, Check, MAX_STEPS};
-use super::super::load::ScenarioError;
 use crate::dynamics::Integrator;
+use crate::error::BadInput;
+use crate::scenario::check::{oc, Check, MAX_STEPS};
 use serde::{Deserialize, Serialize};
 
 /// Time settings.
@@ -21,7 +21,7 @@ pub struct Time {
 
 impl Time {
     /// `0 < end_s ≤ 1e9`, `0 < dt_s ≤ end_s`, at most [`MAX_STEPS`] steps.
-    pub(crate) fn check(&self, c: &Check) -> Result<(), ScenarioError> {
+    pub(crate) fn check(&self, c: &Check) -> Result<(), BadInput> {
         c.range("time.end_s", self.end_s, oc(0.0, 1e9, "s"))?;
         c.range(
             "time.dt_s",

@@ -2,10 +2,10 @@
 //! Rapier scenes `restitution_drop` and `funnel_pour`). Every key defaults to off, so a scenario
 //! without the table keeps the quasi-steady forces of f-EDEM and seed 000.
 
-use super::super::check::{cc, Check};
-use super::super::load::ScenarioError;
 use super::{EngineChoice, Kind, Physics, Rheology, Scenario};
 use crate::dynamics::Integrator;
+use crate::error::BadInput;
+use crate::scenario::check::{cc, Check};
 use serde::{Deserialize, Serialize};
 
 /// The transient forces on a sphere.
@@ -124,7 +124,7 @@ impl Transient {
     /// `funnel_pour`) the added mass only; the history force only in a Newtonian fluid, for kind
     /// `free_settling`, on the free engine, with the exponential integrator; the wall only with a
     /// `[container]`, for kind `free_settling`.
-    pub(crate) fn check(&self, c: &Check, s: &Scenario) -> Result<(), ScenarioError> {
+    pub(crate) fn check(&self, c: &Check, s: &Scenario) -> Result<(), BadInput> {
         c.range(
             "transient.added_mass_coefficient",
             self.added_mass_coefficient,
@@ -178,7 +178,7 @@ impl Transient {
     /// Haberman & Sayre's factor: kind `free_settling`, a cylindrical container
     /// (`container.diameter_m`). Each sphere's d/D is checked with the sphere
     /// ([`Transient::check_confined_sphere`]), so that spheres read from CSV are too.
-    fn check_confinement(&self, c: &Check, s: &Scenario) -> Result<(), ScenarioError> {
+    fn check_confinement(&self, c: &Check, s: &Scenario) -> Result<(), BadInput> {
         const KEY: &str = "transient.confinement";
         if s.kind != Kind::FreeSettling {
             return Err(c.err(KEY, format!("the confinement factor is implemented for kind = \"free_settling\" only, not \"{}\"", s.kind.name())));
@@ -197,7 +197,7 @@ impl Transient {
         key: &str,
         d_m: f64,
         s: &Scenario,
-    ) -> Result<(), ScenarioError> {
+    ) -> Result<(), BadInput> {
         use crate::fluid::transient::wall::HABERMAN_SAYRE_MAX_RATIO as MAX;
         let big_d = s.container.as_ref().and_then(|k| k.diameter_m);
         let (Confinement::HabermanSayre, Some(big_d)) = (self.confinement, big_d) else {

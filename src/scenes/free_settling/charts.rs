@@ -23,7 +23,7 @@ use crate::io::chart::{grid_svg, Band, Chart, Curve, Marker, Scale, Series};
 use crate::io::fmt::opt;
 use crate::io::write_csv;
 use crate::scenario::inputs::MeasuredCurves;
-use crate::scenario::{Rheology, Scenario};
+use crate::scenario::{Common, RheologyModel};
 use std::collections::BTreeMap;
 use std::io;
 use std::path::Path;
@@ -209,19 +209,21 @@ pub struct CdRe {
 /// The Re′–C_d points of a Bingham run (empty for other fluids). C_d comes from the force balance
 /// at the velocity (f-EDEM eq. 17, the scenario's gravity), Re′ from eq. 18, as the validation
 /// of Table 3 computes them.
-pub fn cd_re_points(s: &Scenario, results: &[SphereResult]) -> Vec<CdRe> {
-    let f = &s.fluid;
-    let (Rheology::Bingham, Some(eta), Some(tau_y)) =
-        (f.rheology, f.plastic_viscosity_pa_s, f.yield_stress_pa)
+pub fn cd_re_points(s: &Common, results: &[SphereResult]) -> Vec<CdRe> {
+    let RheologyModel::Bingham {
+        plastic_viscosity_pa_s: eta,
+        yield_stress_pa: tau_y,
+    } = s.rheology
     else {
         return Vec::new();
     };
+    let rho_f = s.fluid_density_kg_m3;
     let at = |r: &SphereResult, v: f64| {
         let sp = &r.case.spec;
-        let re = reynolds_bingham(f.density_kg_m3, v, sp.diameter_m, tau_y, eta);
+        let re = reynolds_bingham(rho_f, v, sp.diameter_m, tau_y, eta);
         let cd = cd_from_terminal_velocity(
             sp.density_kg_m3,
-            f.density_kg_m3,
+            rho_f,
             sp.diameter_m,
             tau_y,
             v,

@@ -49,17 +49,24 @@
 //! [`run_scene`] is the entry point of `settle run`.
 
 pub mod charts;
+pub mod console;
+pub mod cost;
 pub mod output;
+mod scene;
 pub mod setup;
 pub mod simulate;
+mod submerged;
 mod transient;
 
+pub use scene::Scene;
 pub use setup::{release_depth_m, RunOptions};
 pub use simulate::{
-    run, run_interruptible, run_rapier, run_sphere, Halt, Sample, SphereResult, StopReason,
+    run, run_interruptible, run_rapier, run_scene_cases, run_sphere, Halt, Sample, SphereResult,
+    StopReason,
 };
 
 use crate::error::Error;
+use crate::scenario::FreeSettlingSpec;
 use crate::scenes::{Prepared, SceneReport};
 
 /// State variables per body of the history force (v, x and one per exponential of the kernel)
@@ -70,7 +77,12 @@ pub fn history_states(
     cases: &[crate::scenario::inputs::SphereCase],
 ) -> Option<usize> {
     let c = cases.first()?;
-    let su = setup::SphereSetup::<3>::new(scenario, rheology, c, RunOptions::of(scenario));
+    let (common, spec) = scene::typed(scenario, rheology);
+    let sc = Scene {
+        common: &common,
+        spec: &spec,
+    };
+    let su = setup::SphereSetup::<3>::new(sc, c, RunOptions::of(scenario));
     su.transient.as_ref()?.history.as_ref().map(|m| m.states())
 }
 
@@ -79,16 +91,20 @@ pub fn history_states(
 /// nothing and returns [`Error::InterruptedUnwritten`] with the scenario file.
 pub fn run_scene(
     p: &Prepared,
+    spec: &FreeSettlingSpec,
     stage: &crate::io::StagedDir,
 ) -> Result<(Vec<SphereResult>, SceneReport), Error> {
-    let s = &p.scenario;
     let interrupted = || Error::InterruptedUnwritten(p.path.clone());
-    let results = match run_interruptible(s, p.rheology, &p.spheres, RunOptions::of(s)) {
+    let sc = Scene {
+        common: &p.common,
+        spec,
+    };
+    let results = match run_scene_cases(sc, &p.spheres, RunOptions::of_common(&p.common)) {
         Ok(r) => r,
         Err(Halt::Unstable(u)) => return Err(Error::Unstable(p.path.clone(), u)),
         Err(Halt::Interrupted) => return Err(interrupted()),
     };
-    let report = output::write_all(p, &results, stage).map_err(|e| match e {
+    let report = output::write_all(p, spec, &results, stage).map_err(|e| match e {
         Error::Io(_, io) if io.kind() == std::io::ErrorKind::Interrupted => interrupted(),
         e => e,
     })?;

@@ -23,7 +23,7 @@ use crate::io::chart::{scatter_svg, Scale, Series};
 use crate::io::fmt::{num, opt};
 use crate::io::metrics::ErrorStats;
 use crate::io::StagedDir;
-use crate::scenario::{Kind, Scenario, Submergence};
+use crate::scenario::{Common, Entry, FreeSettlingSpec, Submergence};
 use crate::scenes::{Prepared, SceneReport};
 use std::collections::BTreeMap;
 use std::io;
@@ -34,14 +34,15 @@ use std::path::Path;
 /// series is written ends it with an [`io::ErrorKind::Interrupted`] error.
 pub fn write_all(
     p: &Prepared,
+    spec: &FreeSettlingSpec,
     results: &[SphereResult],
     stage: &StagedDir,
 ) -> Result<SceneReport, Error> {
-    let s = &p.scenario;
+    let s = &p.common;
     let io = |e: io::Error| Error::Io(stage.dest().to_path_buf(), e);
     let integ = s.time.integrator.name();
-    if s.kind == Kind::Drop {
-        let sub = match s.fluid.submergence {
+    if spec.entry == Entry::Drop {
+        let sub = match s.submergence {
             Submergence::Full => "full",
             Submergence::Partial => "partial",
         };
@@ -86,10 +87,10 @@ pub fn write_all(
         }
     }
     if s.record.timeseries {
-        let height = p.scenario.container.as_ref().map(|c| c.height_m);
+        let height = spec.container.as_ref().map(|c| c.height_m);
         write_timeseries(&stage.path("timeseries.csv"), results, height).map_err(io)?;
         let title = format!("{}: settling velocity against time", s.name);
-        let v0 = s.release.velocity_m_s;
+        let v0 = spec.release.velocity_m_s;
         let exact = s.transient.as_ref().filter(|t| t.any()).map(|t| {
             if t.history == crate::scenario::History::Basset {
                 "exact with added mass and the Basset force (Boussinesq–Basset closed form)"
@@ -349,9 +350,9 @@ pub fn write_metrics(path: &Path, stats: &[ErrorStats]) -> io::Result<()> {
 /// `cd_re.csv` with `cd_re.svg` over every Bingham run (see [`charts`]).
 pub fn write_combined_charts<'a>(
     stage: &StagedDir,
-    runs: impl IntoIterator<Item = (&'a Scenario, &'a [SphereResult])>,
+    runs: impl IntoIterator<Item = (&'a Common, &'a [SphereResult])>,
 ) -> io::Result<()> {
-    let runs: Vec<(&Scenario, &[SphereResult])> = runs.into_iter().collect();
+    let runs: Vec<(&Common, &[SphereResult])> = runs.into_iter().collect();
     let all: Vec<&SphereResult> = runs.iter().flat_map(|r| r.1.iter()).collect();
     let n = runs.len();
     charts::write_parity_chart(

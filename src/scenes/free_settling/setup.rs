@@ -2,11 +2,11 @@
 //! quantities of one sphere fixed at release (drag, weights, force balance, schedule,
 //! detectors).
 
+use super::scene::Scene;
 use crate::dynamics::Integrator;
 use crate::fluid::{sphere_mass_kg, DragLaw, SphereDrag};
 use crate::scenario::inputs::SphereCase;
-use crate::scenario::{EngineChoice, RheologyModel, Scenario, Submergence};
-use crate::scenes::sphere_drag;
+use crate::scenario::{Common, Engine, FreeSettlingSpec, Scenario, Submergence};
 use nalgebra::SVector;
 
 /// Options of one run that do not belong in the scenario file.
@@ -30,22 +30,31 @@ impl RunOptions {
             timeseries: s.record.timeseries,
         }
     }
+
+    /// The same, from the typed common part.
+    pub fn of_common(c: &Common) -> Self {
+        Self {
+            dt_s: c.time.dt_s,
+            integrator: c.time.integrator,
+            timeseries: c.record.timeseries,
+        }
+    }
 }
 
 /// Whether the spheres go through Rapier worlds (`engine = "rapier"`); `auto` and `free` use
 /// the free engine, as there are no contacts.
-pub fn uses_rapier(s: &Scenario) -> bool {
-    s.engine == EngineChoice::Rapier
+pub fn uses_rapier(c: &Common) -> bool {
+    c.engine == Engine::Rapier
 }
 
 /// Depth of a sphere's centre below the free surface at release, m: above the surface by the
 /// fall height plus a radius for drops; `release.depth_m`, or one radius ("just submerged") when
 /// that is 0, otherwise.
-pub fn release_depth_m(scenario: &Scenario, case: &SphereCase) -> f64 {
+pub fn release_depth_m(spec: &FreeSettlingSpec, case: &SphereCase) -> f64 {
     let d = case.spec.diameter_m;
     match case.fall_height_m {
         Some(h) => -(h + 0.5 * d),
-        None if scenario.release.depth_m > 0.0 => scenario.release.depth_m,
+        None if spec.release.depth_m > 0.0 => spec.release.depth_m,
         None => 0.5 * d,
     }
 }
@@ -110,18 +119,14 @@ pub(super) struct SphereSetup<const D: usize> {
 }
 
 impl<const D: usize> SphereSetup<D> {
-    /// The setup of `case` in `scenario` with the options `opts`.
-    pub fn new(
-        scenario: &Scenario,
-        rheology: RheologyModel,
-        case: &SphereCase,
-        opts: RunOptions,
-    ) -> Self {
+    /// The setup of `case` in the scene `sc` with the options `opts`.
+    pub fn new(sc: Scene, case: &SphereCase, opts: RunOptions) -> Self {
+        let (c, f) = (sc.common, sc.spec);
         let sp = &case.spec;
         let d = sp.diameter_m;
-        let g = scenario.gravity_m_s2;
-        let rho_f = scenario.fluid.density_kg_m3;
-        let drag: SphereDrag = sphere_drag(scenario, rheology, d);
+        let g = c.gravity_m_s2;
+        let rho_f = c.fluid_density_kg_m3;
+        let drag: SphereDrag = c.sphere_drag(d);
         let m = sphere_mass_kg(d, sp.density_kg_m3);
         let net_weight = (m - sphere_mass_kg(d, rho_f)) * g; // > 0: sinks
         let mut down = SVector::<f64, D>::zeros();
@@ -130,7 +135,7 @@ impl<const D: usize> SphereSetup<D> {
         let fb = drag.balance_speed(net_weight.abs());
         let response_time_s = m / drag.slope_n_s_m(0.0);
         let transient =
-            super::transient::TransientSetup::new(scenario, d, m, sphere_mass_kg(d, rho_f), &drag);
+            super::transient::TransientSetup::new(sc, d, m, sphere_mass_kg(d, rho_f), &drag);
         // With added mass alone the Stokes solution keeps its form, with τ = (m + C_m m_f)/k;
         // with the history force or the wall it is replaced ([`super::transient::analytic_at`]).
         let added = transient.as_ref().map_or(0.0, |t| t.added_mass_kg);
@@ -147,8 +152,8 @@ impl<const D: usize> SphereSetup<D> {
             )),
             _ => None,
         };
-        let n_steps = (scenario.time.end_s / dt).round().max(1.0) as u64;
-        let v0 = scenario.release.velocity_m_s;
+        let n_steps = (c.time.end_s / dt).round().max(1.0) as u64;
+        let v0 = f.release.velocity_m_s;
         // Released in a still fluid under a constant force with a monotone drag, a sphere's speed
         // never exceeds max(v₀, v_terminal); an explicit step overshoots past 2× that exactly when
         // dt > 2 m/(dF/dv).
@@ -156,7 +161,7 @@ impl<const D: usize> SphereSetup<D> {
             .fall_height_m
             .map(|h| (v0 * v0 + 2.0 * g * (h + d)).sqrt())
             .unwrap_or(0.0);
-        let measure = scenario.measure.as_ref();
+        let measure = f.measure.as_ref();
         Self {
             d_m: d,
             g_m_s2: g,
@@ -173,18 +178,18 @@ impl<const D: usize> SphereSetup<D> {
             v_eq_m_s: down * (fb.speed_m_s * net_weight.signum()),
             response_time_s,
             analytic,
-            depth0_m: release_depth_m(scenario, case),
+            depth0_m: release_depth_m(f, case),
             // Spheres released submerged stay submerged: constant forces. Drops cross the surface.
             crossing: case.fall_height_m.is_some(),
-            submergence: scenario.fluid.submergence,
-            bottom_m: scenario
+            submergence: c.submergence,
+            bottom_m: f
                 .container
                 .as_ref()
                 .map(|c| c.height_m - 0.5 * d)
                 .unwrap_or(f64::INFINITY),
             v0_m_s: v0,
             n_steps,
-            record_every: scenario
+            record_every: c
                 .record
                 .every_s
                 .map(|e| ((e / dt).round() as u64).max(1))

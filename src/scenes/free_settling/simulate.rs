@@ -3,8 +3,9 @@
 //! decide whether to stop — and the runners over all spheres (rayon, results in input order),
 //! with one dispatch on the dimension and the engine.
 
+use super::scene::{typed, Scene};
 use super::setup::{uses_rapier, RunOptions, SphereSetup};
-use super::transient::{added_mass_kg, submerged_step};
+use super::submerged::{added_mass_kg, analytic_at, submerged_step};
 use crate::contact::rayleigh_time_s;
 use crate::dynamics::{advance, explicit_stable_dt_s, Monitor, Motion, Step, Unstable};
 use crate::engine::{dim2, dim3, EngineSettings, SphereWorld};
@@ -127,13 +128,6 @@ impl From<Unstable> for Halt {
     }
 }
 
-/// Stokes solution for a sphere started at speed v₀ (downward): returns (v(t), distance(t)).
-pub(super) fn stokes_analytic(vt: f64, tau: f64, v0: f64, t: f64) -> (f64, f64) {
-    let e = (-t / tau).exp();
-    let em1 = -(-t / tau).exp_m1();
-    (vt + (v0 - vt) * e, vt * t + (v0 - vt) * tau * em1)
-}
-
 /// Runs every sphere of a free-settling scenario on the free engine, in parallel (rayon);
 /// results in input order. Not interruptible (see [`run_interruptible`]).
 pub fn run(
@@ -142,7 +136,18 @@ pub fn run(
     cases: &[SphereCase],
     opts: RunOptions,
 ) -> Result<Vec<SphereResult>, Unstable> {
-    run_cases(scenario, rheology, cases, opts, false, false).map_err(uninterruptible)
+    let (c, f) = typed(scenario, rheology);
+    run_cases(
+        Scene {
+            common: &c,
+            spec: &f,
+        },
+        cases,
+        opts,
+        false,
+        false,
+    )
+    .map_err(uninterruptible)
 }
 
 /// Runs every sphere through its own Rapier world with the force hook (`engine = "rapier"`):
@@ -154,7 +159,18 @@ pub fn run_rapier(
     cases: &[SphereCase],
     opts: RunOptions,
 ) -> Result<Vec<SphereResult>, Unstable> {
-    run_cases(scenario, rheology, cases, opts, true, false).map_err(uninterruptible)
+    let (c, f) = typed(scenario, rheology);
+    run_cases(
+        Scene {
+            common: &c,
+            spec: &f,
+        },
+        cases,
+        opts,
+        true,
+        false,
+    )
+    .map_err(uninterruptible)
 }
 
 /// Runs every sphere on the engine the scenario asks for, stopping within
@@ -165,7 +181,24 @@ pub fn run_interruptible(
     cases: &[SphereCase],
     opts: RunOptions,
 ) -> Result<Vec<SphereResult>, Halt> {
-    run_cases(scenario, rheology, cases, opts, uses_rapier(scenario), true)
+    let (c, f) = typed(scenario, rheology);
+    run_scene_cases(
+        Scene {
+            common: &c,
+            spec: &f,
+        },
+        cases,
+        opts,
+    )
+}
+
+/// [`run_interruptible`] of the typed scene `sc`: the entry of a prepared scenario.
+pub fn run_scene_cases(
+    sc: Scene,
+    cases: &[SphereCase],
+    opts: RunOptions,
+) -> Result<Vec<SphereResult>, Halt> {
+    run_cases(sc, cases, opts, uses_rapier(sc.common), true)
 }
 
 fn uninterruptible(h: Halt) -> Unstable {
@@ -178,20 +211,19 @@ fn uninterruptible(h: Halt) -> Unstable {
 /// The one dispatch on dimension and engine: every case in parallel, results in input order,
 /// the first halt wins.
 fn run_cases(
-    scenario: &Scenario,
-    rheology: RheologyModel,
+    sc: Scene,
     cases: &[SphereCase],
     opts: RunOptions,
     rapier: bool,
     interruptible: bool,
 ) -> Result<Vec<SphereResult>, Halt> {
     use rayon::prelude::*;
-    let (s, rh, on) = (scenario, rheology, interruptible);
-    let one = |c: &SphereCase| match (s.dimension, rapier) {
-        (Dim::Two, false) => run_sphere_with::<2>(s, rh, c, opts, None, on),
-        (Dim::Three, false) => run_sphere_with::<3>(s, rh, c, opts, None, on),
-        (Dim::Two, true) => rapier_sphere::<2, dim2::World>(s, rh, c, opts, on),
-        (Dim::Three, true) => rapier_sphere::<3, dim3::World>(s, rh, c, opts, on),
+    let on = interruptible;
+    let one = |c: &SphereCase| match (sc.common.dimension, rapier) {
+        (Dim::Two, false) => run_sphere_with::<2>(sc, c, opts, None, on),
+        (Dim::Three, false) => run_sphere_with::<3>(sc, c, opts, None, on),
+        (Dim::Two, true) => rapier_sphere::<2, dim2::World>(sc, c, opts, on),
+        (Dim::Three, true) => rapier_sphere::<3, dim3::World>(sc, c, opts, on),
     };
     cases.par_iter().map(one).collect()
 }
@@ -203,7 +235,12 @@ pub fn run_sphere<const D: usize>(
     case: &SphereCase,
     opts: RunOptions,
 ) -> Result<SphereResult, Unstable> {
-    run_sphere_with::<D>(scenario, rheology, case, opts, None, false).map_err(uninterruptible)
+    let (c, f) = typed(scenario, rheology);
+    let sc = Scene {
+        common: &c,
+        spec: &f,
+    };
+    run_sphere_with::<D>(sc, case, opts, None, false).map_err(uninterruptible)
 }
 
 /// A step taken by an engine instead of [`advance`]: given dt, advance the sphere and report its
@@ -237,14 +274,13 @@ struct State<const D: usize> {
 
 /// The loop of one sphere, with the steps taken by `external` (a Rapier world) when given.
 fn run_sphere_with<const D: usize>(
-    scenario: &Scenario,
-    rheology: RheologyModel,
+    sc: Scene,
     case: &SphereCase,
     opts: RunOptions,
     mut external: Option<ExternalStep<'_, D>>,
     interruptible: bool,
 ) -> Result<SphereResult, Halt> {
-    let su = SphereSetup::<D>::new(scenario, rheology, case, opts);
+    let su = SphereSetup::<D>::new(sc, case, opts);
     let d = su.d_m;
     let mut st = State {
         v: su.down * su.v0_m_s,
@@ -305,7 +341,7 @@ fn run_sphere_with<const D: usize>(
 
 /// A time-series row, with the Stokes solution beside it when the law is Stokes.
 fn sample<const D: usize>(su: &SphereSetup<D>, t: f64, depth: f64, vel: f64) -> Sample {
-    let an = super::transient::analytic_at(su, t);
+    let an = analytic_at(su, t);
     Sample {
         time_s: t,
         depth_m: depth,
@@ -450,12 +486,11 @@ fn locate_events<const D: usize>(
                 let part = advance(opts.integrator, &su.drag, su.m_kg, &su.w_n, &st.v, tp - t);
                 -part.velocity_m_s[D - 1]
             };
-            let an = super::transient::analytic_at(su, tp).map(|a| a.0);
+            let an = analytic_at(su, tp).map(|a| a.0);
             st.probes.push((tp, speed, an));
         }
     }
-    if let (Some((vt, _)), Some((va, _))) = (su.analytic, super::transient::analytic_at(su, t_new))
-    {
+    if let (Some((vt, _)), Some((va, _))) = (su.analytic, analytic_at(su, t_new)) {
         st.max_err = st.max_err.max((speed1 - va).abs() / vt.abs());
     }
 }
@@ -585,16 +620,15 @@ fn finish<const D: usize>(
 /// One sphere through its own Rapier world `W` with the force hook: the loop of
 /// [`run_sphere_with`] with Rapier taking the steps.
 fn rapier_sphere<const D: usize, W: SphereWorld<D>>(
-    scenario: &Scenario,
-    rheology: RheologyModel,
+    sc: Scene,
     case: &SphereCase,
     opts: RunOptions,
     interruptible: bool,
 ) -> Result<SphereResult, Halt> {
     let d = case.spec.diameter_m;
-    let drag = super::super::sphere_drag(scenario, rheology, d);
-    let g = scenario.gravity_m_s2;
-    let depth0 = super::release_depth_m(scenario, case);
+    let drag = sc.common.sphere_drag(d);
+    let g = sc.common.gravity_m_s2;
+    let depth0 = super::release_depth_m(sc.spec, case);
     let v_max = drag
         .balance_speed(
             (sphere_mass_kg(d, case.spec.density_kg_m3)
@@ -603,14 +637,14 @@ fn rapier_sphere<const D: usize, W: SphereWorld<D>>(
                 * g,
         )
         .speed_m_s
-        .max(scenario.release.velocity_m_s);
+        .max(sc.spec.release.velocity_m_s);
     let mut up = SVector::<f64, D>::zeros();
     up[D - 1] = 1.0;
     let (mut world, id) = W::with_sphere(
         EngineSettings::for_scene(d, 2.0 * v_max),
         g,
         -up * depth0,
-        -up * scenario.release.velocity_m_s,
+        -up * sc.spec.release.velocity_m_s,
         d,
         case.spec.density_kg_m3,
         drag,
@@ -637,12 +671,5 @@ fn rapier_sphere<const D: usize, W: SphereWorld<D>>(
         prev = x;
         Ok(out)
     };
-    run_sphere_with::<D>(
-        scenario,
-        rheology,
-        case,
-        opts,
-        Some(&mut step),
-        interruptible,
-    )
+    run_sphere_with::<D>(sc, case, opts, Some(&mut step), interruptible)
 }

@@ -16,17 +16,15 @@
 //! inertia (added mass alone) or the Basset closed form ([`BassetProblem`], history on, released
 //! from rest); none with the wall.
 
-use super::setup::SphereSetup;
+use super::scene::Scene;
 use crate::dynamics::transient::{
     basset_coefficient, basset_kernel, mei_adrian_kernel_sum, MeiAdrianTable, TransientBody,
     TransientModel,
 };
-use crate::dynamics::{advance, Integrator, Motion, Step};
-use crate::fluid::transient::wall::{brenner_factor, haberman_sayre_factor};
+use crate::fluid::transient::wall::haberman_sayre_factor;
 use crate::fluid::transient::BassetProblem;
 use crate::fluid::{DragLaw, SphereDrag};
-use crate::scenario::{Confinement, History, HistoryReynolds, Scenario, Wall};
-use nalgebra::SVector;
+use crate::scenario::{Confinement, History, HistoryReynolds, Wall};
 
 /// The transient forces of one sphere, fixed at release.
 #[derive(Clone, Debug)]
@@ -47,8 +45,9 @@ pub(super) struct TransientSetup {
 
 impl TransientSetup {
     /// The setup of a sphere of diameter `d_m`, mass `m_kg`, displaced fluid mass `m_f_kg`
-    /// and drag `drag` in `scenario`; None when `[transient]` is absent or all off.
-    pub fn new(s: &Scenario, d_m: f64, m_kg: f64, m_f_kg: f64, drag: &SphereDrag) -> Option<Self> {
+    /// and drag `drag` in the scene `sc`; None when `[transient]` is absent or all off.
+    pub fn new(sc: Scene, d_m: f64, m_kg: f64, m_f_kg: f64, drag: &SphereDrag) -> Option<Self> {
+        let (s, f) = (sc.common, sc.spec);
         let t = s.transient.as_ref().filter(|t| t.any())?;
         let cm = if t.added_mass {
             t.added_mass_coefficient
@@ -57,9 +56,9 @@ impl TransientSetup {
         };
         let added = cm * m_f_kg;
         let mu = drag.law.viscosity_pa_s();
-        let c_h = basset_coefficient(d_m, s.fluid.density_kg_m3, mu);
+        let c_h = basset_coefficient(d_m, s.fluid_density_kg_m3, mu);
         let k = 3.0 * std::f64::consts::PI * mu * d_m;
-        let nu = mu / s.fluid.density_kg_m3;
+        let nu = mu / s.fluid_density_kg_m3;
         let (tau_d, inertia) = (d_m * d_m / nu, m_kg + added);
         // Re at the terminal speed of the quasi-steady drag in an unbounded fluid.
         let re_t = || {
@@ -76,7 +75,7 @@ impl TransientSetup {
             History::Off => None,
             History::Basset => Some(basset_kernel(inertia, k, c_h, s.time.end_s)),
             History::MeiAdrian => Some(match &current_re {
-                Some((table, _)) => table.at(s.release.velocity_m_s.abs() * d_m / nu),
+                Some((table, _)) => table.at(f.release.velocity_m_s.abs() * d_m / nu),
                 None => mei_adrian_kernel_sum(inertia, k, c_h, s.time.end_s, tau_d, re_t()),
             }),
         };
@@ -90,10 +89,10 @@ impl TransientSetup {
             && t.history == History::Basset
             && t.wall == Wall::Off
             && t.confinement == Confinement::Off
-            && s.release.velocity_m_s == 0.0)
+            && f.release.velocity_m_s == 0.0)
             .then(|| {
                 let rho_p = m_kg / (std::f64::consts::PI * d_m.powi(3) / 6.0);
-                BassetProblem::sphere(d_m, rho_p, s.fluid.density_kg_m3, mu, cm, s.gravity_m_s2)
+                BassetProblem::sphere(d_m, rho_p, s.fluid_density_kg_m3, mu, cm, s.gravity_m_s2)
             });
         Some(Self {
             current_re,
@@ -102,7 +101,7 @@ impl TransientSetup {
             wall: t.wall,
             confinement: match t.confinement {
                 Confinement::Off => 1.0,
-                Confinement::HabermanSayre => s
+                Confinement::HabermanSayre => f
                     .container
                     .as_ref()
                     .and_then(|c| c.diameter_m)
@@ -118,86 +117,4 @@ impl TransientSetup {
             .as_ref()
             .map(|m| TransientBody::new(m.clone(), v0_m_s))
     }
-}
-
-/// Added mass C_m m_f of `su`, kg (0 without `[transient]`).
-pub(super) fn added_mass_kg<const D: usize>(su: &SphereSetup<D>) -> f64 {
-    su.transient.as_ref().map_or(0.0, |t| t.added_mass_kg)
-}
-
-/// The drag of `su` with the wall factors (bottom and side walls) at centre depth `depth_m`.
-fn walled_drag<const D: usize>(su: &SphereSetup<D>, depth_m: f64) -> SphereDrag {
-    let Some(t) = su.transient.as_ref() else {
-        return su.drag;
-    };
-    let bottom = match t.wall {
-        Wall::Brenner => brenner_factor(su.bottom_m - depth_m, 0.5 * su.d_m).min(1e12),
-        Wall::Off => 1.0,
-    };
-    if bottom == 1.0 && t.confinement == 1.0 {
-        su.drag
-    } else {
-        su.drag.scaled(bottom * t.confinement)
-    }
-}
-
-/// One step (or the part `dt` of one, `commit = false`) of a submerged sphere with transient
-/// forces from velocity `v` at depth `depth_m`.
-pub(super) fn submerged_step<const D: usize>(
-    su: &SphereSetup<D>,
-    body: Option<&mut TransientBody>,
-    integrator: Integrator,
-    v: &SVector<f64, D>,
-    depth_m: f64,
-    dt: f64,
-    commit: bool,
-) -> Step<D> {
-    let drag = walled_drag(su, depth_m);
-    let Some(body) = body else {
-        let m = su.m_kg + added_mass_kg(su);
-        return advance(integrator, &drag, m, &su.w_n, v, dt);
-    };
-    // Along the vertical: downward speed s, drag F(s) opposing it.
-    let f = |s: f64| {
-        let a = s.abs();
-        (drag.force_n(a).copysign(s), drag.slope_n_s_m(a))
-    };
-    if let Some((table, d_over_nu)) = su.transient.as_ref().and_then(|t| t.current_re.as_ref()) {
-        let n = table.rates_per_s.len();
-        let (mut buf, mut heap) = ([0.0; 64], Vec::new());
-        let w: &mut [f64] = if n <= 64 {
-            &mut buf[..n]
-        } else {
-            heap.resize(n, 0.0);
-            &mut heap
-        };
-        let w0 = table.weights_into(v.norm() * d_over_nu, w);
-        body.set_history_weights(w, w0);
-    }
-    let w = su.net_weight_n;
-    let (s1, dx) = if commit {
-        body.step(dt, w, f)
-    } else {
-        body.peek(dt, w, f)
-    };
-    Step {
-        velocity_m_s: su.down * s1,
-        displacement_m: su.down * dx,
-        motion: Motion::Moving,
-        drag_slope_n_s_m: drag.slope_n_s_m(s1.abs()),
-    }
-}
-
-/// The analytic (velocity, distance) at `t` of `su`, when there is one (module docs).
-pub(super) fn analytic_at<const D: usize>(su: &SphereSetup<D>, t: f64) -> Option<(f64, f64)> {
-    if let Some(tr) = &su.transient {
-        if let Some(p) = &tr.basset {
-            return Some((p.velocity_m_s(t), p.displacement_m(t)));
-        }
-        if tr.history.is_some() || tr.wall != Wall::Off || tr.confinement != 1.0 {
-            return None;
-        }
-    }
-    su.analytic
-        .map(|(vt, tau)| super::simulate::stokes_analytic(vt, tau, su.v0_m_s, t))
 }

@@ -50,6 +50,7 @@
 //! [`output`] (the files); and for this kind [`fit`] (the measured against the simulated
 //! rebounds).
 
+pub mod cost;
 pub mod fit;
 pub mod output;
 pub mod setup;
@@ -67,7 +68,7 @@ use crate::engine::dim3::World;
 use crate::engine::EngineSettings;
 use crate::error::Error;
 use crate::io::StagedDir;
-use crate::scenario::{RestitutionDropSpec, RestitutionSpec, RheologyModel, SphereSpec};
+use crate::scenario::{RestitutionDropSpec, RestitutionSpec, SphereSpec};
 use crate::scenes::{Prepared, SceneReport};
 
 /// What a restitution drop needs from its prepared scenario.
@@ -81,19 +82,16 @@ pub struct Setup<'a> {
     pub law: RestitutionLaw,
     /// The contact's Coulomb friction coefficient (`contacts.friction`).
     pub friction: f64,
-    /// The fluid's rheology (the ball's drag).
-    pub rheology: RheologyModel,
 }
 
 impl<'a> Setup<'a> {
-    /// The setup of a `restitution_drop` scenario from its spec and its fluid's rheology.
-    pub fn of(spec: &'a RestitutionSpec, rheology: RheologyModel) -> Self {
+    /// The setup of a `restitution_drop` scenario from its spec.
+    pub fn of(spec: &'a RestitutionSpec) -> Self {
         Self {
             spec: &spec.drop,
             ball: &spec.ball,
             law: spec.contacts.restitution_law(),
             friction: spec.contacts.friction,
-            rheology,
         }
     }
 
@@ -114,7 +112,7 @@ fn simulate_all(
         .drop_heights_m
         .iter()
         .map(|&h| {
-            simulate_drop(&p.scenario, setup, h, settings).map_err(|err| match err {
+            simulate_drop(&p.common, setup, h, settings).map_err(|err| match err {
                 DropError::Unstable(u) => Error::Unstable(p.path.clone(), u),
                 other @ DropError::NoApex { .. } => {
                     Error::bad_input(&p.path, Some("time.end_s"), other.to_string())
@@ -151,9 +149,9 @@ fn fit_lines(tally: &Tally, heights: usize, tolerance: f64, fits: &[LawFit]) -> 
 /// Restitution drop (kind `restitution_drop`): drops the ball from every height and writes
 /// `summary.csv`, `fit.csv` (when measurements are given) and `rebound_height.svg`.
 pub fn run(p: &Prepared, rd: &RestitutionSpec, stage: &StagedDir) -> Result<SceneReport, Error> {
-    let s = &p.scenario;
+    let s = &p.common;
     let io = |e: std::io::Error| Error::Io(stage.dest().to_path_buf(), e);
-    let setup = Setup::of(rd, p.rheology);
+    let setup = Setup::of(rd);
     let spec = setup.spec;
     let g = s.gravity_m_s2;
     let settings = drop_settings(s, &setup, setup.max_drop_height_m());

@@ -4,8 +4,7 @@
 use super::Setup;
 use crate::engine::dim3::{up, FluidBody, World};
 use crate::engine::{EngineSettings, Unstable};
-use crate::scenario::Scenario;
-use crate::scenes::sphere_drag;
+use crate::scenario::Common;
 
 /// Result of one drop.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -29,7 +28,7 @@ pub struct DropOutcome {
 /// and the scenario's time step and integrator, and returns the first rebound. Errors with the
 /// engine's [`Unstable`], or with a message when no apex is reached within `time.end_s`.
 pub fn simulate_drop(
-    s: &Scenario,
+    s: &Common,
     setup: &Setup,
     drop_height_m: f64,
     settings: EngineSettings,
@@ -46,11 +45,11 @@ pub fn simulate_drop(
         up() * (drop_height_m + r),
         d,
         ball.density_kg_m3,
-        sphere_drag(s, setup.rheology, d),
+        s.sphere_drag(d),
         g,
     ));
     world.set_restitution_law(restitution);
-    world.set_added_mass_coefficient(crate::scenes::added_mass_coefficient(s));
+    world.set_added_mass_coefficient(s.added_mass_coefficient());
 
     let max_steps = (s.time.end_s / dt).ceil() as u64;
     let mut steps = 0u64;

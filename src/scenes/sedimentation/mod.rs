@@ -62,6 +62,7 @@
 //! | `output/` | every file the run writes |
 
 pub mod contacts;
+pub mod cost;
 pub mod instruments;
 pub mod observer;
 pub mod output;
@@ -105,7 +106,7 @@ pub fn run(
 ) -> Result<SceneReport, Error> {
     let s = &p.scenario;
     let sm = &spec.sample;
-    let setup = setup_of(p, spec)?;
+    let setup = setup_of(p, spec);
     let instruments = InstrumentSet::new(s, &setup);
     let (start, recorded) = match (&ctx.checkpoints, ctx.resume) {
         (Some(c), true) => c.load::<(State, Recorded)>(&s.name, "state")?,

@@ -1,11 +1,9 @@
 //! The typed setup of a sedimentation run: geometry, the sample's representative grains, the
 //! fluid viscosity, and the default record times.
 
+use crate::error::BadInput;
 use crate::sample::{discretize, representative_grains, Distribution, Grain, SizeClass};
-use crate::scenario::inputs::read_sample;
-use crate::scenario::{
-    Contacts, Parsed, RheologyModel, Scenario, ScenarioError, SceneSpec, SedimentationSpec,
-};
+use crate::scenario::{Contacts, Parsed, RheologyModel, Scenario, SceneSpec, SedimentationSpec};
 use std::path::Path;
 
 /// Largest travel of the fastest grain of a contact cluster per Rapier step, in diameters of
@@ -88,13 +86,14 @@ impl GrainContacts {
     }
 }
 
-/// Builds the sample of scenario `s` (the file `path`), reading its `sample.csv`
-/// ([`crate::scenario::inputs::read_sample`]); see [`setup_with`]. The scenario is validated
-/// here: one that is invalid or of another kind is a bad input.
-pub fn setup(s: &Scenario, path: &Path) -> Result<Setup, ScenarioError> {
+/// Builds the sample of a raw scenario `s` (the file `path`), for a caller that holds no
+/// prepared scenario (benchmarks, tests): `s` is parsed here, once (validated, its
+/// `sample.csv` read); one that is invalid or of another kind is a bad input. A run goes
+/// through [`setup_of`] and parses nothing again.
+pub fn setup(s: &Scenario, path: &Path) -> Result<Setup, BadInput> {
     let parsed = Parsed::new(s.clone(), path)?;
     let SceneSpec::Sedimentation(spec) = &parsed.scene else {
-        return Err(ScenarioError::new(
+        return Err(BadInput::new(
             path,
             Some("kind"),
             format!(
@@ -103,26 +102,18 @@ pub fn setup(s: &Scenario, path: &Path) -> Result<Setup, ScenarioError> {
             ),
         ));
     };
-    let distribution = read_sample(&spec.sample, path)?;
-    Ok(setup_with(spec, parsed.rheology, distribution))
+    Ok(setup_with(spec, parsed.rheology, spec.distribution.clone()))
 }
 
-/// Builds the sample of a prepared sedimentation scenario of spec `spec` from the distribution
-/// read while it was prepared ([`crate::scenes::Prepared::sample`]; read now if absent).
-pub fn setup_of(
-    p: &crate::scenes::Prepared,
-    spec: &SedimentationSpec,
-) -> Result<Setup, ScenarioError> {
-    let distribution = match &p.sample {
-        Some(d) => d.clone(),
-        None => read_sample(&spec.sample, &p.path)?,
-    };
-    Ok(setup_with(spec, p.rheology, distribution))
+/// Builds the sample of a prepared sedimentation scenario of spec `spec` (its distribution
+/// read as the scenario was parsed).
+pub fn setup_of(p: &crate::scenes::Prepared, spec: &SedimentationSpec) -> Setup {
+    setup_with(spec, p.rheology, spec.distribution.clone())
 }
 
 /// Builds the sample of a sedimentation scenario of spec `spec` in a fluid of rheology
-/// `rheology` from its particle-size `distribution` (read while the scenario was prepared,
-/// [`crate::scenes::Prepared::sample`]).
+/// `rheology` from its particle-size `distribution` (normally [`SedimentationSpec::distribution`],
+/// read as the scenario was parsed).
 pub fn setup_with(
     spec: &SedimentationSpec,
     rheology: RheologyModel,

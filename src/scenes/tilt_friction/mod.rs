@@ -27,6 +27,7 @@
 //! `summary.csv` (one row per angle run, the given angles and the bisection's), `threshold.csv`
 //! and `tilt_displacement.svg` (see [`output`]).
 
+pub mod cost;
 pub mod output;
 pub mod search;
 pub mod setup;
@@ -99,10 +100,10 @@ fn lines(
 /// Tilt friction (kind `tilt_friction`): runs the threshold search and writes `summary.csv`,
 /// `threshold.csv` and `tilt_displacement.svg`.
 pub fn run(p: &Prepared, tf: &TiltFrictionSpec, stage: &StagedDir) -> Result<SceneReport, Error> {
-    let s = &p.scenario;
+    let s = &p.common;
     let io = |e: std::io::Error| Error::Io(stage.dest().to_path_buf(), e);
     let spec = &tf.tilt;
-    let setup = TiltSetup::from_scenario(s, tf);
+    let setup = TiltSetup::new(s, tf);
     let search = tilt_threshold(&setup, &spec.angles_deg, spec.bisection_tolerance_deg)
         .map_err(|u| Error::Unstable(p.path.clone(), u))?;
     let found = search.threshold_deg();

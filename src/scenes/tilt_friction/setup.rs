@@ -2,7 +2,7 @@
 //! step.
 
 use crate::engine::EngineSettings;
-use crate::scenario::{Scenario, TiltFrictionSpec};
+use crate::scenario::{Common, TiltFrictionSpec};
 
 /// Everything one tilt run needs. SI units, angles in degrees.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -31,7 +31,7 @@ impl TiltSetup {
     /// The setup of a `tilt_friction` scenario: its `[tilt]` table, `[contacts]`, gravity and
     /// `time.dt_s`; engine settings for the block's smallest edge and the fastest slide over
     /// the largest angle.
-    pub fn from_scenario(s: &Scenario, tf: &TiltFrictionSpec) -> Self {
+    pub fn new(s: &Common, tf: &TiltFrictionSpec) -> Self {
         let (spec, size) = (&tf.tilt, tf.block_size_m);
         let friction = tf.contacts.friction;
         let max_angle = spec.angles_deg.iter().copied().fold(0.0, f64::max);

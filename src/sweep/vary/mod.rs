@@ -5,7 +5,7 @@
 //! (`<quantity>_vs_<key>.svg`). A key may take words or booleans (`transient.history=off,basset`,
 //! a categorical axis: one x position per value on the charts). Every case is loaded and validated before any runs (a bad key
 //! or an out-of-range value exits 2 with nothing written); the kinds are those of the dt sweep
-//! ([`super::SWEEPABLE`]). `--shard I/N` runs a slice of the grid into
+//! ([`crate::scenario::KindInfo::sweepable`]). `--shard I/N` runs a slice of the grid into
 //! `vary_part_I_of_N.csv`, and `--merge` joins the parts, as for dt sweeps.
 //!
 //! | file | job |
@@ -31,7 +31,8 @@ use super::targets::Target;
 use super::values::Shard;
 use crate::error::{BadInput, Error};
 use crate::io::StagedDir;
-use crate::run::{prepare, Prepared};
+use crate::run::prepare;
+use crate::scenes::Prepared;
 use std::path::{Path, PathBuf};
 
 /// Name prefix of the part files of a sharded parameter sweep.

@@ -1,7 +1,9 @@
 //! Kind `restitution_drop`: `[restitution_drop]`.
 
-use super::super::super::check::{cc, oc, Check};
-use super::super::super::load::ScenarioError;
+use super::super::contacts::contact_scene_3d;
+use super::super::{Contacts, Scenario, SphereSpec};
+use crate::error::BadInput;
+use crate::scenario::check::{cc, oc, Check};
 use serde::{Deserialize, Serialize};
 
 /// Restitution drop test (f-EDEM Appendix II): one ball (the scenario's single `[[spheres]]`)
@@ -30,7 +32,7 @@ fn default_rebound_tolerance() -> f64 {
 impl RestitutionDropSpec {
     /// At least one drop height in (0, 100] m; measured rebounds one per height (or none) in
     /// [0, 100] m; tolerance in (0, 1].
-    pub(crate) fn check(&self, c: &Check) -> Result<(), ScenarioError> {
+    pub(crate) fn check(&self, c: &Check) -> Result<(), BadInput> {
         if self.drop_heights_m.is_empty() {
             return Err(c.err(
                 "restitution_drop.drop_heights_m",
@@ -63,4 +65,40 @@ impl RestitutionDropSpec {
             oc(0.0, 1.0, ""),
         )
     }
+}
+
+/// A ball dropped on a plate in air (kind `restitution_drop`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RestitutionSpec {
+    /// The `[restitution_drop]` table: heights, measurements, tolerance.
+    pub drop: RestitutionDropSpec,
+    /// The ball: the scenario's one `[[spheres]]` entry.
+    pub ball: SphereSpec,
+    /// The contact properties (`[contacts]`).
+    pub contacts: Contacts,
+}
+
+/// The spec of a `restitution_drop` scenario: `[restitution_drop]`, `[contacts]` in 3D, one
+/// ball.
+pub(crate) fn spec(c: &Check, s: &Scenario) -> Result<RestitutionSpec, BadInput> {
+    let rd = s.restitution_drop.as_ref().ok_or_else(|| {
+        c.err(
+            "restitution_drop",
+            "missing: kind = \"restitution_drop\" needs a [restitution_drop] table with drop_heights_m",
+        )
+    })?;
+    let contacts = contact_scene_3d(c, s)?;
+    let ball = match (s.spheres.as_slice(), &s.spheres_csv) {
+        ([ball], None) => ball,
+        _ => return Err(c.err(
+            "spheres",
+            "kind = \"restitution_drop\" drops one ball: give exactly one [[spheres]] table (no [spheres_csv])",
+        )),
+    };
+    rd.check(c)?;
+    Ok(RestitutionSpec {
+        drop: rd.clone(),
+        ball: ball.clone(),
+        contacts,
+    })
 }

@@ -1,9 +1,11 @@
 //! Kind `sedimentation`: `[sample]` and `[instruments]`.
 
-use super::super::super::check::{oc, Check};
-use super::super::super::load::ScenarioError;
-use super::super::{within_run, Scenario};
+use super::super::{within_run, Contacts, Container, Dim, Scenario};
+use crate::error::BadInput;
 use crate::instruments::hydrometer::{Hydrometer, HydrometerSpec};
+use crate::sample::Distribution;
+use crate::scenario::check::{oc, Check};
+use crate::scenario::inputs::read_sample;
 use serde::{Deserialize, Serialize};
 
 /// The laboratory instruments of a sedimentation run (seed 000 §4.5): the ASTM E100 152H
@@ -202,7 +204,7 @@ impl SampleSpec {
 
     /// Mass, density (denser than the fluid), counts, fractions, lubrication cut-offs and times
     /// in range.
-    pub(crate) fn check(&self, c: &Check, s: &Scenario) -> Result<(), ScenarioError> {
+    pub(crate) fn check(&self, c: &Check, s: &Scenario) -> Result<(), BadInput> {
         c.range("sample.mass_kg", self.mass_kg, oc(0.0, 1e3, "kg"))?;
         c.range(
             "sample.density_kg_m3",
@@ -339,7 +341,7 @@ impl InstrumentsSpec {
     /// and taper, [`Hydrometer::new`]) at most the cylinder's inside diameter `b`
     /// (`container.width_m`, the 2D projection's width) less [`BULB_WALL_CLEARANCE_M`] on each
     /// side. The error names the bulb length that would fit with the same volume and taper.
-    fn check_bulb_fits(&self, c: &Check, s: &Scenario, b: f64) -> Result<(), ScenarioError> {
+    fn check_bulb_fits(&self, c: &Check, s: &Scenario, b: f64) -> Result<(), BadInput> {
         let allowed = b - 2.0 * BULB_WALL_CLEARANCE_M;
         let diameter = |len: f64| {
             let spec = HydrometerSpec {
@@ -396,7 +398,7 @@ impl InstrumentsSpec {
         sample: &SampleSpec,
         h: f64,
         b: f64,
-    ) -> Result<(), ScenarioError> {
+    ) -> Result<(), BadInput> {
         let run = within_run(s.time.end_s);
         c.each(
             "instruments.hydrometer_times_s",
@@ -508,4 +510,68 @@ impl InstrumentsSpec {
             ),
         )
     }
+}
+
+/// The 2D projection of the sedimentation cylinder (kind `sedimentation`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SedimentationSpec {
+    /// The soil sample (`[sample]`).
+    pub sample: SampleSpec,
+    /// Width B of the projected cylinder, m (`container.width_m`).
+    pub width_m: f64,
+    /// Height H of the fluid column, m (`container.height_m`).
+    pub height_m: f64,
+    /// The hydrometer, buoyancy sphere and pipette (`[instruments]`; absent: every default).
+    pub instruments: InstrumentsSpec,
+    /// The grain contacts (`[contacts]`; absent: the scene's defaults).
+    pub contacts: Option<Contacts>,
+    /// The particle-size distribution of the sample, read from `sample.csv` (relative to the
+    /// scenario file) once, as the scenario is parsed.
+    pub distribution: Distribution,
+}
+
+/// The spec of a `sedimentation` scenario: `[sample]`, a `[container]` with its width,
+/// dimension 2, `[instruments]` if given, and the sample's distribution read from its CSV.
+pub(crate) fn spec(c: &Check, s: &Scenario) -> Result<SedimentationSpec, BadInput> {
+    let missing = |key: &str, what: &str| {
+        c.err(
+            key,
+            format!("missing: kind = \"sedimentation\" needs {what}"),
+        )
+    };
+    let sm = s.sample.as_ref().ok_or_else(|| {
+        missing(
+            "sample",
+            "a [sample] table (csv, sample, mass_kg, density_kg_m3)",
+        )
+    })?;
+    let (h, b) = match &s.container {
+        Some(Container {
+            height_m,
+            width_m: Some(b),
+            ..
+        }) => (*height_m, *b),
+        _ => {
+            return Err(missing(
+                "container.width_m",
+                "a [container] with width_m (B) and height_m (H)",
+            ))
+        }
+    };
+    if s.dimension != Dim::Two {
+        return Err(c.err("dimension", "kind = \"sedimentation\" is the 2D projection of the cylinder (seed 000 §4.4): allowed 2"));
+    }
+    sm.check(c, s)?;
+    let instruments = s.instruments.clone().unwrap_or_default();
+    if s.instruments.is_some() {
+        instruments.check(c, s, sm, h, b)?;
+    }
+    Ok(SedimentationSpec {
+        sample: sm.clone(),
+        width_m: b,
+        height_m: h,
+        instruments,
+        contacts: s.contacts.clone(),
+        distribution: read_sample(sm, c.file)?,
+    })
 }

@@ -492,7 +492,7 @@ pub fn write_all(
     results: &[RepeatResult],
     stage: &StagedDir,
 ) -> Result<(), Error> {
-    let s = &p.scenario;
+    let s = &p.common;
     let f = &spec.funnel;
     let geo = Geometry::of(spec);
     let io = |e: io::Error| Error::Io(stage.dest().to_path_buf(), e);

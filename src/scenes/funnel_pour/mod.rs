@@ -58,6 +58,7 @@
 //! (where the balls are, what a repeat records), [`report`] (the console summary).
 
 pub mod census;
+pub mod cost;
 pub mod output;
 pub mod placement;
 pub mod report;

@@ -1,8 +1,9 @@
 //! Kind `tilt_friction`: `[tilt]`.
 
-use super::super::super::check::{cc, oc, Check, MAX_STEPS};
-use super::super::super::load::ScenarioError;
-use super::super::Scenario;
+use super::super::contacts::contact_scene_3d;
+use super::super::{Contacts, Scenario};
+use crate::error::BadInput;
+use crate::scenario::check::{cc, oc, Check, MAX_STEPS};
 use serde::{Deserialize, Serialize};
 
 /// Tilt friction test (f-EDEM Appendix III): a cuboid block at rest on a fixed plate tilted by
@@ -42,7 +43,7 @@ impl TiltSpec {
     /// Three edge lengths in (0, 10] m, density, at least one angle in [0°, 90°), a duration
     /// of at least one step and at most [`MAX_STEPS`] steps, slide distance and bisection
     /// tolerance in range.
-    pub(crate) fn check(&self, c: &Check, s: &Scenario) -> Result<(), ScenarioError> {
+    pub(crate) fn check(&self, c: &Check, s: &Scenario) -> Result<(), BadInput> {
         if self.block_size_m.len() != 3 {
             return Err(c.err(
                 "tilt.block_size_m",
@@ -95,4 +96,37 @@ impl TiltSpec {
             ],
         )
     }
+}
+
+/// A block on a tilted plate (kind `tilt_friction`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct TiltFrictionSpec {
+    /// The `[tilt]` table: block, angles, duration, slide distance, bisection tolerance.
+    pub tilt: TiltSpec,
+    /// The block's edge lengths [x, y, z], m (`tilt.block_size_m`).
+    pub block_size_m: [f64; 3],
+    /// The contact properties (`[contacts]`).
+    pub contacts: Contacts,
+}
+
+/// The spec of a `tilt_friction` scenario: `[tilt]`, `[contacts]` in 3D.
+pub(crate) fn spec(c: &Check, s: &Scenario) -> Result<TiltFrictionSpec, BadInput> {
+    let t = s.tilt.as_ref().ok_or_else(|| {
+        c.err(
+            "tilt",
+            "missing: kind = \"tilt_friction\" needs a [tilt] table (block_size_m, block_density_kg_m3, angles_deg, duration_s)",
+        )
+    })?;
+    let contacts = contact_scene_3d(c, s)?;
+    t.check(c, s)?;
+    let block_size_m: [f64; 3] = t
+        .block_size_m
+        .as_slice()
+        .try_into()
+        .map_err(|_| c.err("tilt.block_size_m", "give the three edge lengths [x, y, z]"))?;
+    Ok(TiltFrictionSpec {
+        tilt: t.clone(),
+        block_size_m,
+        contacts,
+    })
 }

@@ -1,8 +1,9 @@
 //! Kind `funnel_pour`: `[funnel]` and `[repeats]`.
 
-use super::super::super::check::{cc, oc, Check};
-use super::super::super::load::ScenarioError;
-use super::super::Scenario;
+use super::super::contacts::contact_scene_3d;
+use super::super::{Contacts, Container, Scenario};
+use crate::error::BadInput;
+use crate::scenario::check::{cc, oc, Check};
 use serde::{Deserialize, Serialize};
 
 /// Funnel pour (f-EDEM §4.2, Fig. 17): the funnel is not described in the source; see the
@@ -94,7 +95,7 @@ fn one_usize() -> usize {
 impl FunnelSpec {
     /// Counts and geometry in range: the outlet wider than the largest ball and at most the
     /// top, bins and planes within the cylinder (`container`, checked present by the caller).
-    pub(crate) fn check(&self, c: &Check, s: &Scenario) -> Result<(), ScenarioError> {
+    pub(crate) fn check(&self, c: &Check, s: &Scenario) -> Result<(), BadInput> {
         let Some(ct) = s.container.as_ref() else {
             return Err(c.err(
                 "container",
@@ -178,7 +179,55 @@ impl FunnelSpec {
 
 impl Repeats {
     /// `1 ≤ count ≤ 10 000`.
-    pub(crate) fn check(&self, c: &Check) -> Result<(), ScenarioError> {
+    pub(crate) fn check(&self, c: &Check) -> Result<(), BadInput> {
         c.count_in("repeats.count", self.count, 1, 10_000)
     }
+}
+
+/// Balls poured from a funnel into the fluid-filled cylinder (kind `funnel_pour`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct FunnelPourSpec {
+    /// The `[funnel]` table: ball count and funnel geometry.
+    pub funnel: FunnelSpec,
+    /// Radius of the cylinder, m (half of `container.diameter_m`).
+    pub cylinder_radius_m: f64,
+    /// Height of the fluid column, m (`container.height_m`).
+    pub height_m: f64,
+    /// The contact properties (`[contacts]`).
+    pub contacts: Contacts,
+    /// Repeats and their first seed (`[repeats]`; absent: one run, seed 0).
+    pub repeats: Repeats,
+}
+
+/// The spec of a `funnel_pour` scenario: `[funnel]`, a cylindrical `[container]`, `[contacts]`
+/// in 3D, `[repeats]` if given.
+pub(crate) fn spec(c: &Check, s: &Scenario) -> Result<FunnelPourSpec, BadInput> {
+    let missing =
+        |key: &str, what: &str| c.err(key, format!("missing: kind = \"funnel_pour\" needs {what}"));
+    let f = s
+        .funnel
+        .as_ref()
+        .ok_or_else(|| missing("funnel", "a [funnel] table (count, geometry)"))?;
+    let (height_m, diameter_m) = match &s.container {
+        Some(Container {
+            height_m,
+            diameter_m: Some(d),
+            ..
+        }) => (*height_m, *d),
+        _ => {
+            return Err(missing(
+                "container.diameter_m",
+                "a cylindrical [container] with diameter_m",
+            ))
+        }
+    };
+    let contacts = contact_scene_3d(c, s)?;
+    f.check(c, s)?;
+    Ok(FunnelPourSpec {
+        funnel: f.clone(),
+        cylinder_radius_m: 0.5 * diameter_m,
+        height_m,
+        contacts,
+        repeats: s.repeats.clone().unwrap_or(Repeats { count: 1, seed: 0 }),
+    })
 }

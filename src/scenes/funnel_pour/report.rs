@@ -11,7 +11,7 @@ use crate::scenes::Prepared;
 /// free-fall speed from the top of the column to the bottom, √(2 g z_top), with the contacts'
 /// friction.
 pub fn engine_settings(p: &Prepared, f: &FunnelPourSpec) -> EngineSettings {
-    let s = &p.scenario;
+    let s = &p.common;
     let geo = Geometry::of(f);
     let d_min = p
         .spheres
@@ -26,14 +26,14 @@ pub fn engine_settings(p: &Prepared, f: &FunnelPourSpec) -> EngineSettings {
 
 /// The first line: repeats, balls, time step, submergence and wall time (`wall_s` in all, s).
 fn header(p: &Prepared, f: &FunnelPourSpec, results: &[RepeatResult], wall_s: f64) -> String {
-    let s = &p.scenario;
+    let s = &p.common;
     let reps = results.len();
     let mean_wall = results.iter().map(|r| r.wall_time_s).sum::<f64>() / reps as f64;
     format!(
         "funnel pour: {reps} repeat(s) × {} balls, dt = {} s, {} submergence; wall time {} s ({} s per repeat, {} threads)",
         f.funnel.count,
         short(s.time.dt_s),
-        match s.fluid.submergence {
+        match s.submergence {
             Submergence::Full => "full",
             Submergence::Partial => "partial",
         },

@@ -12,7 +12,6 @@ use crate::dynamics::Unstable;
 use crate::engine::{dim3, BodyId, EngineSettings};
 use crate::error::Error;
 use crate::scenario::FunnelPourSpec;
-use crate::scenes::sphere_drag;
 use crate::scenes::{Prepared, RunContext};
 use rapier3d_f64::prelude::ColliderHandle;
 use std::time::Instant;
@@ -69,7 +68,7 @@ fn position(world: &dim3::World, id: BodyId) -> [f64; 3] {
 
 /// The state of repeat `index` (seed `seed`) at t = 0: the world built, the balls placed.
 fn initial_repeat(p: &Prepared, f: &FunnelPourSpec, seed: u64) -> Result<RepeatState, Error> {
-    let s = &p.scenario;
+    let s = &p.common;
     let ct = &f.contacts;
     let geo = Geometry::of(f);
     let g = s.gravity_m_s2;
@@ -97,18 +96,18 @@ fn initial_repeat(p: &Prepared, f: &FunnelPourSpec, seed: u64) -> Result<RepeatS
                 dim3::Vector::new(x[0], x[1], x[2]),
                 sp.diameter_m,
                 sp.density_kg_m3,
-                sphere_drag(s, p.rheology, sp.diameter_m),
+                s.sphere_drag(sp.diameter_m),
                 g,
             ))
         })
         .collect();
     world.set_restitution_law(ct.restitution_law());
     world.set_rolling_resistance(ct.rolling_resistance);
-    world.set_added_mass_coefficient(crate::scenes::added_mass_coefficient(s));
+    world.set_added_mass_coefficient(s.added_mass_coefficient());
     world.set_free_surface(dim3::FreeSurface {
         height_m: geo.paste_height_m,
         radius_m: Some(geo.cylinder_radius_m),
-        submergence: s.fluid.submergence,
+        submergence: s.submergence,
     });
 
     let prev: Vec<[f64; 3]> = ids.iter().map(|&id| position(&world, id)).collect();
@@ -149,7 +148,7 @@ struct Schedule {
 
 impl Schedule {
     fn of(p: &Prepared, spec: &FunnelPourSpec) -> Self {
-        let s = &p.scenario;
+        let s = &p.common;
         let f = &spec.funnel;
         let dt = s.time.dt_s;
         let n_fill = (f.fill_time_s / dt).round() as u64;
@@ -263,7 +262,7 @@ impl<'a> RepeatRun<'a> {
             let plug = self.state.plug;
             self.state.world.remove_fixed_collider(plug);
         }
-        let integrator = self.p.scenario.time.integrator;
+        let integrator = self.p.common.time.integrator;
         if let Err(u) = self.state.world.step(sch.dt_s, integrator) {
             return Err(self.unstable(u));
         }
@@ -369,7 +368,7 @@ impl<'a> Checkpoints<'a> {
         let (Some(c), true) = (&self.ctx.checkpoints, self.ctx.resume) else {
             return Ok(None);
         };
-        let name = &self.p.scenario.name;
+        let name = &self.p.common.name;
         if let Some(r) = c.load::<RepeatResult>(name, &self.done_part)? {
             return Ok(Some(Resumed::Done(r)));
         }
@@ -382,7 +381,7 @@ impl<'a> Checkpoints<'a> {
         if let Some(c) = &self.ctx.checkpoints {
             let before = state.wall_before_s;
             state.wall_before_s += wall_s;
-            let r = c.save(&self.p.scenario.name, &self.part, &*state);
+            let r = c.save(&self.p.common.name, &self.part, &*state);
             state.wall_before_s = before;
             r.map_err(|e| Error::Io(self.p.path.clone(), e))?;
         }
@@ -392,7 +391,7 @@ impl<'a> Checkpoints<'a> {
     /// Saves the result of the finished repeat.
     fn save_done(&self, result: &RepeatResult) -> Result<(), Error> {
         if let Some(c) = &self.ctx.checkpoints {
-            c.save(&self.p.scenario.name, &self.done_part, result)
+            c.save(&self.p.common.name, &self.done_part, result)
                 .map_err(|e| Error::Io(self.p.path.clone(), e))?;
         }
         Ok(())
@@ -454,7 +453,7 @@ pub fn simulate_with(
 ) -> Result<(Vec<RepeatResult>, bool), Error> {
     use rayon::prelude::*;
     let r = &f.repeats;
-    let bar = crate::progress::bar(r.count as u64, &p.scenario.name, "repeats,", ctx.quiet);
+    let bar = crate::progress::bar(r.count as u64, &p.common.name, "repeats,", ctx.quiet);
     let outcomes: Vec<RepeatOutcome> = (0..r.count)
         .into_par_iter()
         .map(|i| {
