@@ -232,7 +232,7 @@ pub fn main() -> i32 {
                 );
                 return crate::error::EXIT_BAD_INPUT;
             }
-            let req = RunRequest {
+            run(&RunRequest {
                 files: scenarios,
                 out_dir: resume.clone().unwrap_or(out),
                 dt_s: dt,
@@ -241,24 +241,7 @@ pub fn main() -> i32 {
                 resume: resume.is_some(),
                 force,
                 quiet,
-            };
-            match run_files(&req) {
-                Ok(reports) => {
-                    if !quiet {
-                        for r in &reports {
-                            print_report(r);
-                        }
-                        if reports.len() > 1 {
-                            print_overall(&reports);
-                        }
-                    }
-                    0
-                }
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    e.exit_code()
-                }
-            }
+            })
         }
         Command::Bench {
             out,
@@ -273,25 +256,12 @@ pub fn main() -> i32 {
                 sedimentation_only,
             },
         ),
-        Command::Fit(args) => match crate::fit::main(&args) {
-            Ok(lines) => {
-                for l in &lines {
-                    println!("{l}");
-                }
-                0
+        Command::Fit(args) => exit_code(crate::fit::main(&args), |lines| {
+            for l in &lines {
+                println!("{l}");
             }
-            Err(e) => {
-                eprintln!("error: {e}");
-                e.exit_code()
-            }
-        },
-        Command::Sweep(args) => match crate::sweep::main(&args) {
-            Ok(()) => 0,
-            Err(e) => {
-                eprintln!("error: {e}");
-                e.exit_code()
-            }
-        },
+        }),
+        Command::Sweep(args) => exit_code(crate::sweep::main(&args), |()| {}),
         Command::Reduce {
             readings,
             standard,
@@ -337,6 +307,34 @@ pub fn main() -> i32 {
             bounds,
             out_dir: out,
         }),
+    }
+}
+
+/// `settle run`: runs the scenario files, prints their reports; the exit code.
+fn run(req: &RunRequest) -> i32 {
+    exit_code(run_files(req), |reports| {
+        if !req.quiet {
+            for r in &reports {
+                print_report(r);
+            }
+            if reports.len() > 1 {
+                print_overall(&reports);
+            }
+        }
+    })
+}
+
+/// The exit code of a command's result: 0 after `on_ok`, else the error printed and its class.
+fn exit_code<T>(result: Result<T, crate::error::Error>, on_ok: impl FnOnce(T)) -> i32 {
+    match result {
+        Ok(v) => {
+            on_ok(v);
+            0
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            e.exit_code()
+        }
     }
 }
 

@@ -98,42 +98,7 @@ pub fn write(
         "profile_high",
     ];
     write_csv(&stage.path("fitted.csv"), &header, &rows).map_err(io)?;
-    // residuals.csv
-    let mut header: Vec<String> = [
-        "file",
-        "column",
-        "row",
-        "measured",
-        "sigma",
-        "model",
-        "residual",
-        "normalised_residual",
-    ]
-    .map(String::from)
-    .to_vec();
-    header.extend(keys.iter().map(|k| format!("sensitivity_per_{k}")));
-    let rows: Vec<Vec<String>> = fit
-        .measured
-        .iter()
-        .enumerate()
-        .map(|(i, m)| {
-            let r = fit.model[i] - m.value;
-            let mut row = vec![
-                m.file.clone(),
-                m.column.clone(),
-                m.row.clone(),
-                num(m.value),
-                opt(m.sigma),
-                num(fit.model[i]),
-                num(r),
-                num(r / m.sigma_or_one()),
-            ];
-            row.extend(fit.jacobian[i].iter().map(|d| num(*d)));
-            row
-        })
-        .collect();
-    let header: Vec<&str> = header.iter().map(String::as_str).collect();
-    write_csv(&stage.path("residuals.csv"), &header, &rows).map_err(io)?;
+    write_residuals(&stage.path("residuals.csv"), &fit, &keys).map_err(io)?;
     // objective.csv and its chart (one key)
     if fit.bounds.len() == 1 {
         let key = keys[0];
@@ -182,6 +147,45 @@ pub fn write(
     fit.out = stage.commit().map_err(io)?;
     fit.lines = lines(&fit);
     Ok(fit)
+}
+
+/// residuals.csv: each measurement against the model, with its sensitivity to each key.
+fn write_residuals(path: &Path, fit: &Fit, keys: &[&str]) -> std::io::Result<()> {
+    let mut header: Vec<String> = [
+        "file",
+        "column",
+        "row",
+        "measured",
+        "sigma",
+        "model",
+        "residual",
+        "normalised_residual",
+    ]
+    .map(String::from)
+    .to_vec();
+    header.extend(keys.iter().map(|k| format!("sensitivity_per_{k}")));
+    let rows: Vec<Vec<String>> = fit
+        .measured
+        .iter()
+        .enumerate()
+        .map(|(i, m)| {
+            let r = fit.model[i] - m.value;
+            let mut row = vec![
+                m.file.clone(),
+                m.column.clone(),
+                m.row.clone(),
+                num(m.value),
+                opt(m.sigma),
+                num(fit.model[i]),
+                num(r),
+                num(r / m.sigma_or_one()),
+            ];
+            row.extend(fit.jacobian[i].iter().map(|d| num(*d)));
+            row
+        })
+        .collect();
+    let header: Vec<&str> = header.iter().map(String::as_str).collect();
+    write_csv(path, &header, &rows)
 }
 
 /// χ² against the key: every run (markers) and the fitted value (a dashed vertical line).

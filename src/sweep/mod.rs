@@ -2,7 +2,7 @@
 //! scenario; each measured quantity is compared with its analytic or force-balance reference
 //! where one exists and with the finest stable dt of the same integrator. Cases run in
 //! parallel; `--shard I/N` runs a slice of the grid so a cluster job array can share it, and
-//! `--merge` joins the parts (see README, "Sweeps on a cluster").
+//! `--merge` joins the parts (see `docs/cluster.md`).
 //!
 //! | file | job |
 //! |---|---|

@@ -1,6 +1,6 @@
 //! Every file a run writes is named on its kind's reference page (`docs/scenarios/<kind>.md`), so
 //! a new output cannot appear undocumented (issue 13, item 7: the reference lists what each kind
-//! writes). Hidden files (`.settle-run`) are settle's bookkeeping and are described in the README.
+//! writes). Hidden files (`.settle-run`) are settle's bookkeeping and are described in `docs/outputs.md`.
 
 use crate::common::{settle, tmp};
 use std::path::Path;

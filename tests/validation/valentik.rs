@@ -180,7 +180,7 @@ fn terminal_velocities_agree_with_the_force_balance_without_chatter() {
     assert!(jumps > 0, "some spheres sit on a jump of eq. 19");
 }
 
-/// Regression against stored reference: the overall error figures quoted in the README.
+/// Regression against stored reference: the overall error figures quoted in `docs/validation/valentik.md`.
 #[test]
 fn overall_error_against_measurements_is_as_documented() {
     let res = run_all(1e-3);
