@@ -7,7 +7,7 @@
 //! itself: non-finite state, speeds above half the cap, bodies leaving the domain, overlaps beyond
 //! a fraction of the diameter.
 
-use super::BodyId;
+use super::body_id::BodyId;
 use crate::dynamics::{self, DtBasis, Integrator, Unstable};
 use crate::fluid::SphereDrag;
 use nalgebra::SVector;

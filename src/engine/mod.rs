@@ -127,6 +127,7 @@
 //!   a frictionless 2.5 µm pile stepped at dt = 1e-2 s kept a grain jittering at 1 % of v_t. See the
 //!   survey in `tests/engine/rest.rs`.
 
+mod body_id;
 pub mod coupling;
 pub mod dim2;
 pub mod dim3;
@@ -134,24 +135,13 @@ pub mod faults;
 mod settings;
 
 pub use crate::dynamics::Unstable;
+pub use body_id::BodyId;
 pub(crate) use faults::unstable;
 pub use settings::{ContactDrag, EngineSettings, RapierIntegrationParameters};
 
 use crate::dynamics::Integrator;
 use crate::fluid::SphereDrag;
 use nalgebra::SVector;
-use serde::{Deserialize, Serialize};
-use std::fmt;
-
-/// Index of a body in a world, in the order of `add_sphere` calls (0, 1, …).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
-pub struct BodyId(pub usize);
-
-impl fmt::Display for BodyId {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "body {}", self.0)
-    }
-}
 
 /// Rotational drag coefficient of a sphere, N m s: torque = π η d³ ω (Stokes), with η the law's
 /// (plastic) viscosity.

@@ -25,18 +25,8 @@ pub mod problem;
 
 use crate::error::Error;
 use problem::Problem;
+pub use problem::{Bound, Fit};
 use std::path::{Path, PathBuf};
-
-/// One `--fit KEY=LO:HI`: a real-valued scenario key and its bounds.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Bound {
-    /// The key, as `--set` takes it.
-    pub key: String,
-    /// Lower bound, in the key's unit.
-    pub lo: f64,
-    /// Upper bound, in the key's unit (> lo).
-    pub hi: f64,
-}
 
 /// Parses `KEY=LO:HI` (finite numbers, LO < HI).
 pub fn parse_bound(s: &str) -> Result<Bound, String> {
@@ -175,40 +165,6 @@ fn slump_lines(
         slumps_mm.len()
     ));
     Ok(lines)
-}
-
-/// The outcome of a calibration.
-#[derive(Clone, Debug)]
-pub struct Fit {
-    /// The fitted keys, in the order given.
-    pub bounds: Vec<Bound>,
-    /// The best values found.
-    pub values: Vec<f64>,
-    /// 1σ uncertainty of each value from the curvature of χ² (Gauss–Newton); None when the
-    /// data do not give one (no σ and as many measurements as keys).
-    pub sigma: Vec<Option<f64>>,
-    /// One key with every σ given: where χ² = χ²_min + 1 below and above the value (None
-    /// beyond the bound).
-    pub profile: Option<(Option<f64>, Option<f64>)>,
-    /// χ² at the best values.
-    pub chi2: f64,
-    /// The measurements.
-    pub measured: Vec<measure::Measurement>,
-    /// The model's value of each measurement at the best values.
-    pub model: Vec<f64>,
-    /// ∂model_i/∂key_j at the best values (the sensitivity of each measurement to each key).
-    pub jacobian: Vec<Vec<f64>>,
-    /// One key: χ² against the key's value (a grid over the bounds and every point evaluated),
-    /// sorted by the value.
-    pub objective: Vec<(f64, f64)>,
-    /// Runs of the scenario made.
-    pub runs: usize,
-    /// The method: `brent` or `nelder-mead`.
-    pub method: &'static str,
-    /// Where the outputs went.
-    pub out: PathBuf,
-    /// The console lines.
-    pub lines: Vec<String>,
 }
 
 /// Grid points of the objective chart (one key).

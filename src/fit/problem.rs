@@ -3,12 +3,56 @@
 
 use super::measure::{self, Measurement};
 use super::optim::{self, Minimum};
-use super::{Bound, Fit};
 use crate::error::{BadInput, Error};
 use crate::run::{prepare, run_one};
 use crate::scenes::Prepared;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
+
+/// One `--fit KEY=LO:HI`: a real-valued scenario key and its bounds.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Bound {
+    /// The key, as `--set` takes it.
+    pub key: String,
+    /// Lower bound, in the key's unit.
+    pub lo: f64,
+    /// Upper bound, in the key's unit (> lo).
+    pub hi: f64,
+}
+
+/// The outcome of a calibration.
+#[derive(Clone, Debug)]
+pub struct Fit {
+    /// The fitted keys, in the order given.
+    pub bounds: Vec<Bound>,
+    /// The best values found.
+    pub values: Vec<f64>,
+    /// 1σ uncertainty of each value from the curvature of χ² (Gauss–Newton); None when the
+    /// data do not give one (no σ and as many measurements as keys).
+    pub sigma: Vec<Option<f64>>,
+    /// One key with every σ given: where χ² = χ²_min + 1 below and above the value (None
+    /// beyond the bound).
+    pub profile: Option<(Option<f64>, Option<f64>)>,
+    /// χ² at the best values.
+    pub chi2: f64,
+    /// The measurements.
+    pub measured: Vec<Measurement>,
+    /// The model's value of each measurement at the best values.
+    pub model: Vec<f64>,
+    /// ∂model_i/∂key_j at the best values (the sensitivity of each measurement to each key).
+    pub jacobian: Vec<Vec<f64>>,
+    /// One key: χ² against the key's value (a grid over the bounds and every point evaluated),
+    /// sorted by the value.
+    pub objective: Vec<(f64, f64)>,
+    /// Runs of the scenario made.
+    pub runs: usize,
+    /// The method: `brent` or `nelder-mead`.
+    pub method: &'static str,
+    /// Where the outputs went.
+    pub out: PathBuf,
+    /// The console lines.
+    pub lines: Vec<String>,
+}
 
 /// A scratch folder removed when dropped.
 struct Scratch(PathBuf);

@@ -41,7 +41,6 @@ const KNOWN: &[&[&str]] = &[
         "scenario/schema/transient.rs",
         "scenario/validate.rs",
     ],
-    &["engine/faults.rs", "engine/mod.rs"],
     &[
         "scenes/sedimentation/step.rs",
         "scenes/sedimentation/step/interval.rs",
@@ -53,7 +52,6 @@ const KNOWN: &[&[&str]] = &[
         "scenes/funnel_pour/setup.rs",
         "scenes/funnel_pour/simulate.rs",
     ],
-    &["fit/mod.rs", "fit/problem.rs"],
     &[
         "reduce/figures.rs",
         "reduce/input.rs",
