@@ -16,7 +16,7 @@
 //! | 2 engine | [`engine`] | the Rapier worlds |
 //! | 3 scenario | [`scenario`] | schema, loading, validation, input files, the typed scenario and the registry of kinds |
 //! | 4 scenes | [`scenes`] | one folder per kind (its scene and its cost), and the scene API ([`scenes::Prepared`], [`scenes::RunContext`], [`scenes::SceneReport`]) |
-//! | 5 application | [`run`], [`sweep`], [`bench`](mod@bench), [`reduce`], [`invert`], [`laws`], [`fit`], [`cli`] | the commands |
+//! | 5 application | [`api`], [`run`], [`sweep`], [`bench`](mod@bench), [`reduce`], [`invert`], [`laws`], [`fit`], [`cli`] | the commands |
 
 // Layer 0: infrastructure.
 pub mod checkpoint;
@@ -38,6 +38,7 @@ pub mod scenario;
 // Layer 4: scenes.
 pub mod scenes;
 // Layer 5: application.
+pub mod api;
 pub mod bench;
 pub mod cli;
 pub mod fit;
@@ -46,3 +47,8 @@ pub mod laws;
 pub mod reduce;
 pub mod run;
 pub mod sweep;
+
+pub use api::{load, run, RunOptions, RunResult, Scenario, Status};
+pub use error::Error;
+pub use io::{Column, Table};
+pub use scenario::Kind;

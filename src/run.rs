@@ -77,6 +77,19 @@ fn check_name(s: &Scenario, path: &Path) -> Result<(), BadInput> {
 /// over-long names: every bad input is found here, before anything runs. `path` may be a run
 /// record (`OUT/NAME/run.toml`): its effective scenario runs again, the overrides on top.
 pub fn prepare(path: &Path, dt_s: Option<f64>, overrides: &[String]) -> Result<Prepared, BadInput> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| BadInput::new(path, None, format!("cannot read the file: {e}")))?;
+    prepare_str(&text, path, dt_s, overrides)
+}
+
+/// As [`prepare`], from the text of a scenario file; `path` names it in errors, and its folder
+/// is where relative input files are found.
+pub fn prepare_str(
+    text: &str,
+    path: &Path,
+    dt_s: Option<f64>,
+    overrides: &[String],
+) -> Result<Prepared, BadInput> {
     let mut ov = overrides.to_vec();
     if let Some(dt) = dt_s.filter(|d| !d.is_finite()) {
         return Err(BadInput::new(
@@ -93,7 +106,7 @@ pub fn prepare(path: &Path, dt_s: Option<f64>, overrides: &[String]) -> Result<P
         common,
         scene,
         rheology,
-    } = scenario::parse(path, &ov)?;
+    } = scenario::parse_str(text, path, &ov)?;
     check_name(&scenario, path)?;
     let spheres = inputs::spheres(&scenario, path)?;
     let reference = inputs::read_reference(&scenario, path)?;
@@ -182,13 +195,56 @@ pub fn run_one(p: &Prepared, out_dir: &Path) -> Result<FileReport, Error> {
 
 /// [`run_one`] with checkpoints, resumption and progress as `ctx` says.
 pub fn run_one_with(p: &Prepared, out_dir: &Path, ctx: &RunContext) -> Result<FileReport, Error> {
-    let s = &p.scenario;
+    let done = execute(p, ctx)?;
+    let out = write(p, &done, out_dir)?;
+    if done.report.interrupted {
+        return Err(Error::Interrupted(out));
+    }
+    Ok(FileReport {
+        prepared: p.clone(),
+        results: done.results,
+        lines: done.report.lines,
+        out,
+        wall_time_s: done.wall_time_s,
+        warnings: done.report.warnings,
+    })
+}
+
+/// A run carried out in memory: its outputs and what the scene reported, nothing written yet.
+#[derive(Clone, Debug)]
+pub struct Executed {
+    /// The tables and files of the run (without `run.toml` and the report page, which
+    /// [`write`] adds).
+    pub outputs: output::Outputs,
+    /// Per-sphere results (free settling and drops).
+    pub results: Vec<free_settling::SphereResult>,
+    /// What the scene reported (steps, bodies, warnings, interrupted).
+    pub report: crate::scenes::SceneReport,
+    /// Wall time of the simulation, s.
+    pub wall_time_s: f64,
+    /// Continued from a checkpoint.
+    pub resumed: bool,
+}
+
+/// Runs the scene of `p` into memory.
+pub fn execute(p: &Prepared, ctx: &RunContext) -> Result<Executed, Error> {
     let t0 = Instant::now();
-    let stage =
-        StagedDir::new(out_dir, &s.name).map_err(|e| Error::Io(out_dir.join(&s.name), e))?;
-    let io = |e: std::io::Error| Error::Io(stage.dest().to_path_buf(), e);
-    let (results, report) = crate::scenes::run_scene(p, &stage, ctx)?;
-    let wall = t0.elapsed().as_secs_f64();
+    let mut outputs = output::Outputs::new();
+    let (results, report) = crate::scenes::run_scene(p, &mut outputs, ctx)?;
+    Ok(Executed {
+        outputs,
+        results,
+        report,
+        wall_time_s: t0.elapsed().as_secs_f64(),
+        resumed: ctx.resume,
+    })
+}
+
+/// The text of `run.toml` of the run `done` of `p`: the record of the run and its effective
+/// scenario.
+pub fn run_toml(p: &Prepared, done: &Executed) -> Result<String, Error> {
+    let s = &p.scenario;
+    let report = &done.report;
     let meta = RunToml {
         run: RunMeta {
             settle_version: env!("CARGO_PKG_VERSION"),
@@ -203,31 +259,33 @@ pub fn run_one_with(p: &Prepared, out_dir: &Path, ctx: &RunContext) -> Result<Fi
             dt_s: s.time.dt_s,
             steps: report.steps,
             bodies: report.bodies,
-            wall_time_s: wall,
-            resumed: ctx.resume,
+            wall_time_s: done.wall_time_s,
+            resumed: done.resumed,
             warnings: &report.warnings,
             overrides: &p.overrides,
         },
-        engine_settings: report.engine_settings,
-        scenario: scenario::record_table(s, &p.path).map_err(|e| io(std::io::Error::other(e)))?,
+        engine_settings: report.engine_settings.clone(),
+        scenario: scenario::record_table(s, &p.path)
+            .map_err(|e| Error::Io(p.path.clone(), std::io::Error::other(e)))?,
     };
-    let text = toml::to_string(&meta).map_err(|e| io(std::io::Error::other(e)))?;
-    let text = format!("{RUN_TOML_HEAD}{text}");
+    let text =
+        toml::to_string(&meta).map_err(|e| Error::Io(p.path.clone(), std::io::Error::other(e)))?;
+    Ok(format!("{RUN_TOML_HEAD}{text}"))
+}
+
+/// Writes the run `done` of `p` to `out_dir/<name>/`: its outputs, `run.toml` and the report
+/// page, staged and moved into place ([`StagedDir`]); returns the folder.
+pub fn write(p: &Prepared, done: &Executed, out_dir: &Path) -> Result<PathBuf, Error> {
+    let s = &p.scenario;
+    let stage =
+        StagedDir::new(out_dir, &s.name).map_err(|e| Error::Io(out_dir.join(&s.name), e))?;
+    let io = |e: std::io::Error| Error::Io(stage.dest().to_path_buf(), e);
+    done.outputs.write_into(&stage.path("")).map_err(io)?;
+    let text = run_toml(p, done)?;
     output::write_atomic(&stage.path("run.toml"), text.as_bytes()).map_err(io)?;
     output::report::write_report(&stage.path(""), &output::report::Page::run(&s.name))
         .map_err(io)?;
-    let out = commit(stage, &p.path)?;
-    if report.interrupted {
-        return Err(Error::Interrupted(out));
-    }
-    Ok(FileReport {
-        prepared: p.clone(),
-        results,
-        lines: report.lines,
-        out,
-        wall_time_s: wall,
-        warnings: report.warnings,
-    })
+    commit(stage, &p.path)
 }
 
 /// Moves a staged folder into place; a destination settle may not replace (a folder it did not

@@ -13,7 +13,12 @@
 pub mod chart;
 pub mod fmt;
 pub mod metrics;
+pub mod outputs;
 pub mod report;
+pub mod table;
+
+pub use outputs::Outputs;
+pub use table::{Column, Table};
 
 use std::fs;
 use std::io;

@@ -299,16 +299,30 @@ fn draw_chart<DB: DrawingBackend>(
 
 /// Draws `c` as SVG at `path`.
 pub fn svg(c: &Chart, path: &Path) -> io::Result<()> {
+    std::fs::write(path, svg_string(c)?)
+}
+
+/// Draws `c` as the text of an SVG file.
+pub fn svg_string(c: &Chart) -> io::Result<String> {
     let f = frame(c);
-    let root = SVGBackend::new(path, f.size).into_drawing_area();
-    root.fill(&WHITE).map_err(err)?;
-    draw_chart(c, &f, &root)?;
-    root.present().map_err(err)
+    let mut text = String::new();
+    {
+        let root = SVGBackend::with_string(&mut text, f.size).into_drawing_area();
+        root.fill(&WHITE).map_err(err)?;
+        draw_chart(c, &f, &root)?;
+        root.present().map_err(err)?;
+    }
+    Ok(text)
 }
 
 /// Draws `charts` as panels of one SVG at `path`, `columns` per row, under `title`; every panel
 /// gets the size of the largest.
 pub fn grid_svg(path: &Path, title: &str, charts: &[Chart], columns: usize) -> io::Result<()> {
+    std::fs::write(path, grid_svg_string(title, charts, columns)?)
+}
+
+/// [`grid_svg`] as the text of an SVG file.
+pub fn grid_svg_string(title: &str, charts: &[Chart], columns: usize) -> io::Result<String> {
     let frames: Vec<Frame> = charts.iter().map(frame).collect();
     let cols = columns.clamp(1, charts.len().max(1));
     let rows = charts.len().div_ceil(cols).max(1);
@@ -318,17 +332,22 @@ pub fn grid_svg(path: &Path, title: &str, charts: &[Chart], columns: usize) -> i
     let width = cell.0 * cols as u32;
     let lines = title_lines(title, width);
     let title_h = lines.len() as u32 * (TITLE_PX + 6) + 14;
-    let root = SVGBackend::new(path, (width, title_h + cell.1 * rows as u32)).into_drawing_area();
-    root.fill(&WHITE).map_err(err)?;
-    draw_title(&root, &lines)?;
-    let (_, body) = root.split_vertically(title_h);
-    for (k, (c, f)) in charts.iter().zip(&frames).enumerate() {
-        let (r, q) = ((k / cols) as i32, (k % cols) as i32);
-        let (x0, y0) = (q * cell.0 as i32, r * cell.1 as i32);
-        let panel = body.clone().shrink((x0, y0), f.size);
-        draw_chart(c, f, &panel)?;
+    let mut text = String::new();
+    {
+        let root = SVGBackend::with_string(&mut text, (width, title_h + cell.1 * rows as u32))
+            .into_drawing_area();
+        root.fill(&WHITE).map_err(err)?;
+        draw_title(&root, &lines)?;
+        let (_, body) = root.split_vertically(title_h);
+        for (k, (c, f)) in charts.iter().zip(&frames).enumerate() {
+            let (r, q) = ((k / cols) as i32, (k % cols) as i32);
+            let (x0, y0) = (q * cell.0 as i32, r * cell.1 as i32);
+            let panel = body.clone().shrink((x0, y0), f.size);
+            draw_chart(c, f, &panel)?;
+        }
+        root.present().map_err(err)?;
     }
-    root.present().map_err(err)
+    Ok(text)
 }
 
 /// The axes, grid, bands, curves and series of `c` in `plot`; markers drawn on `root` in pixels.

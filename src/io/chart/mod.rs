@@ -318,6 +318,11 @@ impl Chart {
     pub fn svg(&self, path: &Path) -> std::io::Result<()> {
         draw::svg(self, path)
     }
+
+    /// Draws the chart as the text of an SVG file.
+    pub fn svg_string(&self) -> std::io::Result<String> {
+        draw::svg_string(self)
+    }
 }
 
 /// Draws `charts` as panels of one SVG at `path` (small multiples, like the six panels of f-EDEM
@@ -325,6 +330,11 @@ impl Chart {
 /// legend; a drawing failure is an [`std::io::Error`] of kind `Other`.
 pub fn grid_svg(path: &Path, title: &str, charts: &[Chart], columns: usize) -> std::io::Result<()> {
     draw::grid_svg(path, title, charts, columns)
+}
+
+/// [`grid_svg`] as the text of an SVG file.
+pub fn grid_svg_string(title: &str, charts: &[Chart], columns: usize) -> std::io::Result<String> {
+    draw::grid_svg_string(title, charts, columns)
 }
 
 /// Draws a scatter/line chart as SVG at `path` (see [`Chart`]); a drawing failure is an

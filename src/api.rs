@@ -1,0 +1,280 @@
+//! The library API: load a scenario, apply overrides, run it in memory, read its tables, write
+//! its files; the same steps `settle run` takes, as functions. The other commands have theirs
+//! in their modules ([`crate::sweep`], [`crate::reduce`], [`crate::invert`], [`crate::laws`],
+//! [`crate::fit`]).
+//!
+//! ```no_run
+//! let scenario = settle::load("scenarios/stokes_single.toml")?
+//!     .set("fluid.viscosity_pa_s", "0.002")?;
+//! let result = scenario.run()?;
+//! let summary = result.table("summary").expect("every free-settling run has a summary");
+//! println!("{:?}", summary.f64s("terminal_velocity_m_s"));
+//! result.write("out")?; // out/stokes_single/: the files `settle run` writes
+//! # Ok::<(), settle::Error>(())
+//! ```
+
+use crate::error::Error;
+use crate::io::{Outputs, Table};
+use crate::run::{self as runner, Executed};
+use crate::scenario::Kind;
+use crate::scenes::{Prepared, RunContext};
+use std::path::{Path, PathBuf};
+
+/// The name under which a scenario given as text appears in error messages; its relative input
+/// files are found from the current folder.
+pub const TEXT_ORIGIN: &str = "<scenario text>";
+
+/// A scenario ready to run: read, its overrides applied, validated, its input files read.
+/// Every bad input is found when it is made (the errors of `settle run`, naming the file and
+/// the key), so that [`Scenario::run`] fails only on the run itself.
+#[derive(Clone, Debug)]
+pub struct Scenario {
+    text: String,
+    origin: PathBuf,
+    overrides: Vec<String>,
+    dt_s: Option<f64>,
+    prepared: Prepared,
+}
+
+impl Scenario {
+    /// Reads the scenario file `path` (or a run record `OUT/NAME/run.toml`, which runs its
+    /// effective scenario again).
+    pub fn load(path: impl AsRef<Path>) -> Result<Self, Error> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| Error::bad_input(path, None, format!("cannot read the file: {e}")))?;
+        Self::from_toml_at(&text, path)
+    }
+
+    /// A scenario from the text of a scenario file; errors name it [`TEXT_ORIGIN`], and its
+    /// relative input files are found from the current folder.
+    pub fn from_toml(text: &str) -> Result<Self, Error> {
+        Self::from_toml_at(text, Path::new(TEXT_ORIGIN))
+    }
+
+    /// A scenario from the text of a scenario file that stands for the file `origin`: errors
+    /// name `origin`, relative input files are found from its folder.
+    pub fn from_toml_at(text: &str, origin: impl AsRef<Path>) -> Result<Self, Error> {
+        Self::make(
+            text.to_string(),
+            origin.as_ref().to_path_buf(),
+            Vec::new(),
+            None,
+        )
+    }
+
+    /// A scenario from typed values: the tables and keys of a scenario file.
+    pub fn from_table(table: toml::Table) -> Result<Self, Error> {
+        let text = toml::to_string(&table).map_err(|e| {
+            Error::bad_input(Path::new(TEXT_ORIGIN), None, format!("not a scenario: {e}"))
+        })?;
+        Self::from_toml(&text)
+    }
+
+    fn make(
+        text: String,
+        origin: PathBuf,
+        overrides: Vec<String>,
+        dt_s: Option<f64>,
+    ) -> Result<Self, Error> {
+        let prepared = runner::prepare_str(&text, &origin, dt_s, &overrides)?;
+        Ok(Self {
+            text,
+            origin,
+            overrides,
+            dt_s,
+            prepared,
+        })
+    }
+
+    /// A new scenario with the override `key = value` applied on top of this one's, exactly as
+    /// `settle run --set KEY=VALUE` applies it (same keys, same validation): `value` is a TOML
+    /// value (`0.002`, `"ideal-stokes"`, `[1, 2]`) or a bare word read as a string.
+    pub fn set(&self, key: &str, value: &str) -> Result<Self, Error> {
+        let mut overrides = self.overrides.clone();
+        overrides.push(format!("{key}={value}"));
+        Self::make(self.text.clone(), self.origin.clone(), overrides, self.dt_s)
+    }
+
+    /// A new scenario with the time step `dt_s`, s (as `settle run --dt`).
+    pub fn with_dt(&self, dt_s: f64) -> Result<Self, Error> {
+        Self::make(
+            self.text.clone(),
+            self.origin.clone(),
+            self.overrides.clone(),
+            Some(dt_s),
+        )
+    }
+
+    /// The scenario's name (its output folder is `OUT/<name>/`).
+    pub fn name(&self) -> &str {
+        &self.prepared.common.name
+    }
+
+    /// The scenario's kind.
+    pub fn kind(&self) -> Kind {
+        self.prepared.common.kind
+    }
+
+    /// The file the scenario came from ([`TEXT_ORIGIN`] for text).
+    pub fn path(&self) -> &Path {
+        &self.origin
+    }
+
+    /// The overrides applied, in order (`KEY=VALUE`).
+    pub fn overrides(&self) -> &[String] {
+        &self.overrides
+    }
+
+    /// The time step, s.
+    pub fn dt_s(&self) -> f64 {
+        self.prepared.common.time.dt_s
+    }
+
+    /// The effective scenario (overrides applied, defaults filled in, input files as absolute
+    /// paths) as the text of a scenario file: the `[scenario]` table of `run.toml`.
+    pub fn to_toml(&self) -> Result<String, Error> {
+        let io = |e: String| Error::Io(self.origin.clone(), std::io::Error::other(e));
+        let table = crate::scenario::record_table(&self.prepared.scenario, &self.origin)
+            .map_err(|e| io(e.to_string()))?;
+        toml::to_string(&table).map_err(|e| io(e.to_string()))
+    }
+
+    /// Runs the scenario in memory with the default [`RunOptions`].
+    pub fn run(&self) -> Result<RunResult, Error> {
+        self.run_with(&RunOptions::default())
+    }
+
+    /// Runs the scenario in memory. A run whose cost estimate exceeds the limits of `settle
+    /// run` is refused unless `opts.force`; an unstable run is [`Error::Unstable`]; a run
+    /// stopped by [`crate::interrupt::request`] (Ctrl-C) returns what it did with
+    /// [`Status::Interrupted`].
+    pub fn run_with(&self, opts: &RunOptions) -> Result<RunResult, Error> {
+        let p = &self.prepared;
+        crate::scenes::cost::check(&p.scenario, &p.path, opts.force)?;
+        let ctx = RunContext {
+            quiet: !opts.progress,
+            ..RunContext::default()
+        };
+        let done = runner::execute(p, &ctx)?;
+        Ok(RunResult {
+            record: runner::run_toml(p, &done)?,
+            scenario: self.clone(),
+            done,
+        })
+    }
+}
+
+/// Reads the scenario file `path` ([`Scenario::load`]).
+pub fn load(path: impl AsRef<Path>) -> Result<Scenario, Error> {
+    Scenario::load(path)
+}
+
+/// Runs `scenario` in memory ([`Scenario::run`]).
+pub fn run(scenario: &Scenario) -> Result<RunResult, Error> {
+    scenario.run()
+}
+
+/// How [`Scenario::run_with`] runs.
+#[derive(Clone, Debug, Default)]
+pub struct RunOptions {
+    /// Show a progress bar on stderr (default false).
+    pub progress: bool,
+    /// Run even when the cost estimate exceeds the time, memory or disk limits (`--force`;
+    /// default false).
+    pub force: bool,
+}
+
+/// How a run ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Status {
+    /// It reached its end time.
+    Complete,
+    /// It was stopped by an interruption; its outputs hold what was done.
+    Interrupted,
+}
+
+impl Status {
+    /// `complete` or `interrupted`, as `run.toml` says.
+    pub fn name(self) -> &'static str {
+        match self {
+            Status::Complete => "complete",
+            Status::Interrupted => "interrupted",
+        }
+    }
+}
+
+/// The outcome of a run, in memory: its tables and files as `settle run` writes them.
+#[derive(Clone, Debug)]
+pub struct RunResult {
+    scenario: Scenario,
+    done: Executed,
+    record: String,
+}
+
+impl RunResult {
+    /// The scenario that ran.
+    pub fn scenario(&self) -> &Scenario {
+        &self.scenario
+    }
+
+    /// Every table, in the order the run made them; each equals the CSV file `settle run`
+    /// writes of it, cell for cell.
+    pub fn tables(&self) -> &[Table] {
+        self.done.outputs.tables()
+    }
+
+    /// The table of the file `name`, by stem (`summary`) or file name (`summary.csv`).
+    pub fn table(&self, name: &str) -> Option<&Table> {
+        self.done.outputs.get(name)
+    }
+
+    /// The tables and the other files (charts) of the run.
+    pub fn outputs(&self) -> &Outputs {
+        &self.done.outputs
+    }
+
+    /// The validity warnings of the run (a law used outside its range, …).
+    pub fn warnings(&self) -> &[String] {
+        &self.done.report.warnings
+    }
+
+    /// The lines `settle run` prints after the run of a contact scene.
+    pub fn lines(&self) -> &[String] {
+        &self.done.report.lines
+    }
+
+    /// How the run ended.
+    pub fn status(&self) -> Status {
+        if self.done.report.interrupted {
+            Status::Interrupted
+        } else {
+            Status::Complete
+        }
+    }
+
+    /// The text of the run's `run.toml` (its record and effective scenario).
+    pub fn record(&self) -> &str {
+        &self.record
+    }
+
+    /// Wall time of the run, s.
+    pub fn wall_time_s(&self) -> f64 {
+        self.done.wall_time_s
+    }
+
+    /// Total steps over all worlds.
+    pub fn steps(&self) -> u64 {
+        self.done.report.steps
+    }
+
+    /// Writes the run's files to `out_dir/<name>/`, as `settle run --out OUT_DIR` does (the
+    /// same files, byte for byte except wall times): refused when that folder exists and was
+    /// not made by settle; staged and moved into place, so nothing is ever half-written.
+    pub fn write(&self, out_dir: impl AsRef<Path>) -> Result<PathBuf, Error> {
+        let out_dir = out_dir.as_ref();
+        let p = &self.scenario.prepared;
+        runner::check_destinations(out_dir, std::slice::from_ref(p))?;
+        runner::write(p, &self.done, out_dir)
+    }
+}

@@ -1,0 +1,176 @@
+//! The outputs of a run or a command, in memory: its tables ([`Table`]) and its other files
+//! (charts, pages, pictures) as bytes. A scene or a command fills an [`Outputs`]; the command
+//! line writes it into a staging folder ([`Outputs::write_into`], then
+//! [`super::StagedDir::commit`]), and the library API hands it to the caller as it is.
+
+use super::chart::Chart;
+use super::table::Table;
+use std::io;
+use std::path::Path;
+
+/// Tables and files of one run, in the order they were made. Names are relative to the run's
+/// folder (`summary.csv`, `charts/velocity.svg`); a later entry of the same name replaces an
+/// earlier one.
+#[derive(Clone, Debug, Default)]
+pub struct Outputs {
+    tables: Vec<Table>,
+    files: Vec<(String, Vec<u8>)>,
+}
+
+impl Outputs {
+    /// No outputs yet.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Adds a table (replacing one of the same name).
+    pub fn table(&mut self, t: Table) {
+        self.tables.retain(|x| x.name() != t.name());
+        self.tables.push(t);
+    }
+
+    /// Adds a file that is not a table (replacing one of the same name).
+    pub fn file(&mut self, name: impl Into<String>, bytes: impl Into<Vec<u8>>) {
+        let name = name.into();
+        self.files.retain(|(n, _)| *n != name);
+        self.files.push((name, bytes.into()));
+    }
+
+    /// Adds the chart `c` as the SVG file `name`.
+    pub fn chart(&mut self, name: impl Into<String>, c: &Chart) -> io::Result<()> {
+        let svg = c.svg_string()?;
+        self.file(name, svg);
+        Ok(())
+    }
+
+    /// Adds `charts` as panels of the one SVG file `name` ([`super::chart::grid_svg`]).
+    pub fn grid_chart(
+        &mut self,
+        name: impl Into<String>,
+        title: &str,
+        charts: &[Chart],
+        columns: usize,
+    ) -> io::Result<()> {
+        let svg = super::chart::grid_svg_string(title, charts, columns)?;
+        self.file(name, svg);
+        Ok(())
+    }
+
+    /// Moves every table and file of `other` in (replacing those of the same names).
+    pub fn extend(&mut self, other: Outputs) {
+        for t in other.tables {
+            self.table(t);
+        }
+        for (n, b) in other.files {
+            self.file(n, b);
+        }
+    }
+
+    /// The tables, in the order they were made.
+    pub fn tables(&self) -> &[Table] {
+        &self.tables
+    }
+
+    /// The table whose file is `name` (`summary.csv`) or whose stem is `name` (`summary`).
+    pub fn get(&self, name: &str) -> Option<&Table> {
+        self.tables
+            .iter()
+            .find(|t| t.name() == name || t.stem() == name)
+    }
+
+    /// The files that are not tables: (name, bytes).
+    pub fn files(&self) -> &[(String, Vec<u8>)] {
+        &self.files
+    }
+
+    /// The bytes of the file `name` (a table's CSV bytes when `name` is a table's file name).
+    pub fn bytes(&self, name: &str) -> Option<Vec<u8>> {
+        if let Some(t) = self.tables.iter().find(|t| t.name() == name) {
+            return t.to_csv().ok();
+        }
+        self.files
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, b)| b.clone())
+    }
+
+    /// True when nothing was made.
+    pub fn is_empty(&self) -> bool {
+        self.tables.is_empty() && self.files.is_empty()
+    }
+
+    /// Writes every table (as CSV) and file into the folder `dir` (a staging folder), creating
+    /// sub-folders as needed; each file atomically ([`super::write_atomic`]).
+    pub fn write_into(&self, dir: &Path) -> io::Result<()> {
+        for t in &self.tables {
+            write_file(dir, t.name(), &t.to_csv()?)?;
+        }
+        for (n, b) in &self.files {
+            write_file(dir, n, b)?;
+        }
+        Ok(())
+    }
+
+    /// Reads the files of a folder (recursively): `.csv` files as tables, the others as bytes.
+    /// Names are relative to `dir` with `/` between folders; settle's marker is skipped.
+    pub fn read_dir(dir: &Path) -> io::Result<Self> {
+        let mut out = Outputs::new();
+        read_into(dir, "", &mut out)?;
+        Ok(out)
+    }
+}
+
+fn write_file(dir: &Path, name: &str, bytes: &[u8]) -> io::Result<()> {
+    let path = dir.join(name);
+    if let Some(parent) = path.parent() {
+        std::fs::create_dir_all(parent)?;
+    }
+    super::write_atomic(&path, bytes)
+}
+
+fn read_into(dir: &Path, prefix: &str, out: &mut Outputs) -> io::Result<()> {
+    let mut entries: Vec<_> = std::fs::read_dir(dir)?.collect::<Result<_, _>>()?;
+    entries.sort_by_key(|e| e.file_name());
+    for e in entries {
+        let Some(n) = e.file_name().to_str().map(str::to_string) else {
+            continue;
+        };
+        if n == super::MARKER {
+            continue;
+        }
+        let name = format!("{prefix}{n}");
+        if e.file_type()?.is_dir() {
+            read_into(&e.path(), &format!("{name}/"), out)?;
+        } else {
+            let bytes = std::fs::read(e.path())?;
+            if name.ends_with(".csv") {
+                out.table(Table::from_csv(name, &bytes)?);
+            } else {
+                out.file(name, bytes);
+            }
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn outputs_written_read_back_equal() {
+        let dir = std::env::temp_dir().join(format!("settle-outputs-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let mut o = Outputs::new();
+        let mut t = Table::new("summary.csv", ["a_m"]);
+        t.push(vec!["1".into()]);
+        o.table(t.clone());
+        o.file("sub/x.txt", "hello");
+        o.write_into(&dir).unwrap();
+        let back = Outputs::read_dir(&dir).unwrap();
+        assert_eq!(back.get("summary"), Some(&t));
+        assert_eq!(back.bytes("sub/x.txt").unwrap(), b"hello");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
