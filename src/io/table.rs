@@ -160,7 +160,10 @@ impl Table {
         let mut preamble = Vec::new();
         let mut bytes = bytes;
         while bytes.first() == Some(&b'#') {
-            let end = bytes.iter().position(|&b| b == b'\n').unwrap_or(bytes.len());
+            let end = bytes
+                .iter()
+                .position(|&b| b == b'\n')
+                .unwrap_or(bytes.len());
             preamble.push(String::from_utf8_lossy(&bytes[..end]).into_owned());
             bytes = &bytes[(end + 1).min(bytes.len())..];
         }
@@ -199,7 +202,9 @@ mod tests {
         );
         assert_eq!(Table::from_csv("a.csv", &bytes).unwrap(), t);
         assert_eq!(t.stem(), "a");
-        let p = t.clone().with_preamble(vec!["# instrument = pipette".into()]);
+        let p = t
+            .clone()
+            .with_preamble(vec!["# instrument = pipette".into()]);
         let bytes = p.to_csv().unwrap();
         assert!(bytes.starts_with(b"# instrument = pipette\nx_m,label\n"));
         assert_eq!(Table::from_csv("a.csv", &bytes).unwrap(), p);

@@ -7,17 +7,19 @@
 //! - [`step`](World::step) (`step.rs`): one step as named stages, the coupling maths from
 //!   [`crate::engine::coupling`] and the fault scan from [`crate::engine::faults`];
 //! - `holds.rs`: Rapier joints (yield-stress holds, squeeze-film dampers);
-//! - `surface.rs`: the free surface and the fluid forces a body feels at the start of a step;
+//! - `free_surface.rs`: the free surface (where the fluid is);
+//! - `immersed.rs`: the fluid forces a body feels at the start of a step;
 //! - `contacts.rs`: walls, fixed colliders, rolling resistance and contact-force queries;
 //! - `restitution.rs`: constant and speed-dependent restitution.
 
 mod contacts;
+mod free_surface;
 mod holds;
+mod immersed;
 mod restitution;
 mod step;
-mod surface;
 
-pub use surface::FreeSurface;
+pub use free_surface::FreeSurface;
 
 use super::rapier;
 use crate::contact::RestitutionLaw;

@@ -5,7 +5,7 @@
 //!
 //! with C_N the Clift–Gauvin standard drag curve ([`crate::fluid::newtonian::cd_clift_gauvin`]).
 //! The first term is f-EDEM's static resistance (the v → 0⁺ limit of its eq. 9 with eq. 19,
-//! [`super::bingham_static_resistance_n`]); the second is the drag the same sphere would feel in
+//! [`super::fedem::bingham_static_resistance_n`]); the second is the drag the same sphere would feel in
 //! a Newtonian fluid of viscosity η_B. In creeping flow (Re_B → 0) the law equals f-EDEM's
 //! branch Re′ < 1 exactly (F = F_s + 3π η_B d v); it differs at larger Re′, where f-EDEM's eq. 19
 //! has its fitted constants 29.12 and 0.195 and this law has none. The superposition is a
@@ -14,7 +14,7 @@
 //! no paper example to check it against beyond the creeping limit tested here.
 
 use super::super::newtonian::cd_clift_gauvin;
-use super::bingham_static_resistance_n;
+use super::fedem::bingham_static_resistance_n;
 use std::f64::consts::PI;
 
 /// C_d·Re of the Clift–Gauvin curve, finite as Re → 0 (limit 24). Dimensionless.

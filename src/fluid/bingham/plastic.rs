@@ -4,7 +4,7 @@
 use super::additive::additive_drag_n;
 use super::ansley_smith::{ansley_smith_drag_n, ansley_smith_static_resistance_n};
 use super::beris::beris_static_resistance_n;
-use super::bingham_static_resistance_n;
+use super::fedem::bingham_static_resistance_n;
 use super::wilson::{wilson_drag_n, wilson_static_resistance_n};
 
 /// A yield-stress drag law other than f-EDEM's (each in its own module of [`super`]).

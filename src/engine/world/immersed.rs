@@ -1,22 +1,9 @@
-//! The free surface: where the fluid is, and the fluid forces a body feels at the start of a
-//! step (drag, body force and spin drag scaled by its immersed fractions,
+//! The fluid forces a body feels at the start of a step: drag, body force and spin drag scaled
+//! by its immersed fractions below the free surface ([`super::FreeSurface`],
 //! [`crate::fluid::immersion::immersion`]).
 
-use super::{to_na, Body, Vector, World, DIM};
-use crate::fluid::{immersion, SphereDrag, Submergence};
-
-/// The fluid's extent, for scenes where bodies travel through air before they enter the fluid
-/// (see [`World::set_free_surface`]). SI units.
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct FreeSurface {
-    /// Height of the free surface on the last axis, m: the fluid lies below it.
-    pub height_m: f64,
-    /// Radius of the fluid column about the vertical axis through the origin, m (a cylindrical
-    /// container); None: the fluid extends sideways without bound.
-    pub radius_m: Option<f64>,
-    /// How the fluid forces act on a sphere crossing the surface (f-EDEM: full).
-    pub submergence: Submergence,
-}
+use super::{to_na, Body, FreeSurface, Vector, World, DIM};
+use crate::fluid::{immersion, SphereDrag};
 
 impl World {
     /// Restricts the fluid to the region below a free surface (and within a cylinder), for scenes
