@@ -5,7 +5,7 @@
 use super::super::setup::Setup;
 use super::super::state::State;
 use super::kernel::{free_step, horizontal_fault, on_bed, Limits, StokesDrag, StokesGrain};
-use super::{Stepper, INTERRUPT_CHECK_GRAINS};
+use super::stepper::{Stepper, INTERRUPT_CHECK_GRAINS};
 use crate::dynamics::phi12;
 use crate::fluid::{sphere_mass_kg, DragLaw, SphereDrag};
 use crate::sample::Grain;
