@@ -395,3 +395,68 @@ pub fn combined_errors_table<'a>(runs: impl IntoIterator<Item = &'a Outputs>) ->
     }
     t
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(instrument: &str, max: f64) -> ErrorRow {
+        ErrorRow {
+            instrument: instrument.into(),
+            readings: 3,
+            max_abs_error: max,
+            mean_abs_error: 0.5 * max,
+            max_abs_ideal_error: 0.25,
+            mean_abs_ideal_error: 0.125,
+            max_abs_dev_from_ideal: 1.5,
+            mean_sd: 2.0,
+        }
+    }
+
+    #[test]
+    fn combined_errors_are_each_runs_rows_in_order_as_its_file_prints_them() {
+        let mut a = Outputs::new();
+        a.table(errors_table(
+            "s1",
+            1,
+            "full",
+            100,
+            &[row("hydrometer", 1.0), row("pipette", 3.0)],
+        ));
+        let b = Outputs::new(); // a run without the table adds nothing
+        let mut c = Outputs::new();
+        c.table(errors_table(
+            "s2",
+            2,
+            "ideal-stokes",
+            50,
+            &[row("buoyancy", 0.1)],
+        ));
+        let t = combined_errors_table([&a, &b, &c]);
+        assert_eq!(t.name(), "instrument_errors.csv");
+        assert_eq!(t.header(), ERROR_HEADER);
+        let firsts: Vec<(&str, &str)> = t
+            .rows()
+            .iter()
+            .map(|r| (r[0].as_str(), r[4].as_str()))
+            .collect();
+        assert_eq!(
+            firsts,
+            [("s1", "hydrometer"), ("s1", "pipette"), ("s2", "buoyancy")]
+        );
+        // The bytes: the header, then the runs' rows exactly as their own files print them.
+        let text = String::from_utf8(t.to_csv().unwrap()).unwrap();
+        let own = |o: &Outputs| {
+            String::from_utf8(o.bytes("instrument_errors.csv").unwrap())
+                .unwrap()
+                .lines()
+                .skip(1)
+                .map(|l| format!("{l}\n"))
+                .collect::<String>()
+        };
+        assert_eq!(
+            text,
+            format!("{}\n{}{}", ERROR_HEADER.join(","), own(&a), own(&c))
+        );
+    }
+}

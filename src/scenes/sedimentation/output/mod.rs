@@ -1,7 +1,10 @@
-//! Every file a sedimentation run writes: `profiles.csv`, `bed.csv`, `max_diameter.csv`/`.svg`
-//! ([`charts`]), `summary.csv`, `snapshots/` ([`pictures`]), `cylinder.csv`/`.svg`
-//! ([`cylinder`]), `transient.csv`/`.svg` and `terminal_time.csv`/`.svg` ([`transient`]), and
-//! the instruments' files ([`granulometry`], [`charts`]).
+//! Every output of a sedimentation run, made in memory ([`Outputs`]: tables, charts as SVG
+//! text, other files as bytes; nothing is read back): `profiles.csv`, `bed.csv`,
+//! `max_diameter.csv`/`.svg` ([`charts`]), `summary.csv`, `snapshots/` ([`pictures`]),
+//! `cylinder.csv`/`.svg` ([`cylinder`]), `transient.csv`/`.svg` and `terminal_time.csv`/`.svg`
+//! ([`transient`]), the instruments' tables and charts ([`granulometry`], [`charts`]) and the
+//! laboratory reading files ([`readings`], files rather than tables: their `#` lines are part
+//! of the format).
 
 pub mod charts;
 pub mod cylinder;
