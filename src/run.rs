@@ -268,7 +268,7 @@ pub fn run_toml(p: &Prepared, done: &Executed) -> Result<String, Error> {
             warnings: &report.warnings,
             overrides: &p.overrides,
         },
-        engine_settings: report.engine_settings.clone(),
+        engine_settings: report.engine_settings,
         scenario: scenario::record_table(s, &p.path)
             .map_err(|e| Error::Io(p.path.clone(), std::io::Error::other(e)))?,
     };
