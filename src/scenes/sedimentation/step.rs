@@ -74,7 +74,7 @@ impl Stepper {
     /// Advances every suspended grain of `active` (ascending grain indices of `st`) by `dt_s`
     /// with the exact (exponential) or chosen integrator of [`crate::dynamics`], vertically,
     /// under gravity, buoyancy and the drag of its voidage cell; a grain reaching the bed surface
-    /// stops on it (flagged by [`Stepper::deposit`]). In parallel, by chunks of
+    /// stops on it (flagged by [`Stepper::deposit_vmax`]). In parallel, by chunks of
     /// [`INTERRUPT_CHECK_GRAINS`] grains: every grain's update is independent. Returns None if
     /// an interrupt was requested ([`crate::interrupt::requested`], checked before each chunk):
     /// the update is then incomplete and the caller must rewind the step ([`StepStart::rewind`]).

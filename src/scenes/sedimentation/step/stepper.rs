@@ -78,7 +78,7 @@ impl Stepper {
     }
 
     /// The Stokes terminal speed of every grain of `st` ([`Stepper::stokes_speed_m_s`]), m/s:
-    /// computed once per run for [`Stepper::step_size_s`].
+    /// computed once per run for [`Stepper::step_with_vmax_s`].
     pub fn stokes_speeds_m_s(&self, st: &State) -> Vec<f64> {
         st.grains
             .iter()
