@@ -344,7 +344,6 @@ fn sedimentation_case(
     let cpu0 = cpu_time_s();
     let t0 = Instant::now();
     let st = crate::scenes::sedimentation::simulate(
-        &p.scenario,
         &su,
         crate::scenes::sedimentation::State::initial(&su),
         &[],

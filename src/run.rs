@@ -139,6 +139,9 @@ pub struct FileReport {
     pub wall_time_s: f64,
     /// Validity warnings ([`crate::scenes::SceneReport::warnings`]).
     pub warnings: Vec<String>,
+    /// The run's tables and files in memory, as written to `out` (without `run.toml` and the
+    /// report page).
+    pub outputs: output::Outputs,
 }
 
 #[derive(Serialize)]
@@ -207,6 +210,7 @@ pub fn run_one_with(p: &Prepared, out_dir: &Path, ctx: &RunContext) -> Result<Fi
         out,
         wall_time_s: done.wall_time_s,
         warnings: done.report.warnings,
+        outputs: done.outputs,
     })
 }
 
@@ -264,7 +268,7 @@ pub fn run_toml(p: &Prepared, done: &Executed) -> Result<String, Error> {
             warnings: &report.warnings,
             overrides: &p.overrides,
         },
-        engine_settings: report.engine_settings.clone(),
+        engine_settings: report.engine_settings,
         scenario: scenario::record_table(s, &p.path)
             .map_err(|e| Error::Io(p.path.clone(), std::io::Error::other(e)))?,
     };
@@ -504,17 +508,14 @@ fn write_combined(out_dir: &Path, reports: &[FileReport]) -> Result<(), Error> {
         out_fs::write_metrics(&stage.path("metrics.csv"), &stats).map_err(io)?;
     }
     // Sedimentation: one table of each instrument's error against the input curve per sample.
-    let sed: Vec<&Path> = reports
+    let sed: Vec<&output::Outputs> = reports
         .iter()
-        .filter(|r| r.prepared.scenario.kind == Kind::Sedimentation)
-        .map(|r| r.out.as_path())
+        .filter(|r| r.prepared.common.kind == Kind::Sedimentation)
+        .map(|r| &r.outputs)
         .collect();
     if !sed.is_empty() {
-        crate::scenes::sedimentation::output::granulometry::write_combined_errors(
-            &stage.path("instrument_errors.csv"),
-            &sed,
-        )
-        .map_err(io)?;
+        let t = crate::scenes::sedimentation::output::granulometry::combined_errors_table(sed);
+        output::write_atomic(&stage.path(t.name()), &t.to_csv().map_err(io)?).map_err(io)?;
     }
     let names: Vec<String> = reports
         .iter()

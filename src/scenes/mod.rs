@@ -80,10 +80,7 @@ pub fn run_scene(
         }
         SceneSpec::TiltFriction(t) => (Vec::new(), staged(out, |s| tilt_friction::run(p, t, s))?),
         SceneSpec::FunnelPour(f) => (Vec::new(), staged(out, |s| funnel_pour::run(p, f, s, ctx))?),
-        SceneSpec::Sedimentation(sd) => (
-            Vec::new(),
-            staged(out, |s| sedimentation::run(p, sd, s, ctx))?,
-        ),
+        SceneSpec::Sedimentation(sd) => (Vec::new(), sedimentation::run(p, sd, out, ctx)?),
     })
 }
 

@@ -14,7 +14,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 /// Circles still standing, each as its files (sorted, relative to `src/`). Most are a parent
-/// (`mod.rs`, `bingham.rs`, `step.rs`) that holds names its children use while it calls them;
+/// (`mod.rs`, `bingham.rs`) that holds names its children use while it calls them;
 /// the scenario one runs through the kind registry (`schema/mod.rs` asks `kinds.rs`, which
 /// builds the specs from the schema). Issue 24 untied the four the review named (sweep,
 /// scenario/load, free_settling, reduce input/instrument) and left these for a later change:
@@ -33,11 +33,6 @@ const KNOWN: &[&[&str]] = &[
         "scenario/schema/mod.rs",
         "scenario/schema/transient.rs",
         "scenario/validate.rs",
-    ],
-    &[
-        "scenes/sedimentation/step.rs",
-        "scenes/sedimentation/step/interval.rs",
-        "scenes/sedimentation/step/kernel.rs",
     ],
     &[
         "scenes/funnel_pour/mod.rs",

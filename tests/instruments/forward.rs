@@ -388,7 +388,7 @@ fn against_forward(scenario: &str, overrides: &[String], run_dir: &Path) -> Vec<
     use settle::scenes::sedimentation::{setup, InstrumentSet};
     let p = prepare(Path::new(scenario), None, overrides).unwrap();
     let su = setup(&p.scenario, &p.path).unwrap();
-    let set = InstrumentSet::new(&p.scenario, &su);
+    let set = InstrumentSet::new(&su);
     let an = set.analysis;
     let col = Column {
         height_m: su.height_m,

@@ -297,7 +297,7 @@ fn ideal_stokes_instruments_match_the_input_curve() {
         ];
         let p = prepare(Path::new(&path), None, &ov).unwrap();
         let su = setup(&p.scenario, &p.path).unwrap();
-        let set = InstrumentSet::new(&p.scenario, &su);
+        let set = InstrumentSet::new(&su);
         let an = set.analysis;
         let rep = run_one(&p, dir.path()).unwrap();
         let rows = read_csv_records(&rep.out.join("granulometry.csv"));

@@ -34,7 +34,7 @@ fn run(contacts: Option<&str>) -> (State, GrainContacts) {
     ];
     let p = prepare(Path::new(&path), None, &ov).unwrap();
     let su = setup(&p.scenario, &p.path).unwrap();
-    let st = simulate(&p.scenario, &su, State::initial(&su), &[], &mut ());
+    let st = simulate(&su, State::initial(&su), &[], &mut ());
     assert!(st.fault.is_none() && !st.interrupted);
     (st, su.contacts)
 }

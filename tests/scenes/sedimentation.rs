@@ -41,13 +41,7 @@ fn run(sample: u32, extra: &[&str]) -> (Vec<Snap>, settle::scenes::sedimentation
                 .collect(),
         })
     };
-    simulate(
-        &p.scenario,
-        &su,
-        State::initial(&su),
-        &[],
-        &mut OnRecord(rec),
-    );
+    simulate(&su, State::initial(&su), &[], &mut OnRecord(rec));
     let c0 = su.model_mass_kg / 2500.0 / (su.width_m * su.height_m * su.thickness_m);
     (snaps, su, c0)
 }
@@ -218,7 +212,6 @@ fn sample2_on(
     };
     let st = simulate_on(
         step_loop,
-        &p.scenario,
         &su,
         State::initial(&su),
         &[],
@@ -336,14 +329,7 @@ fn ideal_stokes_free_update_follows_the_analytic_stokes_solution() {
                 }
             }
         };
-        simulate_on(
-            step_loop,
-            &p.scenario,
-            &su,
-            start.clone(),
-            &[],
-            &mut OnRecord(check),
-        );
+        simulate_on(step_loop, &su, start.clone(), &[], &mut OnRecord(check));
         assert!(
             checked > 1000 && landed > 1000,
             "{step_loop:?}: {checked} {landed}"

@@ -311,7 +311,6 @@ fn full_physics_with_contacts_accounts_for_every_grain() {
     let mut records = 0;
     let (mut worst, mut deep): (f64, usize) = (f64::NEG_INFINITY, 0);
     let st = simulate(
-        &p.scenario,
         &su,
         State::initial(&su),
         &[],
@@ -357,7 +356,6 @@ fn full_physics_with_contacts_accounts_for_every_grain() {
     assert_eq!(su_off.grains.len(), su.grains.len());
     let mut deep_off = 0;
     let st = simulate(
-        &p.scenario,
         &su_off,
         State::initial(&su_off),
         &[],

@@ -8,7 +8,7 @@ use crate::instruments::buoyancy::{BuoyancyReading, BuoyancySphere};
 use crate::instruments::hydrometer::{Hydrometer, HydrometerReading, HydrometerSpec};
 use crate::instruments::pipette::{GrainSample, Pipette, PipetteReading};
 use crate::instruments::{Analysis, LayeredField, Point};
-use crate::scenario::{InstrumentsSpec, Scenario};
+use crate::scenario::InstrumentsSpec;
 
 /// The hydrometer figures of an `[instruments]` table (kept for callers of the old path; see
 /// [`InstrumentsSpec::hydrometer`]).
@@ -37,17 +37,19 @@ pub struct InstrumentSet {
 }
 
 impl InstrumentSet {
-    /// The instruments of scenario `s` (defaults of [`InstrumentsSpec`] without `[instruments]`).
-    pub fn new(s: &Scenario, setup: &Setup) -> Self {
+    /// The instruments of the run of `setup` (its spec's `[instruments]`, every default without
+    /// one).
+    pub fn new(setup: &Setup) -> Self {
+        let c = &setup.common;
         let sm = &setup.spec.sample;
         let ins = &setup.spec.instruments;
-        let rho_f = s.fluid.density_kg_m3;
+        let rho_f = c.fluid_density_kg_m3;
         let mu = setup.viscosity_pa_s;
         let within = |t: &[f64]| -> Vec<f64> {
             let mut t: Vec<f64> = t
                 .iter()
                 .copied()
-                .filter(|&x| x > 0.0 && x <= s.time.end_s * (1.0 + 1e-12))
+                .filter(|&x| x > 0.0 && x <= c.time.end_s * (1.0 + 1e-12))
                 .collect();
             t.sort_by(f64::total_cmp);
             t.dedup();
@@ -58,7 +60,7 @@ impl InstrumentSet {
                 viscosity_pa_s: mu,
                 grain_density_kg_m3: sm.density_kg_m3,
                 fluid_density_kg_m3: rho_f,
-                gravity_m_s2: s.gravity_m_s2,
+                gravity_m_s2: c.gravity_m_s2,
                 c0_kg_m3: setup.model_mass_kg
                     / (setup.width_m * setup.height_m * setup.thickness_m),
             },

@@ -54,12 +54,17 @@
 //! | `state.rs` | the state a checkpoint saves, profiles, contact statistics |
 //! | `schedule.rs` | record, snapshot and reading times and their cursors; the next event |
 //! | `voidage.rs` | the voidage grid and the drag it gives |
-//! | `step.rs` | step size, free update, deposition, clock, fault scan |
+//! | `step.rs` | free update, deposition, clock, fault scan |
+//! | `step/stepper.rs` | the step constants and the step size |
+//! | `step/kernel.rs` | the free update of one grain, written once for every loop |
+//! | `step/interval.rs` | ideal Stokes: the steps between two events at once, grain by grain |
 //! | `contacts/` | pair search, clusters, the Rapier solve of each cluster, the contact stage |
 //! | `simulate.rs` | the step loop, a short sequence of the stages above |
 //! | `observer.rs` | what the loop tells its caller (records, snapshots, readings, steps) |
 //! | `instruments.rs` | the instruments read on the state |
-//! | `output/` | every file the run writes |
+//! | `suspension.rs` | the suspended grains packed apart (full physics without contacts) |
+//! | `output/` | every table and file of the run, in memory ([`Outputs`]) |
+//! | `cost.rs` | the run's cost estimate |
 
 pub mod contacts;
 pub mod cost;
@@ -88,28 +93,29 @@ pub use state::{band_mass_fractions, ContactStats, Profile, State, PICTURE_BANDS
 
 use crate::checkpoint::Timer;
 use crate::error::Error;
-use crate::io::StagedDir;
+use crate::io::Outputs;
 use crate::scenario::SedimentationSpec;
 use crate::scenes::{Prepared, RunContext, SceneReport};
 use output::Recorded;
 
-/// Runs a sedimentation scenario and writes `profiles.csv`, `bed.csv`, `max_diameter.csv`,
-/// `snapshots/`, `summary.csv` and the instruments' files (see the module doc). With
+/// Runs a sedimentation scenario (its common part and its spec `spec`, nothing else of it) and
+/// adds its outputs to `out`: `profiles.csv`, `bed.csv`, `max_diameter.csv`, `snapshots/`,
+/// `summary.csv` and the instruments' tables and charts (see the module doc). With
 /// checkpoints in `ctx` it saves its state and what it recorded every period and when
 /// interrupted (part `state`, see [`crate::checkpoint`]); with `ctx.resume` it continues from
-/// the saved state.
+/// the saved state. An interrupted run adds what it did and reports `interrupted`.
 pub fn run(
     p: &Prepared,
     spec: &SedimentationSpec,
-    stage: &StagedDir,
+    out: &mut Outputs,
     ctx: &RunContext,
 ) -> Result<SceneReport, Error> {
-    let s = &p.scenario;
     let sm = &spec.sample;
     let setup = setup_of(p, spec);
-    let instruments = InstrumentSet::new(s, &setup);
+    let c = &setup.common;
+    let instruments = InstrumentSet::new(&setup);
     let (start, recorded) = match (&ctx.checkpoints, ctx.resume) {
-        (Some(c), true) => c.load::<(State, Recorded)>(&s.name, "state")?,
+        (Some(ck), true) => ck.load::<(State, Recorded)>(&c.name, "state")?,
         _ => None,
     }
     .unwrap_or_else(|| {
@@ -127,19 +133,19 @@ pub fn run(
         grain_density_kg_m3: sm.density_kg_m3,
         rec: recorded,
         ctx,
-        name: &s.name,
-        timer: ctx.checkpoints.as_ref().map(|c| c.timer()),
+        name: &c.name,
+        timer: ctx.checkpoints.as_ref().map(|ck| ck.timer()),
         save_err: None,
         bar: crate::progress::bar(
-            s.time.end_s.ceil() as u64,
-            &s.name,
+            c.time.end_s.ceil() as u64,
+            &c.name,
             "s simulated,",
             ctx.quiet,
         ),
         t0,
         save_due: false,
     };
-    let st = simulate(s, &setup, start, &instruments.all_times_s(), &mut obs);
+    let st = simulate(&setup, start, &instruments.all_times_s(), &mut obs);
     obs.bar.finish_and_clear();
     if let Some(u) = st.fault.clone() {
         // Nothing to resume from a run that went unstable.
@@ -152,7 +158,7 @@ pub fn run(
         return Err(Error::Io(p.path.clone(), e));
     }
     let wall = t0.elapsed().as_secs_f64();
-    output::write_all(stage, s, sm, &setup, &st, obs.rec, wall)
+    output::write_all(out, &setup, &st, obs.rec, wall).map_err(|e| Error::Io(p.path.clone(), e))
 }
 
 /// The observer of [`run`]: records profiles, pictures, snapshots and instrument readings, moves

@@ -2,9 +2,8 @@
 //! cursors (saved in the state, so that a resumed run continues where it stopped).
 
 use super::observer::Observer;
-use super::setup::default_record_times;
+use super::setup::{default_record_times, Setup};
 use super::state::State;
-use crate::scenario::{SampleSpec, Scenario};
 
 /// Sorted record, snapshot and reading times, and the end time, s.
 #[derive(Clone, Debug)]
@@ -16,10 +15,12 @@ pub struct Schedule {
 }
 
 impl Schedule {
-    /// The times of scenario `s` (sample `sm`) and the instruments' `reading_times_s`.
-    pub fn new(s: &Scenario, sm: &SampleSpec, reading_times_s: &[f64]) -> Self {
+    /// The times of the run of `setup` (its `[sample]` times and its end time) and the
+    /// instruments' `reading_times_s`.
+    pub fn new(setup: &Setup, reading_times_s: &[f64]) -> Self {
+        let (sm, end_s) = (&setup.spec.sample, setup.common.time.end_s);
         let mut records: Vec<f64> = if sm.record_times_s.is_empty() {
-            default_record_times(s.time.end_s)
+            default_record_times(end_s)
         } else {
             sm.record_times_s.clone()
         };
@@ -33,7 +34,7 @@ impl Schedule {
             records,
             snapshots,
             readings,
-            end_s: s.time.end_s,
+            end_s,
         }
     }
 

@@ -1,9 +1,10 @@
-//! The typed setup of a sedimentation run: geometry, the sample's representative grains, the
-//! fluid viscosity, and the default record times.
+//! The typed setup of a sedimentation run: what the scene reads of its scenario (the common part
+//! and the sedimentation spec), geometry, the sample's representative grains, the fluid
+//! viscosity, and the default record times.
 
 use crate::error::BadInput;
 use crate::sample::{discretize, representative_grains, Distribution, Grain, SizeClass};
-use crate::scenario::{Contacts, Parsed, RheologyModel, Scenario, SceneSpec, SedimentationSpec};
+use crate::scenario::{Common, Contacts, Parsed, Scenario, SceneSpec, SedimentationSpec};
 use std::path::Path;
 
 /// Largest travel of the fastest grain of a contact cluster per Rapier step, in diameters of
@@ -46,13 +47,17 @@ pub struct Setup {
     /// Projection thickness h_z, m.
     pub thickness_m: f64,
     /// Viscosity of the fluid for the drag, the squeeze film and the analysis, Pa s (η of a
-    /// Newtonian fluid, η_B of a Bingham one: [`RheologyModel::drag_viscosity_pa_s`]).
+    /// Newtonian fluid, η_B of a Bingham one:
+    /// [`crate::scenario::RheologyModel::drag_viscosity_pa_s`]).
     pub viscosity_pa_s: f64,
     /// Contact properties of the grains' contact solve (`[contacts]`; without it frictionless
     /// grains with restitution 0).
     pub contacts: GrainContacts,
     /// The scenario's sedimentation spec: sample, cylinder, instruments, contacts.
     pub spec: SedimentationSpec,
+    /// What every kind reads of the scenario: name, physics, gravity, fluid density, time (the
+    /// scene reads nothing else of it).
+    pub common: Common,
 }
 
 /// Friction and restitution of the grains' contacts in the cylinder's contact solve, from the
@@ -102,23 +107,19 @@ pub fn setup(s: &Scenario, path: &Path) -> Result<Setup, BadInput> {
             ),
         ));
     };
-    Ok(setup_with(spec, parsed.rheology, spec.distribution.clone()))
+    Ok(setup_with(&parsed.common, spec, spec.distribution.clone()))
 }
 
 /// Builds the sample of a prepared sedimentation scenario of spec `spec` (its distribution
 /// read as the scenario was parsed).
 pub fn setup_of(p: &crate::scenes::Prepared, spec: &SedimentationSpec) -> Setup {
-    setup_with(spec, p.rheology, spec.distribution.clone())
+    setup_with(&p.common, spec, spec.distribution.clone())
 }
 
-/// Builds the sample of a sedimentation scenario of spec `spec` in a fluid of rheology
-/// `rheology` from its particle-size `distribution` (normally [`SedimentationSpec::distribution`],
-/// read as the scenario was parsed).
-pub fn setup_with(
-    spec: &SedimentationSpec,
-    rheology: RheologyModel,
-    distribution: Distribution,
-) -> Setup {
+/// Builds the sample of a sedimentation scenario of common part `common` (its fluid's rheology
+/// among it) and spec `spec` from its particle-size `distribution` (normally
+/// [`SedimentationSpec::distribution`], read as the scenario was parsed).
+pub fn setup_with(common: &Common, spec: &SedimentationSpec, distribution: Distribution) -> Setup {
     let sm = &spec.sample;
     let (width, height) = (spec.width_m, spec.height_m);
     let classes = discretize(&distribution, sm.n_diameters);
@@ -140,9 +141,10 @@ pub fn setup_with(
         width_m: width,
         height_m: height,
         thickness_m: sm.projection_thickness_m(width),
-        viscosity_pa_s: rheology.drag_viscosity_pa_s(),
+        viscosity_pa_s: common.rheology.drag_viscosity_pa_s(),
         contacts: GrainContacts::of(spec.contacts.as_ref()),
         spec: spec.clone(),
+        common: common.clone(),
     }
 }
 

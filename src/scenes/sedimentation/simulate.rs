@@ -9,9 +9,8 @@ use super::step::{advance_clock, clock_after, IdealCache, Interval, StepStart, S
 use super::suspension::Suspension;
 use super::voidage::VoidageGrid;
 use crate::dynamics::Integrator;
-use crate::scenario::Scenario;
 
-/// Runs scenario `s` (prepared as `setup`, whose spec gives the `[sample]` settings) from
+/// Runs the scenario prepared as `setup` (its common part and its spec's `[sample]` settings) from
 /// `state` (the initial one, [`State::initial`], or one saved by a checkpoint) to `time.end_s`,
 /// landing on every record and snapshot time and on every time of `reading_times_s`, and
 /// telling `obs` at each (and after every step). Returns
@@ -36,13 +35,12 @@ use crate::scenario::Scenario;
 ///
 /// Every loop gives the same result, bit for bit, where more than one applies.
 pub fn simulate(
-    s: &Scenario,
     setup: &Setup,
     state: State,
     reading_times_s: &[f64],
     obs: &mut impl Observer,
 ) -> State {
-    simulate_on(StepLoop::Chosen, s, setup, state, reading_times_s, obs)
+    simulate_on(StepLoop::Chosen, setup, state, reading_times_s, obs)
 }
 
 /// The loop that visits the grains at each step ([`simulate_on`]).
@@ -58,7 +56,6 @@ pub enum StepLoop {
 /// [`simulate`], the grains visited by the loop `step_loop`.
 pub fn simulate_on(
     step_loop: StepLoop,
-    s: &Scenario,
     setup: &Setup,
     state: State,
     reading_times_s: &[f64],
@@ -67,10 +64,10 @@ pub fn simulate_on(
     let sm = &setup.spec.sample;
     let mut st = state;
     st.interrupted = false;
-    let stepper = Stepper::new(s, sm, setup, &st);
+    let stepper = Stepper::new(setup, &st);
     let run = Run {
         setup,
-        schedule: &Schedule::new(s, sm, reading_times_s),
+        schedule: &Schedule::new(setup, reading_times_s),
         stepper: &stepper,
     };
     let mut grid = voidage_grid(setup, &stepper, &st);

@@ -126,7 +126,7 @@ impl Suspension {
     }
 
     /// The largest speed of the suspended grains, each the larger of its speed and its Stokes
-    /// terminal speed, m/s, 0 if none (as [`Stepper::step_size_s`] finds it).
+    /// terminal speed, m/s, 0 if none (as [`Stepper::step_with_vmax_s`] finds it).
     pub fn vmax_m_s(&self) -> f64 {
         self.v_m_s
             .iter()

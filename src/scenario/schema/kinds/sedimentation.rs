@@ -355,18 +355,14 @@ impl InstrumentsSpec {
             return Ok(());
         }
         // The bulb narrows as it lengthens (same volume): bisect for the length that fits.
-        let (mut lo, mut hi) = (self.hydrometer_bulb_length_m, 10.0);
+        let (lo, hi) = (self.hydrometer_bulb_length_m, 10.0);
         let hint = if diameter(hi) > allowed || allowed <= 0.0 {
             "a smaller hydrometer_bulb_volume_m3".to_string()
         } else {
-            for _ in 0..60 {
-                let mid = 0.5 * (lo + hi);
-                if diameter(mid) > allowed {
-                    lo = mid;
-                } else {
-                    hi = mid;
-                }
-            }
+            let (_, hi) =
+                crate::numerics::bisect(lo, hi, crate::numerics::Bisection::halvings(60), |len| {
+                    diameter(len) > allowed
+                });
             format!(
                 "with this volume and taper, hydrometer_bulb_length_m ≥ {} m, or a smaller \
                  hydrometer_bulb_volume_m3",

@@ -8,6 +8,7 @@ use crate::engine::dim2::{FluidBody, Vector, World};
 use crate::engine::{BodyId, EngineSettings};
 use crate::fluid::lubrication::{damping_n_s_m, Cutoffs};
 use crate::fluid::{sphere_mass_kg, SphereDrag};
+use crate::numerics::{bisect, Bisection};
 use nalgebra::SVector;
 
 /// A grain handed to the contact solve, at the start of the step. SI units.
@@ -279,19 +280,10 @@ fn first_contact_time(
     }
     let mut t_c = dt_s;
     for &(i, j) in pairs {
-        let (mut lo, mut hi) = (0.0, t_c);
-        if !meet(i, j, hi) {
+        if !meet(i, j, t_c) {
             continue;
         }
-        for _ in 0..40 {
-            let mid = 0.5 * (lo + hi);
-            if meet(i, j, mid) {
-                hi = mid;
-            } else {
-                lo = mid;
-            }
-        }
-        t_c = lo;
+        t_c = bisect(0.0, t_c, Bisection::halvings(40), |t| !meet(i, j, t)).0;
     }
     t_c
 }

@@ -5,10 +5,8 @@
 //! `pipette_mass.svg`, `instruments.svg`.
 
 use super::plot::time_text;
-use crate::io::chart::{scatter_svg, Chart, Curve, Scale, Series};
+use crate::io::chart::{Chart, Curve, Scale, Series};
 use crate::scenes::sedimentation::instruments::{BulbRow, InstrumentKind, InstrumentReading};
-use std::io;
-use std::path::Path;
 
 /// The three instruments, in chart order, with their colour indices.
 const KINDS: [(InstrumentKind, usize); 3] = [
@@ -25,11 +23,7 @@ pub type MaxDiameterRow = (f64, f64, f64, f64);
 /// `max_diameter.csv` so they stay apart) against eq. 16, d = √(18 μ z / ((ρ_p − ρ_f) g t))
 /// (dashed lines), one colour per time. Eq. 16 is drawn up to 1.5 × the largest grain
 /// (beyond it no grain exists and the bound says nothing).
-pub fn write_max_diameter_chart(
-    path: &Path,
-    title: &str,
-    rows: &[MaxDiameterRow],
-) -> io::Result<()> {
+pub fn max_diameter_chart(title: &str, rows: &[MaxDiameterRow]) -> Chart {
     let mut times: Vec<f64> = rows.iter().map(|r| r.0).collect();
     times.dedup();
     let d_top = rows.iter().map(|r| r.2).fold(0.0, f64::max) * 1.5;
@@ -62,12 +56,12 @@ pub fn write_max_diameter_chart(
                 .dashed(),
             );
     }
-    chart.svg(path)
+    chart
 }
 
 /// Seed Fig. 13: the suspension density along the hydrometer bulb at each reading, averaged over
 /// 1 cm of bulb, against the distance below the top of the bulb (h_hd), one line per time.
-pub fn write_bulb_chart(path: &Path, title: &str, rows: &[BulbRow]) -> io::Result<()> {
+pub fn bulb_chart(title: &str, rows: &[BulbRow]) -> Chart {
     let mut times: Vec<f64> = rows.iter().map(|r| r.0).collect();
     times.dedup();
     let bin = 0.01;
@@ -103,7 +97,6 @@ pub fn write_bulb_chart(path: &Path, title: &str, rows: &[BulbRow]) -> io::Resul
         &ys(&series),
     )
     .all_series(series)
-    .svg(path)
 }
 
 /// A chart whose linear y axis spans the y `values` (padded by 10 % of their spread, at least
@@ -138,11 +131,7 @@ fn ys(series: &[Series]) -> Vec<f64> {
 /// Seed Fig. 14: the mean suspension density over the bulb (simulation) and the density the
 /// hydrometer infers from its depth with eq. 19, ρ_s = ρ_f m / (m − A_s (y_ow − y_o) ρ_f),
 /// against time in minutes.
-pub fn write_bulb_mean_chart(
-    path: &Path,
-    title: &str,
-    readings: &[InstrumentReading],
-) -> io::Result<()> {
+pub fn bulb_mean_chart(title: &str, readings: &[InstrumentReading]) -> Chart {
     let hyd: Vec<(f64, f64, f64)> = readings
         .iter()
         .filter_map(|r| {
@@ -173,7 +162,6 @@ pub fn write_bulb_mean_chart(
         "eq. 19 from the hydrometer's depth",
         hyd.iter().map(|h| (h.0, h.2)).collect(),
     ))
-    .svg(path)
 }
 
 /// One series per instrument of `value` against the reading time in minutes.
@@ -202,11 +190,7 @@ fn per_instrument(
 /// Seed Figs. 15–17, top: the depth each instrument's reading stands for (eq. 16's depth:
 /// hydrometer bulb centre, sphere centre, pipette tip), and the hydrometer's ASTM D422 effective
 /// depth from its reading, in cm against time in minutes.
-pub fn write_depth_chart(
-    path: &Path,
-    title: &str,
-    readings: &[InstrumentReading],
-) -> io::Result<()> {
+pub fn depth_chart(title: &str, readings: &[InstrumentReading]) -> Chart {
     let mut series = per_instrument(readings, |r| Some(r.point.depth_m * 100.0));
     let astm: Vec<(f64, f64)> = readings
         .iter()
@@ -231,75 +215,50 @@ pub fn write_depth_chart(
         &ys(&series),
     )
     .all_series(series)
-    .svg(path)
 }
 
 /// Seed Figs. 15–17, middle: the limiting diameter φ_o of eq. 16 of each reading, µm (log),
 /// against time in minutes.
-pub fn write_diameter_chart(
-    path: &Path,
-    title: &str,
-    readings: &[InstrumentReading],
-) -> io::Result<()> {
-    scatter_svg(
-        path,
-        title,
-        "time, log scale (min)",
-        "limiting diameter φ_o, log scale (µm)",
-        Scale::Log,
-        Scale::Log,
-        &per_instrument(readings, |r| Some(r.point.diameter_m * 1e6)),
-    )
+pub fn diameter_chart(title: &str, readings: &[InstrumentReading]) -> Chart {
+    Chart::new(title)
+        .x("time, log scale (min)", Scale::Log)
+        .y("limiting diameter φ_o, log scale (µm)", Scale::Log)
+        .all_series(per_instrument(readings, |r| Some(r.point.diameter_m * 1e6)))
 }
 
 /// Seed Figs. 15–17, bottom: the percent finer w_o of each reading against time in minutes.
-pub fn write_time_chart(
-    path: &Path,
-    title: &str,
-    readings: &[InstrumentReading],
-) -> io::Result<()> {
-    scatter_svg(
-        path,
-        title,
-        "time, log scale (min)",
-        "percent finer w_o (%)",
-        Scale::Log,
-        Scale::Linear,
-        &per_instrument(readings, |r| Some(r.point.percent_finer)),
-    )
+pub fn time_chart(title: &str, readings: &[InstrumentReading]) -> Chart {
+    Chart::new(title)
+        .x("time, log scale (min)", Scale::Log)
+        .y("percent finer w_o (%)", Scale::Linear)
+        .all_series(per_instrument(readings, |r| Some(r.point.percent_finer)))
 }
 
 /// Seed Fig. 16 top: the buoyancy sphere's apparent mass in the suspension (eq. 22), and what
 /// the pipette draws (dry mass, real cylinder), each on its own axis in g against time in
-/// minutes (the sphere's changes are a few % of its mass).
-pub fn write_mass_charts(
-    sphere_path: &Path,
-    pipette_path: &Path,
-    name: &str,
-    readings: &[InstrumentReading],
-) -> io::Result<()> {
-    let one =
-        |path: &Path, title: String, y: &str, mass: &dyn Fn(&InstrumentReading) -> Option<f64>| {
-            let series = per_instrument(readings, mass);
-            close_up(
-                &title,
-                ("time, log scale (min)", Scale::Log),
-                y,
-                &ys(&series),
-            )
-            .all_series(series)
-            .svg(path)
-        };
-    one(
-        sphere_path,
-        format!("{name}: apparent mass of the buoyancy sphere (seed 000 Fig. 16, top)"),
-        "apparent mass of the sphere (g)",
-        &|r| r.buoyancy.map(|b| b.apparent_mass_kg * 1e3),
-    )?;
-    one(
-        pipette_path,
-        format!("{name}: dry mass drawn by the pipette (seed 000 Fig. 17)"),
-        "dry mass in the pipette (g)",
-        &|r| r.pipette.map(|p| p.mass_kg * 1e3),
+/// minutes (the sphere's changes are a few % of its mass): (`sphere_mass.svg`,
+/// `pipette_mass.svg`), titled after the run `name`.
+pub fn mass_charts(name: &str, readings: &[InstrumentReading]) -> (Chart, Chart) {
+    let one = |title: String, y: &str, mass: &dyn Fn(&InstrumentReading) -> Option<f64>| {
+        let series = per_instrument(readings, mass);
+        close_up(
+            &title,
+            ("time, log scale (min)", Scale::Log),
+            y,
+            &ys(&series),
+        )
+        .all_series(series)
+    };
+    (
+        one(
+            format!("{name}: apparent mass of the buoyancy sphere (seed 000 Fig. 16, top)"),
+            "apparent mass of the sphere (g)",
+            &|r| r.buoyancy.map(|b| b.apparent_mass_kg * 1e3),
+        ),
+        one(
+            format!("{name}: dry mass drawn by the pipette (seed 000 Fig. 17)"),
+            "dry mass in the pipette (g)",
+            &|r| r.pipette.map(|p| p.mass_kg * 1e3),
+        ),
     )
 }

@@ -8,11 +8,11 @@ use super::plot::{err, time_text};
 use super::Snapshot;
 use crate::fluid::sphere_volume_m3;
 use crate::io::fmt::{num, sig_shortest};
+use crate::io::Table;
 use crate::scenes::sedimentation::setup::Setup;
 use crate::scenes::sedimentation::state::{State, PICTURE_BANDS};
 use plotters::prelude::*;
 use std::io;
-use std::path::Path;
 
 /// The cylinder at one time: suspended mass per band and the bed.
 #[derive(Clone, Debug, PartialEq)]
@@ -65,7 +65,7 @@ pub fn panels(snapshots: &[Snapshot], setup: &Setup) -> Vec<CylinderPanel> {
 /// `cylinder.csv`: per snapshot time and band (top first) the band's depth range, the suspended
 /// mass fraction it holds (the grey level of `cylinder.svg`), and the bed's height and mass
 /// fraction at that time.
-pub fn write_csv(path: &Path, panels: &[CylinderPanel], height_m: f64) -> io::Result<()> {
+pub fn table(panels: &[CylinderPanel], height_m: f64) -> Table {
     let mut rows = Vec::new();
     for p in panels {
         let n = p.suspended_fraction.len() as f64;
@@ -82,9 +82,9 @@ pub fn write_csv(path: &Path, panels: &[CylinderPanel], height_m: f64) -> io::Re
             ]);
         }
     }
-    crate::io::write_csv(
-        path,
-        &[
+    Table::with_rows(
+        "cylinder.csv",
+        [
             "time_s",
             "time_min",
             "band",
@@ -94,7 +94,7 @@ pub fn write_csv(path: &Path, panels: &[CylinderPanel], height_m: f64) -> io::Re
             "bed_height_m",
             "bed_mass_fraction",
         ],
-        &rows,
+        rows,
     )
 }
 
@@ -106,18 +106,35 @@ fn grey(f: f64, max: f64) -> RGBColor {
     RGBColor(g, g, g)
 }
 
-/// Draws `cylinder.svg`: one panel per snapshot time (depth in cm, width in cm), the grey scale
-/// of the suspended mass fraction per band (in % of the sample, shared by the panels) and the bed
-/// in brown, with its height and mass fraction listed beside the scale.
-pub fn write_svg(
-    path: &Path,
+/// Draws `cylinder.svg` (its text): one panel per snapshot time (depth in cm, width in cm), the
+/// grey scale of the suspended mass fraction per band (in % of the sample, shared by the panels)
+/// and the bed in brown, with its height and mass fraction listed beside the scale.
+pub fn svg(
+    title: &str,
+    panels: &[CylinderPanel],
+    width_m: f64,
+    height_m: f64,
+) -> io::Result<String> {
+    let mut text = String::new();
+    {
+        let n = panels.len().max(1);
+        let root =
+            SVGBackend::with_string(&mut text, (230 * n as u32 + 330, 800)).into_drawing_area();
+        draw(&root, title, panels, width_m, height_m)?;
+        root.present().map_err(err)?;
+    }
+    Ok(text)
+}
+
+/// The panels and the scale of `cylinder.svg` on `root`.
+fn draw<DB: DrawingBackend>(
+    root: &DrawingArea<DB, plotters::coord::Shift>,
     title: &str,
     panels: &[CylinderPanel],
     width_m: f64,
     height_m: f64,
 ) -> io::Result<()> {
     let n = panels.len().max(1);
-    let root = SVGBackend::new(path, (230 * n as u32 + 330, 800)).into_drawing_area();
     root.fill(&WHITE).map_err(err)?;
     let (top, body) = root.split_vertically(50);
     top.titled(title, ("sans-serif", 20)).map_err(err)?;

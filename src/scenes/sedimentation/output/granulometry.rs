@@ -7,90 +7,87 @@
 use super::charts;
 use crate::io::chart::{Chart, Curve, Scale, Series};
 use crate::io::fmt::{num, opt};
-use crate::io::StagedDir;
+use crate::io::{Outputs, Table};
 use crate::sample::Distribution;
-use crate::scenario::{SampleSpec, Scenario};
 use crate::scenes::sedimentation::instruments::{BulbRow, InstrumentKind, InstrumentReading};
 use crate::scenes::sedimentation::setup::Setup;
 use std::io;
-use std::path::Path;
 
-/// Writes every instrument file of a run into `stage`: `granulometry.csv`/`.svg`,
+/// Adds every instrument output of a run of `setup` to `out`: `granulometry.csv`/`.svg`,
 /// `instruments.csv`/`.svg`, `instrument_depths.svg`, `instrument_diameters.svg`,
 /// `sphere_mass.svg`, `pipette_mass.svg`,
 /// `bulb_density.csv`/`.svg`, `bulb_mean_density.svg` (with hydrometer readings) and
 /// `instrument_errors.csv`; returns the error rows (each instrument against the input curve).
 pub fn write_all(
-    stage: &StagedDir,
-    s: &Scenario,
-    sm: &SampleSpec,
+    out: &mut Outputs,
     setup: &Setup,
     readings: &[InstrumentReading],
     bulb: &[BulbRow],
 ) -> io::Result<Vec<ErrorRow>> {
+    let c = &setup.common;
+    let sm = &setup.spec.sample;
     let instrument_errors = errors(&setup.distribution, readings);
-    let full = super::physics_label(s, true);
-    let name = &s.name;
-    write_granulometry(
-        &stage.path("granulometry.csv"),
-        sm.sample,
-        &setup.distribution,
-        readings,
+    let full = super::physics_label(c.physics, true);
+    let name = &c.name;
+    out.table(granulometry_table(sm.sample, &setup.distribution, readings));
+    out.table(instruments_table(readings));
+    out.table(bulb_density_table(bulb));
+    out.chart(
+        "granulometry.svg",
+        &chart(
+            &format!("{name}: percent finer, input and instruments ({full}; seed 000 Fig. 18)"),
+            &setup.distribution,
+            readings,
+        ),
     )?;
-    write_instruments(&stage.path("instruments.csv"), readings)?;
-    write_bulb_density(&stage.path("bulb_density.csv"), bulb)?;
-    write_chart(
-        &stage.path("granulometry.svg"),
-        &format!("{name}: percent finer, input and instruments ({full}; seed 000 Fig. 18)"),
-        &setup.distribution,
-        readings,
+    out.chart(
+        "instruments.svg",
+        &charts::time_chart(
+            &format!("{name}: percent finer read against time (seed 000 Figs. 15–17, bottom)"),
+            readings,
+        ),
     )?;
-    charts::write_time_chart(
-        &stage.path("instruments.svg"),
-        &format!("{name}: percent finer read against time (seed 000 Figs. 15–17, bottom)"),
-        readings,
+    out.chart(
+        "instrument_depths.svg",
+        &charts::depth_chart(
+            &format!("{name}: depth of each reading (seed 000 Figs. 15–17, top)"),
+            readings,
+        ),
     )?;
-    charts::write_depth_chart(
-        &stage.path("instrument_depths.svg"),
-        &format!("{name}: depth of each reading (seed 000 Figs. 15–17, top)"),
-        readings,
+    out.chart(
+        "instrument_diameters.svg",
+        &charts::diameter_chart(
+            &format!("{name}: limiting diameter of each reading (seed 000 Figs. 15–17, middle)"),
+            readings,
+        ),
     )?;
-    charts::write_diameter_chart(
-        &stage.path("instrument_diameters.svg"),
-        &format!("{name}: limiting diameter of each reading (seed 000 Figs. 15–17, middle)"),
-        readings,
-    )?;
-    charts::write_mass_charts(
-        &stage.path("sphere_mass.svg"),
-        &stage.path("pipette_mass.svg"),
-        name,
-        readings,
-    )?;
-    charts::write_bulb_chart(
-        &stage.path("bulb_density.svg"),
-        &format!("{name}: suspension density along the hydrometer bulb (seed 000 Fig. 13)"),
-        bulb,
+    let (sphere, pipette) = charts::mass_charts(name, readings);
+    out.chart("sphere_mass.svg", &sphere)?;
+    out.chart("pipette_mass.svg", &pipette)?;
+    out.chart(
+        "bulb_density.svg",
+        &charts::bulb_chart(
+            &format!("{name}: suspension density along the hydrometer bulb (seed 000 Fig. 13)"),
+            bulb,
+        ),
     )?;
     if readings.iter().any(|r| r.hydrometer.is_some()) {
-        charts::write_bulb_mean_chart(
-            &stage.path("bulb_mean_density.svg"),
-            &format!("{name}: mean density around the bulb against eq. 19 (seed 000 Fig. 14)"),
-            readings,
+        out.chart(
+            "bulb_mean_density.svg",
+            &charts::bulb_mean_chart(
+                &format!("{name}: mean density around the bulb against eq. 19 (seed 000 Fig. 14)"),
+                readings,
+            ),
         )?;
     }
-    write_errors(
-        &stage.path("instrument_errors.csv"),
-        &s.name,
+    out.table(errors_table(
+        &c.name,
         sm.sample,
-        super::physics_label(s, false),
+        super::physics_label(c.physics, false),
         setup.grains.len(),
         &instrument_errors,
-    )?;
+    ));
     Ok(instrument_errors)
-}
-
-fn csv_err(e: csv::Error) -> io::Error {
-    io::Error::other(e)
 }
 
 /// Diameters at which the input curve is written: its points and 60 log-spaced ones.
@@ -110,29 +107,29 @@ pub fn input_diameters(input: &Distribution) -> Vec<f64> {
 /// `input_percent_finer` (the input curve at that diameter), `sd_percent` (1σ of w_o from the
 /// grain count) and `ideal_percent_finer` (the same instrument on the ideal Stokes suspension of
 /// the input curve: its own approximation). Instrument `input` rows are the input curve.
-pub fn write_granulometry(
-    path: &Path,
+pub fn granulometry_table(
     sample: u32,
     input: &Distribution,
     readings: &[InstrumentReading],
-) -> io::Result<()> {
-    let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
-    w.write_record([
-        "sample",
-        "instrument",
-        "time_s",
-        "time_min",
-        "depth_m",
-        "diameter_m",
-        "percent_finer",
-        "input_percent_finer",
-        "sd_percent",
-        "ideal_percent_finer",
-    ])
-    .map_err(csv_err)?;
+) -> Table {
+    let mut t = Table::new(
+        "granulometry.csv",
+        [
+            "sample",
+            "instrument",
+            "time_s",
+            "time_min",
+            "depth_m",
+            "diameter_m",
+            "percent_finer",
+            "input_percent_finer",
+            "sd_percent",
+            "ideal_percent_finer",
+        ],
+    );
     for d in input_diameters(input) {
         let f = num(input.percent_finer(d));
-        w.write_record([
+        t.push(vec![
             sample.to_string(),
             "input".into(),
             String::new(),
@@ -143,12 +140,11 @@ pub fn write_granulometry(
             f,
             String::new(),
             String::new(),
-        ])
-        .map_err(csv_err)?;
+        ]);
     }
     for r in readings {
         let p = &r.point;
-        w.write_record([
+        t.push(vec![
             sample.to_string(),
             r.kind.name().into(),
             num(p.time_s),
@@ -159,42 +155,42 @@ pub fn write_granulometry(
             num(input.percent_finer(p.diameter_m)),
             num(p.sd_percent),
             opt(r.ideal.map(|x| x.percent_finer)),
-        ])
-        .map_err(csv_err)?;
+        ]);
     }
-    w.flush()
+    t
 }
 
 /// `instruments.csv`: the raw readings over time (seed Figs. 15–17), one row per instrument and
 /// time (`time_s` and `time_min`). Hydrometer: tip depth, stem immersed, reading R (g/L, G_s = 2.65), ASTM effective depth
 /// and the mean density over the bulb; sphere: apparent mass; pipette: dry mass drawn (real
 /// cylinder) and grains in the sampled disc. All: the suspension density measured, φ_o and w_o.
-pub fn write_instruments(path: &Path, readings: &[InstrumentReading]) -> io::Result<()> {
-    let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
-    w.write_record([
-        "time_s",
-        "time_min",
-        "instrument",
-        "depth_m",
-        "tip_depth_m",
-        "stem_immersed_m",
-        "reading_g_per_l",
-        "astm_effective_depth_m",
-        "bulb_mean_density_kg_m3",
-        "apparent_mass_g",
-        "pipette_mass_g",
-        "pipette_grains",
-        "density_kg_m3",
-        "diameter_m",
-        "percent_finer",
-        "sd_percent",
-        "ideal_diameter_m",
-        "ideal_percent_finer",
-    ])
-    .map_err(csv_err)?;
+pub fn instruments_table(readings: &[InstrumentReading]) -> Table {
+    let mut t = Table::new(
+        "instruments.csv",
+        [
+            "time_s",
+            "time_min",
+            "instrument",
+            "depth_m",
+            "tip_depth_m",
+            "stem_immersed_m",
+            "reading_g_per_l",
+            "astm_effective_depth_m",
+            "bulb_mean_density_kg_m3",
+            "apparent_mass_g",
+            "pipette_mass_g",
+            "pipette_grains",
+            "density_kg_m3",
+            "diameter_m",
+            "percent_finer",
+            "sd_percent",
+            "ideal_diameter_m",
+            "ideal_percent_finer",
+        ],
+    );
     for r in readings {
         let h = r.hydrometer;
-        w.write_record([
+        t.push(vec![
             num(r.point.time_s),
             num(r.point.time_s / 60.0),
             r.kind.name().into(),
@@ -213,40 +209,40 @@ pub fn write_instruments(path: &Path, readings: &[InstrumentReading]) -> io::Res
             num(r.point.sd_percent),
             opt(r.ideal.map(|x| x.diameter_m)),
             opt(r.ideal.map(|x| x.percent_finer)),
-        ])
-        .map_err(csv_err)?;
+        ]);
     }
-    w.flush()
+    t
 }
 
 /// `bulb_density.csv`: `time_s, time_min, position_m` (below the top of the bulb, seed Fig. 13's h_hd),
 /// `depth_m, density_kg_m3`, per layer crossed by the bulb at each hydrometer reading (and at
 /// t = 0).
-pub fn write_bulb_density(path: &Path, rows: &[BulbRow]) -> io::Result<()> {
-    let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
-    w.write_record([
-        "time_s",
-        "time_min",
-        "position_m",
-        "depth_m",
-        "density_kg_m3",
-    ])
-    .map_err(csv_err)?;
-    for (t, p, y, rho) in rows {
-        w.write_record([num(*t), num(*t / 60.0), num(*p), num(*y), num(*rho)])
-            .map_err(csv_err)?;
+pub fn bulb_density_table(rows: &[BulbRow]) -> Table {
+    let mut t = Table::new(
+        "bulb_density.csv",
+        [
+            "time_s",
+            "time_min",
+            "position_m",
+            "depth_m",
+            "density_kg_m3",
+        ],
+    );
+    for (time, p, y, rho) in rows {
+        t.push(vec![
+            num(*time),
+            num(*time / 60.0),
+            num(*p),
+            num(*y),
+            num(*rho),
+        ]);
     }
-    w.flush()
+    t
 }
 
 /// Chart of percent finer against log diameter: the input curve (a line) and the three
 /// instruments (markers; seed Fig. 18).
-pub fn write_chart(
-    path: &Path,
-    title: &str,
-    input: &Distribution,
-    readings: &[InstrumentReading],
-) -> io::Result<()> {
+pub fn chart(title: &str, input: &Distribution, readings: &[InstrumentReading]) -> Chart {
     let input_curve = Curve::new(
         "input",
         input_diameters(input)
@@ -277,7 +273,6 @@ pub fn write_chart(
         .y("percent finer (%)", Scale::Linear)
         .curve(input_curve)
         .all_series(series)
-        .svg(path)
 }
 
 /// Errors of one instrument against the input curve over its readings.
@@ -359,18 +354,16 @@ const ERROR_HEADER: [&str; 12] = [
 /// its percent finer and the input curve at its diameters; the same for the instrument on the
 /// ideal suspension (its own approximation); the largest difference between the two; the mean
 /// statistical 1σ.
-pub fn write_errors(
-    path: &Path,
+pub fn errors_table(
     scenario: &str,
     sample: u32,
     physics: &str,
     particles: usize,
     rows: &[ErrorRow],
-) -> io::Result<()> {
-    let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
-    w.write_record(ERROR_HEADER).map_err(csv_err)?;
+) -> Table {
+    let mut t = Table::new("instrument_errors.csv", ERROR_HEADER);
     for r in rows {
-        w.write_record([
+        t.push(vec![
             scenario.to_string(),
             sample.to_string(),
             physics.to_string(),
@@ -383,26 +376,87 @@ pub fn write_errors(
             num(r.mean_abs_ideal_error),
             num(r.max_abs_dev_from_ideal),
             num(r.mean_sd),
-        ])
-        .map_err(csv_err)?;
+        ]);
     }
-    w.flush()
+    t
 }
 
-/// The combined `instrument_errors.csv` of several runs: the rows of each run folder's
-/// `instrument_errors.csv`, in order.
-pub fn write_combined_errors(path: &Path, run_dirs: &[&Path]) -> io::Result<()> {
-    let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
-    w.write_record(ERROR_HEADER).map_err(csv_err)?;
-    for d in run_dirs {
-        let f = d.join("instrument_errors.csv");
-        if !f.exists() {
-            continue;
-        }
-        let mut r = csv::Reader::from_path(&f).map_err(csv_err)?;
-        for rec in r.records() {
-            w.write_record(&rec.map_err(csv_err)?).map_err(csv_err)?;
+/// The combined `instrument_errors.csv` of several runs: the rows of each run's
+/// `instrument_errors.csv` table (`runs`: their outputs; a run without one adds nothing), in
+/// order.
+pub fn combined_errors_table<'a>(runs: impl IntoIterator<Item = &'a Outputs>) -> Table {
+    let mut t = Table::new("instrument_errors.csv", ERROR_HEADER);
+    for o in runs {
+        if let Some(e) = o.get("instrument_errors.csv") {
+            for r in e.rows() {
+                t.push(r.clone());
+            }
         }
     }
-    w.flush()
+    t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(instrument: &str, max: f64) -> ErrorRow {
+        ErrorRow {
+            instrument: instrument.into(),
+            readings: 3,
+            max_abs_error: max,
+            mean_abs_error: 0.5 * max,
+            max_abs_ideal_error: 0.25,
+            mean_abs_ideal_error: 0.125,
+            max_abs_dev_from_ideal: 1.5,
+            mean_sd: 2.0,
+        }
+    }
+
+    #[test]
+    fn combined_errors_are_each_runs_rows_in_order_as_its_file_prints_them() {
+        let mut a = Outputs::new();
+        a.table(errors_table(
+            "s1",
+            1,
+            "full",
+            100,
+            &[row("hydrometer", 1.0), row("pipette", 3.0)],
+        ));
+        let b = Outputs::new(); // a run without the table adds nothing
+        let mut c = Outputs::new();
+        c.table(errors_table(
+            "s2",
+            2,
+            "ideal-stokes",
+            50,
+            &[row("buoyancy", 0.1)],
+        ));
+        let t = combined_errors_table([&a, &b, &c]);
+        assert_eq!(t.name(), "instrument_errors.csv");
+        assert_eq!(t.header(), ERROR_HEADER);
+        let firsts: Vec<(&str, &str)> = t
+            .rows()
+            .iter()
+            .map(|r| (r[0].as_str(), r[4].as_str()))
+            .collect();
+        assert_eq!(
+            firsts,
+            [("s1", "hydrometer"), ("s1", "pipette"), ("s2", "buoyancy")]
+        );
+        // The bytes: the header, then the runs' rows exactly as their own files print them.
+        let text = String::from_utf8(t.to_csv().unwrap()).unwrap();
+        let own = |o: &Outputs| {
+            String::from_utf8(o.bytes("instrument_errors.csv").unwrap())
+                .unwrap()
+                .lines()
+                .skip(1)
+                .map(|l| format!("{l}\n"))
+                .collect::<String>()
+        };
+        assert_eq!(
+            text,
+            format!("{}\n{}{}", ERROR_HEADER.join(","), own(&a), own(&c))
+        );
+    }
 }

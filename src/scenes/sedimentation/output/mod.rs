@@ -1,7 +1,10 @@
-//! Every file a sedimentation run writes: `profiles.csv`, `bed.csv`, `max_diameter.csv`/`.svg`
-//! ([`charts`]), `summary.csv`, `snapshots/` ([`pictures`]), `cylinder.csv`/`.svg`
-//! ([`cylinder`]), `transient.csv`/`.svg` and `terminal_time.csv`/`.svg` ([`transient`]), and
-//! the instruments' files ([`granulometry`], [`charts`]).
+//! Every output of a sedimentation run, made in memory ([`Outputs`]: tables, charts as SVG
+//! text, other files as bytes; nothing is read back): `profiles.csv`, `bed.csv`,
+//! `max_diameter.csv`/`.svg` ([`charts`]), `summary.csv`, `snapshots/` ([`pictures`]),
+//! `cylinder.csv`/`.svg` ([`cylinder`]), `transient.csv`/`.svg` and `terminal_time.csv`/`.svg`
+//! ([`transient`]), the instruments' tables and charts ([`granulometry`], [`charts`]) and the
+//! laboratory reading files ([`readings`], files rather than tables: their `#` lines are part
+//! of the format).
 
 pub mod charts;
 pub mod cylinder;
@@ -14,13 +17,11 @@ pub mod transient;
 use super::instruments::{BulbRow, InstrumentReading};
 use super::setup::{limiting_diameter_m, Setup};
 use super::state::{concentration, Profile, State};
-use crate::error::Error;
 use crate::io::fmt::num;
-use crate::io::StagedDir;
-use crate::scenario::{Physics, SampleSpec, Scenario};
+use crate::io::{Outputs, Table};
+use crate::scenario::{Physics, SampleSpec};
 use crate::scenes::SceneReport;
 use std::io;
-use std::path::Path;
 
 /// What a run has recorded: saved with the state in a checkpoint, written at the end.
 #[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
@@ -97,24 +98,17 @@ impl Snapshot {
     }
 }
 
-fn csv_err(e: csv::Error) -> io::Error {
-    io::Error::other(e)
-}
-
-/// Writes every file of a run of `s` that ended in `st` with what it `rec`orded into `stage`,
-/// and returns its report (`wall_s`: wall time of the simulation, s). I/O errors name the
-/// output folder.
-#[allow(clippy::too_many_arguments)]
+/// Adds every output of a run of `setup` that ended in `st` with what it `rec`orded to `out`,
+/// and returns its report (`wall_s`: wall time of the simulation, s). An error is a chart that
+/// could not be drawn.
 pub fn write_all(
-    stage: &StagedDir,
-    s: &Scenario,
-    sm: &SampleSpec,
+    out: &mut Outputs,
     setup: &Setup,
     st: &State,
     rec: Recorded,
     wall_s: f64,
-) -> Result<SceneReport, Error> {
-    let io = |e: io::Error| Error::Io(stage.dest().to_path_buf(), e);
+) -> io::Result<SceneReport> {
+    let (c, sm) = (&setup.common, &setup.spec.sample);
     let Recorded {
         profiles,
         pictures: _,
@@ -122,28 +116,23 @@ pub fn write_all(
         readings,
         bulb,
     } = rec;
-    let snap_dir = stage.path("snapshots");
     for snap in &snapshots {
-        pictures::write_snapshot(&snap_dir, &snap.state(setup)).map_err(io)?;
+        pictures::write_snapshot(out, &snap.state(setup));
     }
-    let instrument_errors =
-        granulometry::write_all(stage, s, sm, setup, &readings, &bulb).map_err(io)?;
-    readings::write_all(stage, s, setup, &readings, &profiles, &snapshots).map_err(io)?;
+    let instrument_errors = granulometry::write_all(out, setup, &readings, &bulb)?;
+    readings::write_all(out, setup, &readings, &profiles, &snapshots);
     if !snapshots.is_empty() {
         let panels = cylinder::panels(&snapshots, setup);
-        cylinder::write_csv(&stage.path("cylinder.csv"), &panels, setup.height_m).map_err(io)?;
-        cylinder::write_svg(
-            &stage.path("cylinder.svg"),
-            &format!(
-                "{}: the cylinder at {} (seed 000 Fig. 11)",
-                s.name,
-                times_text(&panels.iter().map(|p| p.time_s).collect::<Vec<_>>())
-            ),
-            &panels,
-            setup.width_m,
-            setup.height_m,
-        )
-        .map_err(io)?;
+        out.table(cylinder::table(&panels, setup.height_m));
+        let title = format!(
+            "{}: the cylinder at {} (seed 000 Fig. 11)",
+            c.name,
+            times_text(&panels.iter().map(|p| p.time_s).collect::<Vec<_>>())
+        );
+        out.file(
+            "cylinder.svg",
+            cylinder::svg(&title, &panels, setup.width_m, setup.height_m)?,
+        );
     }
     let classes: Vec<f64> = setup
         .classes
@@ -153,18 +142,18 @@ pub fn write_all(
         .collect();
     let grains = transient::Grains {
         density_kg_m3: sm.density_kg_m3,
-        fluid_density_kg_m3: s.fluid.density_kg_m3,
+        fluid_density_kg_m3: c.fluid_density_kg_m3,
         viscosity_pa_s: setup.viscosity_pa_s,
-        gravity_m_s2: s.gravity_m_s2,
-        stokes: s.physics == Physics::IdealStokes,
+        gravity_m_s2: c.gravity_m_s2,
+        stokes: c.physics == Physics::IdealStokes,
     };
-    transient::write_all(stage, &s.name, grains, &classes).map_err(io)?;
+    transient::write_all(out, &c.name, grains, &classes)?;
     let k = Densities {
         grain_kg_m3: sm.density_kg_m3,
-        fluid_kg_m3: s.fluid.density_kg_m3,
+        fluid_kg_m3: c.fluid_density_kg_m3,
     };
-    write_profiles(&stage.path("profiles.csv"), &profiles, setup, sm.layers, k).map_err(io)?;
-    write_bed(&stage.path("bed.csv"), &profiles, setup).map_err(io)?;
+    out.table(profiles_table(&profiles, setup, sm.layers, k));
+    out.table(bed_table(&profiles, setup));
     // Fig. 12's times: those recorded, and the snapshot times (60, 300, 900 s by default) that
     // the default record times miss.
     let from_snapshots: Vec<Profile> = snapshots
@@ -174,26 +163,27 @@ pub fn write_all(
         .collect();
     let mut at: Vec<&Profile> = profiles.iter().chain(&from_snapshots).collect();
     at.sort_by(|a, b| a.time_s.total_cmp(&b.time_s));
-    let dmax = max_diameter_rows(&at, setup, sm.layers, k, s.gravity_m_s2);
-    write_max_diameter(&stage.path("max_diameter.csv"), &dmax).map_err(io)?;
+    let dmax = max_diameter_rows(&at, setup, sm.layers, k, c.gravity_m_s2);
+    out.table(max_diameter_table(&dmax));
     if !dmax.is_empty() {
-        charts::write_max_diameter_chart(
-            &stage.path("max_diameter.svg"),
-            &format!(
-                "{}: largest grain above each depth against eq. 16 (seed 000 Fig. 12)",
-                s.name
+        out.chart(
+            "max_diameter.svg",
+            &charts::max_diameter_chart(
+                &format!(
+                    "{}: largest grain above each depth against eq. 16 (seed 000 Fig. 12)",
+                    c.name
+                ),
+                &dmax,
             ),
-            &dmax,
-        )
-        .map_err(io)?;
+        )?;
     }
     let summary = Summary::of(st);
-    write_summary(&stage.path("summary.csv"), sm, setup, st, &summary).map_err(io)?;
+    out.table(summary_table(sm, setup, st, &summary));
     let mut report = report(sm, setup, st, &summary, wall_s, &instrument_errors);
     report
         .lines
         .extend(instrument_table(&instrument_errors, &readings));
-    report.warnings = warnings(s, sm, setup, &readings);
+    report.warnings = warnings(setup, &readings);
     Ok(report)
 }
 
@@ -202,13 +192,9 @@ pub fn write_all(
 /// suspension: the modelled mass in the modelled volume B H h_z), and percent finer above 100 %
 /// explained by the counting noise of the grains
 /// ([`crate::fluid::validity::percent_finer_above_100_warning`], with each reading's 1σ).
-fn warnings(
-    s: &Scenario,
-    sm: &SampleSpec,
-    setup: &Setup,
-    readings: &[InstrumentReading],
-) -> Vec<String> {
+fn warnings(setup: &Setup, readings: &[InstrumentReading]) -> Vec<String> {
     use crate::fluid::validity::{one_way_coupling_warning, percent_finer_above_100_warning};
+    let sm = &setup.spec.sample;
     let volume = setup.width_m * setup.height_m * setup.thickness_m;
     let fraction = setup.model_mass_kg / sm.density_kg_m3 / volume;
     let over: Vec<_> = readings
@@ -222,7 +208,7 @@ fn warnings(
             )
         })
         .collect();
-    one_way_coupling_warning(fraction, sm.density_kg_m3, s.fluid.density_kg_m3)
+    one_way_coupling_warning(fraction, sm.density_kg_m3, setup.common.fluid_density_kg_m3)
         .into_iter()
         .chain(percent_finer_above_100_warning(&over, setup.grains.len()))
         .collect()
@@ -238,35 +224,30 @@ struct Densities {
 /// `profiles.csv`: per record time and layer (top first) the solid volume, concentration,
 /// suspension density, grain count, the count's relative uncertainty 1/√n and the largest and
 /// smallest diameter.
-fn write_profiles(
-    path: &Path,
-    profiles: &[Profile],
-    setup: &Setup,
-    layers: usize,
-    k: Densities,
-) -> io::Result<()> {
+fn profiles_table(profiles: &[Profile], setup: &Setup, layers: usize, k: Densities) -> Table {
     let h_ly = setup.height_m / layers as f64;
     let layer_volume = setup.width_m * h_ly * setup.thickness_m;
     let (rho_p, rho_f) = (k.grain_kg_m3, k.fluid_kg_m3);
-    let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
-    w.write_record([
-        "time_s",
-        "layer",
-        "depth_m",
-        "solid_volume_m3",
-        "concentration",
-        "suspension_density_kg_m3",
-        "grains",
-        "concentration_rel_uncertainty",
-        "d_max_m",
-        "d_min_m",
-    ])
-    .map_err(csv_err)?;
+    let mut t = Table::new(
+        "profiles.csv",
+        [
+            "time_s",
+            "layer",
+            "depth_m",
+            "solid_volume_m3",
+            "concentration",
+            "suspension_density_kg_m3",
+            "grains",
+            "concentration_rel_uncertainty",
+            "d_max_m",
+            "d_min_m",
+        ],
+    );
     for pr in profiles {
         for k in 0..layers {
             let c = concentration(pr.solid_m3[k], layer_volume);
             let n = pr.count[k];
-            w.write_record([
+            t.push(vec![
                 num(pr.time_s),
                 k.to_string(),
                 num((k as f64 + 0.5) * h_ly),
@@ -289,28 +270,27 @@ fn write_profiles(
                 } else {
                     String::new()
                 },
-            ])
-            .map_err(csv_err)?;
+            ]);
         }
     }
-    w.flush()
+    t
 }
 
 /// `bed.csv`: bed height, mass and mass fraction at every record time.
-fn write_bed(path: &Path, profiles: &[Profile], setup: &Setup) -> io::Result<()> {
-    let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
-    w.write_record(["time_s", "bed_height_m", "bed_mass_kg", "bed_mass_fraction"])
-        .map_err(csv_err)?;
+fn bed_table(profiles: &[Profile], setup: &Setup) -> Table {
+    let mut t = Table::new(
+        "bed.csv",
+        ["time_s", "bed_height_m", "bed_mass_kg", "bed_mass_fraction"],
+    );
     for pr in profiles {
-        w.write_record([
+        t.push(vec![
             num(pr.time_s),
             num(pr.bed_height_m),
             num(pr.bed_mass_kg),
             num(pr.bed_mass_kg / setup.model_mass_kg),
-        ])
-        .map_err(csv_err)?;
+        ]);
     }
-    w.flush()
+    t
 }
 
 /// The rows of `max_diameter.csv`: at 60, 120, 300 and 900 s (those among the `profiles`), the
@@ -345,20 +325,20 @@ fn max_diameter_rows(
 }
 
 /// `max_diameter.csv` of the `rows` of [`max_diameter_rows`].
-fn write_max_diameter(path: &Path, rows: &[charts::MaxDiameterRow]) -> io::Result<()> {
-    let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
-    w.write_record([
-        "time_s",
-        "depth_m",
-        "d_max_above_m",
-        "limiting_diameter_eq16_m",
-    ])
-    .map_err(csv_err)?;
-    for &(t, depth, dmax, limit) in rows {
-        w.write_record([num(t), num(depth), num(dmax), num(limit)])
-            .map_err(csv_err)?;
+fn max_diameter_table(rows: &[charts::MaxDiameterRow]) -> Table {
+    let mut t = Table::new(
+        "max_diameter.csv",
+        [
+            "time_s",
+            "depth_m",
+            "d_max_above_m",
+            "limiting_diameter_eq16_m",
+        ],
+    );
+    for &(time, depth, dmax, limit) in rows {
+        t.push(vec![num(time), num(depth), num(dmax), num(limit)]);
     }
-    w.flush()
+    t
 }
 
 /// The times of the panels as a title says them: `60, 300 and 900 s`.
@@ -401,14 +381,7 @@ impl Summary {
 }
 
 /// `summary.csv`: `quantity, value` rows of the run (sample, grains, steps, bed, contacts).
-fn write_summary(
-    path: &Path,
-    sm: &SampleSpec,
-    setup: &Setup,
-    st: &State,
-    su: &Summary,
-) -> io::Result<()> {
-    let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
+fn summary_table(sm: &SampleSpec, setup: &Setup, st: &State, su: &Summary) -> Table {
     let rows: [(&str, String); 18] = [
         ("sample", sm.sample.to_string()),
         ("representative_grains", st.grains.len().to_string()),
@@ -435,12 +408,13 @@ fn write_summary(
         ("contact_rapier_steps", st.contacts.rapier_steps.to_string()),
         ("contact_fallbacks", st.contacts.fallbacks.to_string()),
     ];
-    w.write_record(["quantity", "value"]).map_err(csv_err)?;
-    for (k, v) in &rows {
-        w.write_record([k.to_string(), v.clone()])
-            .map_err(csv_err)?;
-    }
-    w.flush()
+    Table::with_rows(
+        "summary.csv",
+        ["quantity", "value"],
+        rows.into_iter()
+            .map(|(k, v)| vec![k.to_string(), v])
+            .collect(),
+    )
 }
 
 /// The run's report: its console lines (times also in minutes; the instruments' largest and
@@ -570,8 +544,8 @@ fn instrument_table(
 }
 
 /// Name of the physics in the instruments' files and chart titles.
-fn physics_label(s: &Scenario, long: bool) -> &'static str {
-    match (s.physics, long) {
+fn physics_label(physics: Physics, long: bool) -> &'static str {
+    match (physics, long) {
         (Physics::IdealStokes, _) => "ideal-stokes",
         (_, true) => "full physics",
         (_, false) => "full",

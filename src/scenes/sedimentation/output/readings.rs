@@ -38,49 +38,43 @@
 use crate::instruments::hydrometer::{Hydrometer, HydrometerReading};
 use crate::instruments::reduction::{d7928, water_viscosity_pa_s};
 use crate::io::fmt::{clean_reading, num};
-use crate::io::{write_atomic, StagedDir};
-use crate::scenario::Scenario;
+use crate::io::Outputs;
+use crate::numerics::{bisect, Bisection};
 use crate::scenes::sedimentation::instruments::{
     layered_field, InstrumentKind, InstrumentReading, InstrumentSet,
 };
 use crate::scenes::sedimentation::setup::Setup;
 use crate::scenes::sedimentation::state::{profile, Profile};
-use std::io;
 
 /// Temperature (°C) at which water has the viscosity `mu` (Pa s), by bisection over 0–40 °C
 /// of [`water_viscosity_pa_s`] (None outside that range).
 pub fn water_temperature_c(mu_pa_s: f64) -> Option<f64> {
-    let (mut lo, mut hi) = (0.0f64, 40.0f64);
+    let (lo, hi) = (0.0f64, 40.0f64);
     if !(water_viscosity_pa_s(hi)..=water_viscosity_pa_s(lo)).contains(&mu_pa_s) {
         return None;
     }
-    for _ in 0..100 {
-        let mid = 0.5 * (lo + hi);
-        // μ falls with the temperature.
-        if water_viscosity_pa_s(mid) > mu_pa_s {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
+    // μ falls with the temperature.
+    let (lo, hi) = bisect(lo, hi, Bisection::halvings(100), |t| {
+        water_viscosity_pa_s(t) > mu_pa_s
+    });
     Some(0.5 * (lo + hi))
 }
 
-/// Writes `readings.csv` (D422, the hydrometer's times) and `readings_d7928.csv` (D7928's
-/// schedule, read on the states the run kept) into `stage`, when the run had hydrometer
+/// Adds `readings.csv` (D422, the hydrometer's times) and `readings_d7928.csv` (D7928's
+/// schedule, read on the states the run kept) to `out` (as files: their `#` lines make them
+/// no plain table), when the run had hydrometer
 /// readings, a 152H scale (0–60 g/L for G = 2.65) and a viscosity of water at 16–30 °C (the
 /// range both standards accept); and `readings_pipette.csv` / `readings_sphere.csv` (the
 /// pipette's and the sphere's readings at their times, full precision) when the run had those
-/// and a viscosity of water at 0–40 °C (`direct_text`). Otherwise writes nothing.
+/// and a viscosity of water at 0–40 °C (`direct_text`). Otherwise adds nothing.
 pub fn write_all(
-    stage: &StagedDir,
-    s: &Scenario,
+    out: &mut Outputs,
     setup: &Setup,
     readings: &[InstrumentReading],
     profiles: &[Profile],
     snapshots: &[super::Snapshot],
-) -> io::Result<()> {
-    let set = InstrumentSet::new(s, setup);
+) {
+    let set = InstrumentSet::new(setup);
     let spec = set.hydrometer.spec;
     let is_152h = spec.full_scale == 60.0 && spec.calibration_specific_gravity == 2.65;
     let hyd: Vec<(f64, HydrometerReading)> = readings
@@ -89,10 +83,10 @@ pub fn write_all(
         .filter_map(|r| r.hydrometer.map(|h| (r.point.time_s, h)))
         .collect();
     let Some(t_c) = water_temperature_c(setup.viscosity_pa_s) else {
-        return Ok(());
+        return;
     };
     let head = Head {
-        name: &s.name,
+        name: &setup.common.name,
         sample: setup.spec.sample.sample,
         dry_mass_g: setup.spec.sample.mass_kg * 1e3,
         volume_ml: setup.spec.sample.mass_kg / set.analysis.c0_kg_m3 * 1e6,
@@ -108,25 +102,19 @@ pub fn write_all(
     ] {
         let rows: Vec<&InstrumentReading> = readings.iter().filter(|r| r.kind == kind).collect();
         if !rows.is_empty() {
-            write_atomic(
-                &stage.path(file),
-                direct_text(&head, &set, kind, &rows).as_bytes(),
-            )?;
+            out.file(file, direct_text(&head, &set, kind, &rows));
         }
     }
     if hyd.is_empty() || !is_152h || !(16.0..=30.0).contains(&t_c) {
-        return Ok(());
+        return;
     }
-    write_atomic(
-        &stage.path("readings.csv"),
-        head.text("d422", None, &hyd, &[]).as_bytes(),
-    )?;
-    let (at, missing) = d7928_readings(&set, setup, s.time.end_s, &hyd, profiles, snapshots);
-    write_atomic(
-        &stage.path("readings_d7928.csv"),
-        head.text("d7928", Some(&set.hydrometer), &at, &missing)
-            .as_bytes(),
-    )
+    out.file("readings.csv", head.text("d422", None, &hyd, &[]));
+    let end_s = setup.common.time.end_s;
+    let (at, missing) = d7928_readings(&set, setup, end_s, &hyd, profiles, snapshots);
+    out.file(
+        "readings_d7928.csv",
+        head.text("d7928", Some(&set.hydrometer), &at, &missing),
+    );
 }
 
 /// `readings_pipette.csv` (`kind` Pipette) or `readings_sphere.csv` (Buoyancy): the run's

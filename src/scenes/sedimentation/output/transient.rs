@@ -19,9 +19,9 @@
 use crate::dynamics::{advance, Integrator};
 use crate::fluid::newtonian::{reynolds, stokes_response_time_s};
 use crate::fluid::{sphere_mass_kg, DragLaw, SphereDrag};
-use crate::io::chart::{scatter_svg, Chart, Curve, Scale, Series};
+use crate::io::chart::{Chart, Curve, Scale, Series};
 use crate::io::fmt::{num, sig_shortest};
-use crate::io::StagedDir;
+use crate::io::{Outputs, Table};
 use nalgebra::SVector;
 use std::io;
 
@@ -170,9 +170,9 @@ pub fn table1_rows(k: &Grains) -> Vec<Table1Row> {
         .collect()
 }
 
-/// Writes `terminal_time_table1.csv`: [`table1_rows`] of `k` with the run's own drag law's
-/// t_95 and t_99 at the same diameters.
-fn write_table1(stage: &StagedDir, k: &Grains) -> io::Result<()> {
+/// `terminal_time_table1.csv`: [`table1_rows`] of `k` with the run's own drag law's t_95 and
+/// t_99 at the same diameters.
+fn table1(k: &Grains) -> Table {
     let rows: Vec<Vec<String>> = table1_rows(k)
         .iter()
         .map(|r| {
@@ -191,9 +191,9 @@ fn write_table1(stage: &StagedDir, k: &Grains) -> io::Result<()> {
             ]
         })
         .collect();
-    crate::io::write_csv(
-        &stage.path("terminal_time_table1.csv"),
-        &[
+    Table::with_rows(
+        "terminal_time_table1.csv",
+        [
             "diameter_m",
             "eq13_terminal_velocity_m_s",
             "eq13_t95_s",
@@ -205,7 +205,7 @@ fn write_table1(stage: &StagedDir, k: &Grains) -> io::Result<()> {
             "run_t95_s",
             "run_t99_s",
         ],
-        &rows,
+        rows,
     )
 }
 
@@ -235,9 +235,10 @@ pub fn picked(diameters_m: &[f64]) -> Vec<f64> {
     out
 }
 
-/// Writes `transient.csv`/`.svg` (the curves of six of the `diameters_m`) and
-/// `terminal_time.csv`/`.svg` (t_95 of every diameter) into `stage`; `name` heads the titles.
-pub fn write_all(stage: &StagedDir, name: &str, k: Grains, diameters_m: &[f64]) -> io::Result<()> {
+/// Adds `transient.csv`/`.svg` (the curves of six of the `diameters_m`),
+/// `terminal_time.csv`/`.svg` (t_95 of every diameter) and `terminal_time_table1.csv` to `out`;
+/// `name` heads the titles.
+pub fn write_all(out: &mut Outputs, name: &str, k: Grains, diameters_m: &[f64]) -> io::Result<()> {
     let mut ds = diameters_m.to_vec();
     ds.sort_by(f64::total_cmp);
     ds.dedup();
@@ -246,14 +247,18 @@ pub fn write_all(stage: &StagedDir, name: &str, k: Grains, diameters_m: &[f64]) 
         .iter()
         .filter_map(|d| all.iter().find(|t| t.diameter_m == *d))
         .collect();
-    write_transient(stage, name, &shown)?;
-    write_terminal_csv(stage, &k, &all)?;
-    write_terminal_svg(stage, name, &all, (ds[0], ds[ds.len() - 1]))?;
-    write_table1(stage, &k)
+    write_transient(out, name, &shown)?;
+    out.table(terminal_table(&k, &all));
+    out.chart(
+        "terminal_time.svg",
+        &terminal_chart(name, &all, (ds[0], ds[ds.len() - 1])),
+    )?;
+    out.table(table1(&k));
+    Ok(())
 }
 
 /// `transient.csv` and `transient.svg`: the velocity from rest of the diameters `shown`.
-fn write_transient(stage: &StagedDir, name: &str, shown: &[&Transient]) -> io::Result<()> {
+fn write_transient(out: &mut Outputs, name: &str, shown: &[&Transient]) -> io::Result<()> {
     let mut rows = Vec::new();
     for t in shown {
         for &(time, v) in &t.curve {
@@ -266,17 +271,17 @@ fn write_transient(stage: &StagedDir, name: &str, shown: &[&Transient]) -> io::R
             ]);
         }
     }
-    crate::io::write_csv(
-        &stage.path("transient.csv"),
-        &[
+    out.table(Table::with_rows(
+        "transient.csv",
+        [
             "diameter_m",
             "time_s",
             "time_ms",
             "velocity_m_s",
             "velocity_fraction",
         ],
-        &rows,
-    )?;
+        rows,
+    ));
     let series: Vec<Series> = shown
         .iter()
         .enumerate()
@@ -296,20 +301,18 @@ fn write_transient(stage: &StagedDir, name: &str, shown: &[&Transient]) -> io::R
             line: true,
         })
         .collect();
-    scatter_svg(
-        &stage.path("transient.svg"),
-        &format!("{name}: velocity from rest in the clear fluid (seed 000 Fig. 4)"),
-        "time since release, log scale (ms)",
-        "velocity / terminal velocity v/v_t (-)",
-        Scale::Log,
-        Scale::Linear,
-        &series,
-    )
+    let chart = Chart::new(format!(
+        "{name}: velocity from rest in the clear fluid (seed 000 Fig. 4)"
+    ))
+    .x("time since release, log scale (ms)", Scale::Log)
+    .y("velocity / terminal velocity v/v_t (-)", Scale::Linear)
+    .all_series(series);
+    out.chart("transient.svg", &chart)
 }
 
 /// `terminal_time.csv`: the terminal velocity, Reynolds number, response time and times to
 /// 95 and 99 % of the terminal velocity of every diameter (`all`) of grains `k`.
-fn write_terminal_csv(stage: &StagedDir, k: &Grains, all: &[Transient]) -> io::Result<()> {
+fn terminal_table(k: &Grains, all: &[Transient]) -> Table {
     let rows: Vec<Vec<String>> = all
         .iter()
         .map(|t| {
@@ -330,9 +333,9 @@ fn write_terminal_csv(stage: &StagedDir, k: &Grains, all: &[Transient]) -> io::R
             ]
         })
         .collect();
-    crate::io::write_csv(
-        &stage.path("terminal_time.csv"),
-        &[
+    Table::with_rows(
+        "terminal_time.csv",
+        [
             "diameter_m",
             "terminal_velocity_m_s",
             "reynolds",
@@ -342,19 +345,14 @@ fn write_terminal_csv(stage: &StagedDir, k: &Grains, all: &[Transient]) -> io::R
             "t99_s",
             "t99_stokes_s",
         ],
-        &rows,
+        rows,
     )
 }
 
 /// `terminal_time.svg`: the time to 95 % of the terminal velocity of the diameters `all` (about
 /// 25 of them), the Stokes times to 95 and 99 %, and seed 000's Table 1 within `range_m` (the
 /// smallest and largest diameter, m).
-fn write_terminal_svg(
-    stage: &StagedDir,
-    name: &str,
-    all: &[Transient],
-    range_m: (f64, f64),
-) -> io::Result<()> {
+fn terminal_chart(name: &str, all: &[Transient], range_m: (f64, f64)) -> Chart {
     // About 25 of the classes on the chart, so the markers stay apart (all in the CSV).
     let step = (all.len() / 25).max(1);
     Chart::new(format!(
@@ -402,7 +400,6 @@ fn write_terminal_svg(
         filled: false,
         line: false,
     })
-    .svg(&stage.path("terminal_time.svg"))
 }
 
 #[cfg(test)]

@@ -5,7 +5,7 @@
 use super::super::setup::Setup;
 use super::super::state::State;
 use super::kernel::{free_step, horizontal_fault, on_bed, Limits, StokesDrag, StokesGrain};
-use super::{Stepper, INTERRUPT_CHECK_GRAINS};
+use super::stepper::{Stepper, INTERRUPT_CHECK_GRAINS};
 use crate::dynamics::phi12;
 use crate::fluid::{sphere_mass_kg, DragLaw, SphereDrag};
 use crate::sample::Grain;
@@ -85,7 +85,7 @@ impl Stepper {
     /// [`Stepper::deposit_vmax`] does it; in ideal Stokes the grains do not interact and the bed
     /// does not rise, so every grain's path is its own, and is made grain after grain, its
     /// φ-factors computed once per distinct dt ([`IdealCache`] for the largest) and its state
-    /// kept in registers. Grains are taken [`L`] at a time, in parallel by chunks of
+    /// kept in registers. Grains are taken 8 at a time, in parallel by chunks of
     /// [`INTERRUPT_CHECK_GRAINS`]. The clock is not advanced (see [`super::advance_clock`]).
     /// Returns what stopped the interval and the grain-steps made; on anything but
     /// [`Interval::Done`] the caller must rewind ([`super::StepStart::rewind_all`]): on a fault

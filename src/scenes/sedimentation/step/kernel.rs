@@ -14,7 +14,7 @@
 //! 3. deposition ([`on_bed`], [`bed_rise_m`]): a grain touching the bed surface joins it.
 
 use super::super::voidage::VoidageGrid;
-use super::Stepper;
+use super::stepper::Stepper;
 use crate::dynamics::terminal::exponential_near_terminal;
 use crate::dynamics::{advance, exponential_dallavalle_1d, DallavalleGrain};
 use crate::fluid::{sphere_mass_kg, sphere_volume_m3};
