@@ -10,6 +10,7 @@
 //! was not made by settle (or by a settle before the marker existed) and is never deleted or
 //! replaced: [`check_destination`] refuses it before anything runs.
 
+mod atomic;
 pub mod chart;
 pub mod fmt;
 pub mod metrics;
@@ -17,15 +18,13 @@ pub mod outputs;
 pub mod report;
 pub mod table;
 
+pub use atomic::{is_tmp_of, write_atomic, MARKER, TMP_SUFFIX};
 pub use outputs::Outputs;
 pub use table::{Column, Table};
 
 use std::fs;
 use std::io;
 use std::path::{Path, PathBuf};
-
-/// Name of the file that marks a folder as settle's and lists the entries settle wrote in it.
-pub const MARKER: &str = ".settle-run";
 
 /// Why an output destination cannot be used.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -207,43 +206,6 @@ impl Drop for StagedDir {
             let _ = fs::remove_dir_all(&self.tmp);
         }
     }
-}
-
-/// Writes a file atomically: to a temporary `NAME.<pid>-<n>.tmp` beside it, then renamed. The
-/// temporary name is unique per call, so two threads writing the same file never rename each
-/// other's half-written file (issue 8 regression: two funnel repeats saving their first checkpoint at once
-/// both wrote `request.toml.tmp`; the second rename found nothing and the run failed).
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> io::Result<()> {
-    static COUNTER: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
-    let n = COUNTER.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    let name = path
-        .file_name()
-        .map(|f| f.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let tmp = path.with_file_name(format!("{name}.{}-{n}{TMP_SUFFIX}", std::process::id()));
-    fs::write(&tmp, bytes)?;
-    fs::rename(&tmp, path).inspect_err(|_| {
-        let _ = fs::remove_file(&tmp);
-    })
-}
-
-/// The suffix of the temporary files [`write_atomic`] writes: `NAME.<pid>-<n>.tmp`.
-pub const TMP_SUFFIX: &str = ".tmp";
-
-/// Whether `file_name` is a temporary file [`write_atomic`] made while writing `target`.
-pub fn is_tmp_of(file_name: &str, target: &str) -> bool {
-    file_name
-        .strip_prefix(target)
-        .and_then(|rest| rest.strip_prefix('.'))
-        .and_then(|rest| rest.strip_suffix(TMP_SUFFIX))
-        .is_some_and(|mid| {
-            mid.split_once('-').is_some_and(|(a, b)| {
-                !a.is_empty()
-                    && !b.is_empty()
-                    && a.bytes().all(|c| c.is_ascii_digit())
-                    && b.bytes().all(|c| c.is_ascii_digit())
-            })
-        })
 }
 
 /// Writes a CSV table (header, then rows) atomically ([`write_atomic`]).

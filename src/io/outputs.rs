@@ -100,7 +100,7 @@ impl Outputs {
     }
 
     /// Writes every table (as CSV) and file into the folder `dir` (a staging folder), creating
-    /// sub-folders as needed; each file atomically ([`super::write_atomic`]).
+    /// sub-folders as needed; each file atomically ([`super::atomic::write_atomic`]).
     pub fn write_into(&self, dir: &Path) -> io::Result<()> {
         for t in &self.tables {
             write_file(dir, t.name(), &t.to_csv()?)?;
@@ -125,7 +125,7 @@ fn write_file(dir: &Path, name: &str, bytes: &[u8]) -> io::Result<()> {
     if let Some(parent) = path.parent() {
         std::fs::create_dir_all(parent)?;
     }
-    super::write_atomic(&path, bytes)
+    super::atomic::write_atomic(&path, bytes)
 }
 
 fn read_into(dir: &Path, prefix: &str, out: &mut Outputs) -> io::Result<()> {
@@ -135,7 +135,7 @@ fn read_into(dir: &Path, prefix: &str, out: &mut Outputs) -> io::Result<()> {
         let Some(n) = e.file_name().to_str().map(str::to_string) else {
             continue;
         };
-        if n == super::MARKER {
+        if n == super::atomic::MARKER {
             continue;
         }
         let name = format!("{prefix}{n}");
