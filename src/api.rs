@@ -8,7 +8,7 @@
 //!     .set("fluid.viscosity_pa_s", "0.002")?;
 //! let result = scenario.run()?;
 //! let summary = result.table("summary").expect("every free-settling run has a summary");
-//! println!("{:?}", summary.f64s("terminal_velocity_m_s"));
+//! println!("{:?}", summary.f64s("v_simulated_m_s"));
 //! result.write("out")?; // out/stokes_single/: the files `settle run` writes
 //! # Ok::<(), settle::Error>(())
 //! ```

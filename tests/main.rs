@@ -8,6 +8,7 @@
 //! | `scenario` | `src/scenario/`: every bad input refused before anything runs (`bad_scenarios/`) |
 //! | `scenes` | `src/scenes/<kind>/`: sedimentation (+ its contacts), funnel, restitution drop and tilt |
 //! | `instruments` | `src/instruments/`: hydrometer, buoyancy sphere, pipette |
+//! | `api` | `src/api.rs`: the library API against the command line (tables, overrides, errors, files) |
 //! | `app` | `src/run.rs`, `src/checkpoint.rs`, `src/interrupt.rs`, `src/sweep/` |
 //! | `validation` | validation cases: scenario + reference data + test with a stated tolerance |
 //! | `architecture` | the crate's shape: import layers, file and function lengths |
@@ -25,6 +26,7 @@
 
 mod common;
 
+mod api;
 mod app;
 mod architecture;
 mod engine;

@@ -38,7 +38,7 @@
 use crate::instruments::hydrometer::{Hydrometer, HydrometerReading};
 use crate::instruments::reduction::{d7928, water_viscosity_pa_s};
 use crate::io::fmt::{clean_reading, num};
-use crate::io::Outputs;
+use crate::io::{Outputs, Table};
 use crate::numerics::{bisect, Bisection};
 use crate::scenes::sedimentation::instruments::{
     layered_field, InstrumentKind, InstrumentReading, InstrumentSet,
@@ -102,19 +102,43 @@ pub fn write_all(
     ] {
         let rows: Vec<&InstrumentReading> = readings.iter().filter(|r| r.kind == kind).collect();
         if !rows.is_empty() {
-            out.file(file, direct_text(&head, &set, kind, &rows));
+            out.table(readings_table(file, &direct_text(&head, &set, kind, &rows)));
         }
     }
     if hyd.is_empty() || !is_152h || !(16.0..=30.0).contains(&t_c) {
         return;
     }
-    out.file("readings.csv", head.text("d422", None, &hyd, &[]));
+    out.table(readings_table(
+        "readings.csv",
+        &head.text("d422", None, &hyd, &[]),
+    ));
     let end_s = setup.common.time.end_s;
     let (at, missing) = d7928_readings(&set, setup, end_s, &hyd, profiles, snapshots);
-    out.file(
+    out.table(readings_table(
         "readings_d7928.csv",
-        head.text("d7928", Some(&set.hydrometer), &at, &missing),
-    );
+        &head.text("d7928", Some(&set.hydrometer), &at, &missing),
+    ));
+}
+
+/// The table of a readings file whose text `text` this module wrote: its `#` lines the
+/// preamble, then the header and rows of numbers (no cell holds a comma or a quote, so the
+/// table writes the same bytes back).
+fn readings_table(name: &str, text: &str) -> Table {
+    let mut lines = text.lines();
+    let mut preamble = Vec::new();
+    let mut header = "";
+    for l in lines.by_ref() {
+        if l.starts_with('#') {
+            preamble.push(l.to_string());
+        } else {
+            header = l;
+            break;
+        }
+    }
+    let rows = lines
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect();
+    Table::with_rows(name, header.split(','), rows).with_preamble(preamble)
 }
 
 /// `readings_pipette.csv` (`kind` Pipette) or `readings_sphere.csv` (Buoyancy): the run's
@@ -325,5 +349,23 @@ impl Head<'_> {
             ));
         }
         t
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::readings_table;
+
+    /// A readings file's table writes back the bytes of its text: the `#` lines (one holding
+    /// commas) as the preamble, the header and the rows.
+    #[test]
+    fn readings_table_writes_its_text_back() {
+        let text = "# instrument = pipette\n# not read at 1, 2 min: no state\n\
+                    time_min,drawn_mass_g,temperature_c\n0.5,1.25,20\n2,0.75,20\n";
+        let t = readings_table("readings_pipette.csv", text);
+        assert_eq!(t.preamble().len(), 2);
+        assert_eq!(t.header(), ["time_min", "drawn_mass_g", "temperature_c"]);
+        assert_eq!(t.f64s("drawn_mass_g"), Some(vec![1.25, 0.75]));
+        assert_eq!(String::from_utf8(t.to_csv().unwrap()).unwrap(), text);
     }
 }
