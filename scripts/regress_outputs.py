@@ -16,6 +16,8 @@ beside the scenarios.
 numbers within 1e-9 relative (absolute 1e-300 floor; NaN equals NaN), text exactly. Files
 and columns present on one side only are listed, not failed. Exit 1 on any difference.
 Wall-time columns (`wall_time_s`, `*_wall_s`) are skipped: they measure the machine.
+Text cells holding absolute paths are compared with each side's repository root (recorded by
+`run` in OUTDIR/.repo_root) replaced by `<repo>`, so that two checkouts compare equal.
 """
 import csv
 import math
@@ -144,8 +146,14 @@ def run_commands(binary, root, outdir):
             print(f"  exit {r.returncode}", flush=True)
 
 
+ROOT_FILE = ".repo_root"
+
+
 def run(binary, outdir):
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    os.makedirs(outdir, exist_ok=True)
+    with open(os.path.join(outdir, ROOT_FILE), "w") as f:
+        f.write(root + "\n")
     scen = os.path.join(root, "scenarios")
     for name in sorted(os.listdir(scen)):
         if not name.endswith(".toml"):
@@ -171,9 +179,23 @@ def number(s):
         return None
 
 
-def same(a, b):
+def repo_root(top):
+    """The repository root the outputs under `top` were made from (None if not recorded)."""
+    try:
+        with open(os.path.join(top, ROOT_FILE)) as f:
+            return f.read().strip() or None
+    except OSError:
+        return None
+
+
+def same(a, b, roots=(None, None)):
     x, y = number(a), number(b)
     if x is None or y is None:
+        ra, rb = roots
+        if ra:
+            a = a.replace(ra, "<repo>")
+        if rb:
+            b = b.replace(rb, "<repo>")
         return a.strip() == b.strip()
     if math.isnan(x) or math.isnan(y):
         return math.isnan(x) and math.isnan(y)
@@ -194,6 +216,7 @@ def csvs(top):
 
 def compare(old, new):
     a, b = csvs(old), csvs(new)
+    roots = (repo_root(old), repo_root(new))
     bad = 0
     for rel in sorted(set(a) - set(b)):
         print(f"only in {old}: {rel}")
@@ -223,7 +246,7 @@ def compare(old, new):
             for c in common:
                 u = x[ia[c]] if ia[c] < len(x) else ""
                 v = y[ib[c]] if ib[c] < len(y) else ""
-                if not same(u, v):
+                if not same(u, v, roots):
                     if diffs < 5:
                         print(f"{rel}: row {i} column {c}: {u} vs {v}")
                     diffs += 1
