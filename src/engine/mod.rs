@@ -125,7 +125,7 @@
 //! - dt is bounded by travel, not by τ: once grains move ≳ 0.1 d per step, transient overlaps pass
 //!   1 % of d (20 grains of 70 µm: worst overlap 1.7e-3 d at dt = 1e-3 s, 1.9e-2 d at 4e-3 s), and
 //!   a frictionless 2.5 µm pile stepped at dt = 1e-2 s kept a grain jittering at 1 % of v_t. See the
-//!   survey in `tests/engine/rest.rs`.
+//!   survey in `src/engine/tests/rest.rs`.
 
 mod body_id;
 pub mod coupling;
@@ -133,6 +133,8 @@ pub mod dim2;
 pub mod dim3;
 pub mod faults;
 mod settings;
+#[cfg(test)]
+mod tests;
 
 pub use crate::dynamics::Unstable;
 pub use body_id::BodyId;

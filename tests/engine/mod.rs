@@ -1,6 +1,3 @@
-//! `src/engine/`: the Rapier worlds.
+//! `src/engine/`: free settling through Rapier (the worlds' unit tests are in `src/engine/tests/`).
 
-mod added_mass;
-mod faults;
 mod free_settling;
-mod rest;
