@@ -1,3 +1,1 @@
 //! `src/engine/`: free settling through Rapier (the worlds' unit tests are in `src/engine/tests/`).
-
-mod free_settling;
