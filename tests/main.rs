@@ -4,7 +4,6 @@
 //! | module | tests |
 //! |---|---|
 //! | `common` | helpers only: spawn the `settle` binary, temp folders, CSV and printed figures |
-//! | `engine` | `src/engine/`: free settling through Rapier (the worlds' unit tests: `src/engine/tests/`) |
 //! | `scenario` | `src/scenario/`: every bad input refused before anything runs (`bad_scenarios/`) |
 //! | `scenes` | `src/scenes/<kind>/`: sedimentation (+ its contacts), funnel, restitution drop and tilt |
 //! | `instruments` | `src/instruments/`: hydrometer, buoyancy sphere, pipette |
@@ -27,7 +26,6 @@ mod common;
 
 mod app;
 mod architecture;
-mod engine;
 mod instruments;
 mod regression;
 mod scenario;

@@ -1,1 +1,0 @@
-//! `src/engine/`: free settling through Rapier (the worlds' unit tests are in `src/engine/tests/`).
