@@ -49,7 +49,7 @@
 //!   (`m |v| ≤ F_s dt`, rest included), `F₀` is not applied; instead the body gets a **hold**: a
 //!   Rapier joint to a fixed ground body with a rigid velocity motor (target 0, force limit `F_s`)
 //!   on each linear axis, anchored at the centre. The contact solver then treats the yield stress
-//!   like Coulomb friction: a body stays at rest (creep 0 to round-off, `tests/scenes/funnel.rs`) unless
+//!   like Coulomb friction: a body stays at rest (creep 0 to round-off, `src/scenes/funnel_pour/tests/mod.rs`) unless
 //!   the weight and contacts push it harder than `F_s`, and an impact passes on its whole impulse
 //!   less `F_s dt` (a struck ball leaves at (1 + e)/2 of the striker's speed, as without yield
 //!   stress). Holds are inserted and removed as bodies stop and start ([`dim3::World::set_yield_hold`]
