@@ -4,7 +4,6 @@
 //! | module | tests |
 //! |---|---|
 //! | `common` | helpers only: spawn the `settle` binary, temp folders, CSV and printed figures |
-//! | `engine` | `src/engine/`: Rapier worlds at rest, their faults, free settling through Rapier |
 //! | `scenario` | `src/scenario/`: every bad input refused before anything runs (`bad_scenarios/`) |
 //! | `scenes` | `src/scenes/<kind>/`: sedimentation (+ its contacts), funnel, restitution drop and tilt |
 //! | `instruments` | `src/instruments/`: hydrometer, buoyancy sphere, pipette |
@@ -29,7 +28,6 @@ mod common;
 mod api;
 mod app;
 mod architecture;
-mod engine;
 mod instruments;
 mod regression;
 mod scenario;

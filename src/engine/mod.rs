@@ -49,7 +49,7 @@
 //!   (`m |v| ≤ F_s dt`, rest included), `F₀` is not applied; instead the body gets a **hold**: a
 //!   Rapier joint to a fixed ground body with a rigid velocity motor (target 0, force limit `F_s`)
 //!   on each linear axis, anchored at the centre. The contact solver then treats the yield stress
-//!   like Coulomb friction: a body stays at rest (creep 0 to round-off, `tests/scenes/funnel.rs`) unless
+//!   like Coulomb friction: a body stays at rest (creep 0 to round-off, `src/scenes/funnel_pour/tests/mod.rs`) unless
 //!   the weight and contacts push it harder than `F_s`, and an impact passes on its whole impulse
 //!   less `F_s dt` (a struck ball leaves at (1 + e)/2 of the striker's speed, as without yield
 //!   stress). Holds are inserted and removed as bodies stop and start ([`dim3::World::set_yield_hold`]
@@ -125,7 +125,7 @@
 //! - dt is bounded by travel, not by τ: once grains move ≳ 0.1 d per step, transient overlaps pass
 //!   1 % of d (20 grains of 70 µm: worst overlap 1.7e-3 d at dt = 1e-3 s, 1.9e-2 d at 4e-3 s), and
 //!   a frictionless 2.5 µm pile stepped at dt = 1e-2 s kept a grain jittering at 1 % of v_t. See the
-//!   survey in `tests/engine/rest.rs`.
+//!   survey in `src/engine/tests/rest.rs`.
 
 mod body_id;
 pub mod coupling;
@@ -133,6 +133,8 @@ pub mod dim2;
 pub mod dim3;
 pub mod faults;
 mod settings;
+#[cfg(test)]
+mod tests;
 
 pub use crate::dynamics::Unstable;
 pub use body_id::BodyId;

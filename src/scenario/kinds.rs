@@ -4,7 +4,7 @@
 //! record, the engine choice, sweeps and the docs tests all read it; the scenes dispatch on
 //! the [`SceneSpec`] it builds (`crate::scenes::run_scene`).
 //!
-//! Adding a kind: `CONTRIBUTING.md`, "Add a scene kind"; `tests/scenario/registry.rs` fails
+//! Adding a kind: `CONTRIBUTING.md`, "Add a scene kind"; `src/scenario/tests/registry.rs` fails
 //! when a registered kind lacks one of its pieces.
 
 use super::check::Check;
@@ -186,7 +186,7 @@ pub const KINDS: &[KindInfo] = &[
 
 /// The registry entry of `kind`.
 pub fn info(kind: Kind) -> &'static KindInfo {
-    // Every variant of `Kind` has an entry (tests/scenario/registry.rs); the first entry stands
+    // Every variant of `Kind` has an entry (src/scenario/tests/registry.rs); the first entry stands
     // in for none, which cannot happen.
     KINDS.iter().find(|k| k.kind == kind).unwrap_or(&KINDS[0])
 }

@@ -23,6 +23,8 @@ pub mod inputs;
 mod kinds;
 mod load;
 mod schema;
+#[cfg(test)]
+mod tests;
 mod validate;
 
 pub use common::Common;

@@ -5,6 +5,8 @@ pub mod free_settling;
 pub mod funnel_pour;
 pub mod restitution_drop;
 pub mod sedimentation;
+#[cfg(test)]
+mod tests;
 pub mod tilt_friction;
 pub mod validity;
 

@@ -4,12 +4,48 @@
 
 use std::path::Path;
 
-/// Every piece of text in an SVG file, unescaped, trimmed, in document order
-/// ([`settle::io::chart::svg_texts`]).
+/// Every piece of text in an SVG file, unescaped, trimmed, in document order (as settle's own
+/// `io::chart::svg_texts`, which the library keeps to itself).
 pub fn svg_texts(path: &Path) -> Vec<String> {
     let svg = std::fs::read_to_string(path)
         .unwrap_or_else(|e| panic!("{}: cannot read ({e})", path.display()));
-    settle::io::chart::svg_texts(&svg)
+    texts_of(&svg)
+}
+
+/// Every piece of text in an SVG document, in document order: tags inside a `<text>` element
+/// dropped, XML entities unescaped, white space collapsed; empty texts skipped.
+fn texts_of(svg: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut rest = svg;
+    while let Some(i) = rest.find("<text") {
+        rest = &rest[i..];
+        let (Some(open_end), Some(close)) = (rest.find('>'), rest.find("</text>")) else {
+            break;
+        };
+        let mut text = String::new();
+        let mut in_tag = false;
+        for c in rest[open_end + 1..close].chars() {
+            match c {
+                '<' => in_tag = true,
+                '>' => in_tag = false,
+                c if !in_tag => text.push(c),
+                _ => {}
+            }
+        }
+        let text = text
+            .replace("&lt;", "<")
+            .replace("&gt;", ">")
+            .replace("&quot;", "\"")
+            .replace("&apos;", "'")
+            .replace("&#39;", "'")
+            .replace("&amp;", "&");
+        let text = text.split_whitespace().collect::<Vec<_>>().join(" ");
+        if !text.is_empty() {
+            out.push(text);
+        }
+        rest = &rest[close + "</text>".len()..];
+    }
+    out
 }
 
 /// The number a tick label prints, if the text is one (a leading sign, `−` or `-`, an optional

@@ -18,8 +18,6 @@ mod issue_12_stale_staging;
 mod issue_12_sweep_bad_options;
 mod issue_12_sweep_unsweepable_kind;
 mod issue_13_console_tables;
-mod issue_13_end_time_trims_defaults;
 mod issue_13_run_toml_rerun;
 mod issue_13_vary_any_key;
-mod issue_17_cylinder_cost_estimate;
 mod issue_8_concurrent_checkpoint_saves;

@@ -3,6 +3,4 @@
 mod bad_input;
 mod outputs_docs;
 mod reference_csv;
-mod registry;
 mod schema_docs;
-mod spheres_csv;

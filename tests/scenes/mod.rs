@@ -8,4 +8,3 @@ mod charts_sweep;
 mod funnel;
 mod restitution_drop_and_tilt;
 mod sedimentation;
-mod sedimentation_contacts;

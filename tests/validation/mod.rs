@@ -4,11 +4,8 @@
 mod bingham_laws;
 mod hindered;
 mod invert;
-mod paste_drop;
 mod sedimentation_reference;
 mod slump;
 mod sphere_drag;
 mod stokes_single;
 mod ten_cate;
-mod transient;
-mod valentik;

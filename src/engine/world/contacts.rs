@@ -41,7 +41,7 @@ impl World {
     /// contact pairs' normal forces over the previous step, ω̂ its spin direction), f-EDEM's and
     /// EDEM's "type A" rolling friction. The torque is clamped so that it can at most stop the spin
     /// within the step (|T| dt ≤ I |ω|): it never reverses it. A solid sphere rolling on a plate
-    /// then decelerates at (5/7) μ_r g (tests/scenes/funnel.rs).
+    /// then decelerates at (5/7) μ_r g (src/scenes/funnel_pour/tests/mod.rs).
     pub fn set_rolling_resistance(&mut self, mu_r: f64) {
         assert!(
             mu_r >= 0.0 && mu_r.is_finite(),

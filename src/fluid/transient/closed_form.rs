@@ -25,7 +25,7 @@
 //! divided difference becomes −A g′(α). For |a√t| < 1 the g's are summed from the series
 //! E(z) = Σ (−z)ⁿ/Γ(n/2 + 1), which removes the cancellation of their terms at small t.
 //! Verified against an independent quadrature of the integral equation (tests of
-//! [`crate::dynamics::transient`] and tests/validation/transient.rs).
+//! [`crate::dynamics::transient`] and src/scenes/free_settling/tests/transient.rs).
 
 use super::faddeeva::erfcx;
 use nalgebra::Complex;

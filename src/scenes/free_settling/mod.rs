@@ -6,7 +6,7 @@
 //!
 //! Each sphere is advanced by [`crate::dynamics::advance`] alone (`engine = "free"`, the default
 //! for this kind: there is nothing for a contact solver to do), or through a Rapier world with the
-//! force hook (`engine = "rapier"`), which must give the same answer (tests/engine/free_settling.rs)
+//! force hook (`engine = "rapier"`), which must give the same answer (src/scenes/free_settling/tests/rapier.rs)
 //! at ~300× the cost per step. A free-settling sphere is released submerged at `release.depth_m`
 //! (one radius when 0) and feels constant forces; a drop starts `fall_height_m` above the free
 //! surface and crosses it, its drag and buoyancy scaled by [`immersion`](fn@crate::fluid::immersion).
@@ -56,6 +56,8 @@ mod scene;
 pub mod setup;
 pub mod simulate;
 mod submerged;
+#[cfg(test)]
+mod tests;
 mod transient;
 
 pub use scene::Scene;

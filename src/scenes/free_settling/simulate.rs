@@ -152,7 +152,7 @@ pub fn run(
 
 /// Runs every sphere through its own Rapier world with the force hook (`engine = "rapier"`):
 /// the same scene as the free engine, through the contact pipeline. It must give the same answer
-/// (tests/engine/free_settling.rs); it costs ~300× more per step.
+/// (src/scenes/free_settling/tests/rapier.rs); it costs ~300× more per step.
 pub fn run_rapier(
     scenario: &Scenario,
     rheology: RheologyModel,

@@ -64,6 +64,8 @@ pub mod placement;
 pub mod report;
 pub mod setup;
 pub mod simulate;
+#[cfg(test)]
+mod tests;
 
 pub use census::{z_range, Ball, Census, Place, RepeatResult, Sample};
 pub use placement::{place_balls, Unplaceable};

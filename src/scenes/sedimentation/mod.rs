@@ -77,6 +77,8 @@ pub mod simulate;
 pub mod state;
 pub mod step;
 pub mod suspension;
+#[cfg(test)]
+mod tests;
 pub mod voidage;
 
 pub use instruments::{

@@ -14,7 +14,7 @@ pub const CONTACT_TRAVEL_PER_SUBSTEP: f64 = 1.0;
 /// Largest relative change of a squeeze film's gap per Rapier step of the contact solve in the
 /// run. The approach from h_out to h_in takes ln(h_out/h_in)/f Rapier steps; the frozen gap
 /// makes the film approach too fast by a first-order error in f (see
-/// `tests/scenes/sedimentation_contacts.rs` for the measured figures).
+/// `src/scenes/sedimentation/tests/contacts.rs` for the measured figures).
 pub const CONTACT_FILM_CHANGE_PER_STEP: f64 = 0.25;
 
 /// Limiting diameter of seed eq. 16 (Stokes), m: the largest grain still above depth y at time

@@ -1,12 +1,12 @@
 //! Validation case of issue 16: transient forces (added mass, Basset history force) on f-EDEM's
 //! sphere in water (`scenarios/stokes_single.toml` with `[transient]` set by `--set`), against
-//! the Boussinesq–Basset closed form ([`settle::fluid::transient::BassetProblem`]), which is
+//! the Boussinesq–Basset closed form ([`crate::fluid::transient::BassetProblem`]), which is
 //! itself checked here against an independent quadrature of the integral equation.
 
-use settle::dynamics::Integrator;
-use settle::fluid::transient::BassetProblem;
-use settle::run::prepare;
-use settle::scenes::free_settling::{run, RunOptions, SphereResult};
+use super::prepare;
+use crate::dynamics::Integrator;
+use crate::fluid::transient::BassetProblem;
+use crate::scenes::free_settling::{run, RunOptions, SphereResult};
 use std::f64::consts::PI;
 use std::path::Path;
 

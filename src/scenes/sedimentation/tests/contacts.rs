@@ -2,13 +2,13 @@
 //! cylinder (`physics = "full"`): the cluster solve of `scenes::sedimentation::contacts` on two-grain
 //! cases with known answers, and the full run with contacts on. Each test states its tolerance.
 
-use settle::dynamics::Integrator;
-use settle::fluid::lubrication::{damping_n_s_m, effective_radius_m, Cutoffs};
-use settle::fluid::{DragLaw, SphereDrag};
-use settle::scenes::sedimentation::contacts::{
+use crate::dynamics::Integrator;
+use crate::fluid::lubrication::{damping_n_s_m, effective_radius_m, Cutoffs};
+use crate::fluid::{DragLaw, SphereDrag};
+use crate::scenes::sedimentation::contacts::{
     resolve, ClusterGrain, ContactScene, PairFinder, Probe, Resolved,
 };
-use settle::scenes::sedimentation::{CONTACT_FILM_CHANGE_PER_STEP, CONTACT_TRAVEL_PER_SUBSTEP};
+use crate::scenes::sedimentation::{CONTACT_FILM_CHANGE_PER_STEP, CONTACT_TRAVEL_PER_SUBSTEP};
 use std::f64::consts::PI;
 
 const MU: f64 = 1e-3;
@@ -30,7 +30,7 @@ fn scene(lubrication: bool, travel: f64, film: f64) -> ContactScene {
         travel_per_substep: travel,
         film_change_per_step: film,
         friction: 0.0,
-        restitution: settle::contact::RestitutionLaw::constant(0.0),
+        restitution: crate::contact::RestitutionLaw::constant(0.0),
     }
 }
 
@@ -247,7 +247,7 @@ fn a_grain_pushed_against_a_wall_stays_in_the_domain() {
 
 /// Largest overlap of suspended grains, in diameters of the smaller of each pair, and the number
 /// of pairs overlapping by more than 5 % (pairs found by the cell list on frozen positions).
-fn overlaps(st: &settle::scenes::sedimentation::State, width_m: f64) -> (f64, usize) {
+fn overlaps(st: &crate::scenes::sedimentation::State, width_m: f64) -> (f64, usize) {
     let probes: Vec<Option<Probe>> = st
         .grains
         .iter()
@@ -277,9 +277,9 @@ fn overlaps(st: &settle::scenes::sedimentation::State, width_m: f64) -> (f64, us
 
 #[test]
 fn full_physics_with_contacts_accounts_for_every_grain() {
-    use settle::fluid::sphere_volume_m3;
-    use settle::run::prepare;
-    use settle::scenes::sedimentation::{setup, simulate, OnRecord, State};
+    use super::prepare;
+    use crate::fluid::sphere_volume_m3;
+    use crate::scenes::sedimentation::{setup, simulate, OnRecord, State};
     use std::path::Path;
     // Sample 1, 20 000 grains, full physics with contacts and lubrication, 120 s. Tolerances:
     // at every record time the suspended plus deposited solid volume equals the sample's to
@@ -404,7 +404,7 @@ fn head_on(restitution: f64, friction: f64, offset_m: f64) -> [Resolved; 2] {
         fluid_density_kg_m3: rho_f,
         viscosity_pa_s: mu,
         friction,
-        restitution: settle::contact::RestitutionLaw::constant(restitution),
+        restitution: crate::contact::RestitutionLaw::constant(restitution),
         ..scene(
             false,
             CONTACT_TRAVEL_PER_SUBSTEP,

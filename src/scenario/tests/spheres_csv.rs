@@ -2,8 +2,7 @@
 //! `[[spheres]]`, the old names still read, spaces around fields accepted, and every error naming
 //! the line of the file and the data row (both 1-based) and the column (1-based).
 
-use crate::common::tmp;
-use settle::scenario::inputs::{spheres, SphereCase};
+use crate::scenario::inputs::{spheres, SphereCase};
 use std::path::Path;
 
 const SCENARIO: &str = r#"
@@ -27,7 +26,7 @@ fn read(dir: &Path, csv: &str) -> Result<Vec<SphereCase>, String> {
     let toml = dir.join("s.toml");
     std::fs::write(&toml, SCENARIO).unwrap();
     std::fs::write(dir.join("spheres.csv"), csv).unwrap();
-    let s = settle::scenario::load(&toml, &[]).expect("the scenario itself is good");
+    let s = crate::scenario::load(&toml, &[]).expect("the scenario itself is good");
     spheres(&s, &toml).map_err(|e| {
         assert_eq!(e.key.as_deref(), Some("spheres_csv.path"), "{e}");
         e.to_string()
@@ -161,4 +160,9 @@ fn an_empty_id_and_a_repeated_id_name_their_rows() {
             "already the id of line 2 (data row 1)",
         ],
     );
+}
+
+/// A fresh temporary folder, removed when dropped.
+fn tmp() -> tempfile::TempDir {
+    tempfile::tempdir().expect("temp dir")
 }

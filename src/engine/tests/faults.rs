@@ -2,9 +2,9 @@
 //! a suggested dt (issue 8), beyond the explicit integrator's instability (`engine/rest.rs`):
 //! contacts overlapping deeper than a fraction of the diameter, and bodies leaving the domain.
 
-use settle::dynamics::Integrator;
-use settle::engine::{dim2, dim3, EngineSettings};
-use settle::fluid::{DragLaw, SphereDrag};
+use crate::dynamics::Integrator;
+use crate::engine::{dim2, dim3, EngineSettings};
+use crate::fluid::{DragLaw, SphereDrag};
 
 const G: f64 = 9.81;
 

@@ -2,9 +2,9 @@
 //! Valentik–Whitmore spheres stepped through a Rapier world (`engine = "rapier"`) match the
 //! analytic solution and the free integrator.
 
-use settle::dynamics::Integrator;
-use settle::run::prepare;
-use settle::scenes::free_settling::{run, run_rapier, RunOptions};
+use super::prepare;
+use crate::dynamics::Integrator;
+use crate::scenes::free_settling::{run, run_rapier, RunOptions};
 use std::path::Path;
 
 fn opts(dt: f64) -> RunOptions {

@@ -1,4 +1,4 @@
-//! The Rapier engine wrapper (`settle::engine`): free fall against the analytic Stokes solution,
+//! The Rapier engine wrapper (`crate::engine`): free fall against the analytic Stokes solution,
 //! grains coming to rest on a floor and in a small pile, and the instability report of the explicit
 //! integrator.
 //!
@@ -6,9 +6,9 @@
 //! survey behind the chosen steps (penetration, contact force / net weight, residual speed for
 //! each grain size and dt).
 
-use settle::dynamics::Integrator;
-use settle::engine::{dim2, dim3, ContactDrag, EngineSettings};
-use settle::fluid::{DragLaw, SphereDrag};
+use crate::dynamics::Integrator;
+use crate::engine::{dim2, dim3, ContactDrag, EngineSettings};
+use crate::fluid::{DragLaw, SphereDrag};
 
 const G: f64 = 9.81;
 const WATER_RHO: f64 = 1000.0;
@@ -285,7 +285,7 @@ struct Pile {
 }
 
 /// Largest overlap / d among equal grains in a box [0, width] × [0, ∞).
-fn max_overlap(world: &dim2::World, ids: &[settle::engine::BodyId], d: f64, width: f64) -> f64 {
+fn max_overlap(world: &dim2::World, ids: &[crate::engine::BodyId], d: f64, width: f64) -> f64 {
     let mut overlap: f64 = 0.0;
     for (a, &i) in ids.iter().enumerate() {
         let p = world.position_m(i);

@@ -4,7 +4,7 @@
 //! range). Now the default snapshot and instrument times after the end are dropped; times
 //! written explicitly after the end are still refused, naming their key.
 
-use settle::run::prepare;
+use crate::scenario::parse;
 use std::path::Path;
 
 const SED: &str = "scenarios/sedimentation_sample1.toml";
@@ -15,13 +15,12 @@ fn set(list: &[&str]) -> Vec<String> {
 
 #[test]
 fn a_shorter_end_time_trims_the_default_times_only() {
-    let p = prepare(Path::new(SED), None, &set(&["time.end_s=600"])).unwrap();
+    let p = parse(Path::new(SED), &set(&["time.end_s=600"])).unwrap();
     let sm = p.scenario.sample.as_ref().unwrap();
     assert_eq!(sm.snapshot_times_s, [60.0, 300.0]);
     // An [instruments] table that leaves its times to the defaults: those within 600 s.
-    let p = prepare(
+    let p = parse(
         Path::new(SED),
-        None,
         &set(&["time.end_s=600", "instruments.sphere_depth_fraction=0.4"]),
     )
     .unwrap();
@@ -30,17 +29,15 @@ fn a_shorter_end_time_trims_the_default_times_only() {
     assert!(ins.buoyancy_times_s.iter().all(|&t| t <= 600.0));
     assert_eq!(ins.buoyancy_times_s.len(), 4);
     // Explicit times after the end: refused, naming the key.
-    let e = prepare(
+    let e = parse(
         Path::new(SED),
-        None,
         &set(&["time.end_s=600", "sample.snapshot_times_s=[60.0, 900.0]"]),
     )
     .unwrap_err();
     assert_eq!(e.key.as_deref(), Some("sample.snapshot_times_s[1]"), "{e}");
     assert!(e.message.contains("≤ 600"), "{e}");
-    let e = prepare(
+    let e = parse(
         Path::new(SED),
-        None,
         &set(&[
             "time.end_s=600",
             "instruments.hydrometer_times_s=[120.0, 900.0]",

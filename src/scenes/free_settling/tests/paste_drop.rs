@@ -3,10 +3,10 @@
 //! same equation of motion (free fall in air, then m dv/dt = (m − m_f) g − F_d(v) with f-EDEM's
 //! Bingham drag, eq. 9/14/19) by classical RK4 with a 1e-6 s step and event location at v = 0.
 
-use settle::fluid::bingham::{bingham_drag_n, bingham_static_resistance_n};
-use settle::fluid::sphere_mass_kg;
-use settle::run::prepare;
-use settle::scenes::free_settling::{run, RunOptions, StopReason};
+use super::prepare;
+use crate::fluid::bingham::{bingham_drag_n, bingham_static_resistance_n};
+use crate::fluid::sphere_mass_kg;
+use crate::scenes::free_settling::{run, RunOptions, StopReason};
 use std::path::Path;
 
 const RHO_F: f64 = 1843.0;

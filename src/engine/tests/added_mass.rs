@@ -5,10 +5,10 @@
 //! weight), the added mass follows the immersed volume across a free surface, and C_m = 0 is
 //! added mass off bit for bit.
 
-use settle::dynamics::Integrator;
-use settle::engine::coupling::free_flight;
-use settle::engine::{dim2, dim3, EngineSettings};
-use settle::fluid::{immersion, sphere_mass_kg, DragLaw, SphereDrag, Submergence};
+use crate::dynamics::Integrator;
+use crate::engine::coupling::free_flight;
+use crate::engine::{dim2, dim3, EngineSettings};
+use crate::fluid::{immersion, sphere_mass_kg, DragLaw, SphereDrag, Submergence};
 use std::f64::consts::PI;
 
 const G: f64 = 9.81;

@@ -1,4 +1,4 @@
-//! The registry of scene kinds (`settle::scenario::KINDS`) holds every kind, and each
+//! The registry of scene kinds (`crate::scenario::KINDS`) holds every kind, and each
 //! registered kind has every piece `CONTRIBUTING.md` ("Add a scene kind") asks for: its spec
 //! (the example scenario parses into the spec of that kind), its scene (a folder
 //! `src/scenes/<folder>/` declared in `src/scenes/mod.rs`, with its `cost.rs`), its reference
@@ -7,7 +7,7 @@
 //! function of a plain description of a kind, so that a deliberately incomplete kind shows it
 //! failing (`an_incomplete_kind_is_named_with_what_it_lacks`).
 
-use settle::scenario::{KindInfo, KINDS};
+use crate::scenario::{KindInfo, KINDS};
 use std::path::Path;
 
 /// A kind as the check sees it: the registry entry's names and lists.
@@ -67,7 +67,7 @@ fn missing(k: &Entry, root: &Path) -> Vec<String> {
                     k.example
                 ));
             }
-            match settle::scenario::parse(&example, &[]) {
+            match crate::scenario::parse(&example, &[]) {
                 Ok(p) if p.scene.kind_name() == name => {}
                 Ok(p) => out.push(format!(
                     "{name}: spec: scenarios/{} parses into the spec of `{}`",
@@ -169,7 +169,7 @@ fn an_incomplete_kind_is_named_with_what_it_lacks() {
 #[test]
 fn every_kind_is_registered_once_under_its_name() {
     let text = "name = \"t\"\nkind = \"no_such_kind\"\n";
-    let e = settle::scenario::load_str(text, Path::new("t.toml"), &[]).unwrap_err();
+    let e = crate::scenario::load_str(text, Path::new("t.toml"), &[]).unwrap_err();
     let listed = e
         .message
         .split_once("expected one of ")
@@ -179,23 +179,24 @@ fn every_kind_is_registered_once_under_its_name() {
     let registered: Vec<&str> = KINDS.iter().map(|k| k.name).collect();
     assert_eq!(names, registered, "serde's kinds against the registry");
     for k in KINDS {
-        let kind: settle::scenario::Kind = toml::Value::String(k.name.into()).try_into().unwrap();
+        let kind: crate::scenario::Kind = toml::Value::String(k.name.into()).try_into().unwrap();
         assert_eq!(kind, k.kind, "{}", k.name);
         assert_eq!(kind.name(), k.name);
-        assert_eq!(settle::scenario::info(kind).name, k.name);
+        assert_eq!(crate::scenario::info(kind).name, k.name);
     }
 }
 
 /// Scenes read the typed scenario (`Prepared::common` and their spec), not the raw record
 /// `Prepared::scenario`: no `.scenario` field access in `src/scenes/` outside the sedimentation
-/// cylinder (whose simulation, instruments and outputs still take the raw scenario whole).
+/// cylinder (whose simulation, instruments and outputs still take the raw scenario whole) and
+/// the scenes' unit tests (`tests/` folders, which load scenario files as `settle run` does).
 #[test]
 fn scenes_read_their_spec_not_the_raw_scenario() {
     fn walk(dir: &Path, out: &mut Vec<String>) {
         for e in std::fs::read_dir(dir).unwrap().flatten() {
             let path = e.path();
             if path.is_dir() {
-                if !path.ends_with("sedimentation") {
+                if !path.ends_with("sedimentation") && !path.ends_with("tests") {
                     walk(&path, out);
                 }
                 continue;

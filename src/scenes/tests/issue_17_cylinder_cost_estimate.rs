@@ -11,13 +11,13 @@
 //! time or peak memory, and the estimate must cover it without overstating it by more than the
 //! stated factor.
 
-use settle::scenes::cost::{check, estimate, Cost};
+use crate::scenes::cost::{check, estimate, Cost};
 use std::path::Path;
 
 fn cost(sample: u32, sets: &[&str]) -> Cost {
     let path = format!("scenarios/sedimentation_sample{sample}.toml");
     let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
-    let p = settle::run::prepare(Path::new(&path), None, &sets).unwrap();
+    let p = crate::scenario::parse(Path::new(&path), &sets).unwrap();
     estimate(&p.scenario)
 }
 
@@ -90,7 +90,7 @@ fn a_million_grains_with_contacts_are_refused_without_force() {
             format!("sample.contacts={contacts}"),
         ]
     };
-    let p = settle::run::prepare(path, None, &sets(true)).unwrap();
+    let p = crate::scenario::parse(path, &sets(true)).unwrap();
     let e = check(&p.scenario, path, false).unwrap_err().to_string();
     for w in [
         "sedimentation_sample2.toml",
@@ -102,6 +102,6 @@ fn a_million_grains_with_contacts_are_refused_without_force() {
         assert!(e.contains(w), "`{w}` missing: {e}");
     }
     assert!(check(&p.scenario, path, true).is_ok());
-    let p = settle::run::prepare(path, None, &sets(false)).unwrap();
+    let p = crate::scenario::parse(path, &sets(false)).unwrap();
     assert!(check(&p.scenario, path, false).is_ok());
 }

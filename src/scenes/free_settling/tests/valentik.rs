@@ -2,10 +2,10 @@
 //! f-EDEM §4.1. Data: `data/valentik_whitmore_1965_*.csv` (f-EDEM Tables 2 and 3);
 //! scenarios: `scenarios/valentik_susp1.toml` … `valentik_susp6.toml`.
 
-use settle::fluid::bingham::{cd_from_terminal_velocity, reynolds_bingham};
-use settle::run::prepare;
-use settle::scenario::Rheology;
-use settle::scenes::free_settling::{run, RunOptions, SphereResult, StopReason};
+use super::prepare;
+use crate::fluid::bingham::{cd_from_terminal_velocity, reynolds_bingham};
+use crate::scenario::Rheology;
+use crate::scenes::free_settling::{run, RunOptions, SphereResult, StopReason};
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -184,7 +184,7 @@ fn terminal_velocities_agree_with_the_force_balance_without_chatter() {
 #[test]
 fn overall_error_against_measurements_is_as_documented() {
     let res = run_all(1e-3);
-    let stats = settle::scenes::free_settling::output::metrics(&res);
+    let stats = crate::scenes::free_settling::output::metrics(&res);
     let all = stats.last().unwrap();
     assert_eq!(all.group, "all");
     assert_eq!(all.n, 121);

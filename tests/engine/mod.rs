@@ -1,6 +1,0 @@
-//! `src/engine/`: the Rapier worlds.
-
-mod added_mass;
-mod faults;
-mod free_settling;
-mod rest;
