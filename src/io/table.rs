@@ -8,10 +8,12 @@
 use std::io;
 
 /// One output table: a file name relative to the run's folder (`summary.csv`,
-/// `pictures/t_10s.csv`), a header and rows of cells.
+/// `pictures/t_10s.csv`), comment lines before the header (the `# key = value` lines of a
+/// readings file; usually none), a header and rows of cells.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Table {
     name: String,
+    preamble: Vec<String>,
     header: Vec<String>,
     rows: Vec<Vec<String>>,
 }
@@ -45,6 +47,7 @@ impl Table {
     ) -> Self {
         Self {
             name: name.into(),
+            preamble: Vec::new(),
             header: header.into_iter().map(Into::into).collect(),
             rows: Vec::new(),
         }
@@ -59,6 +62,18 @@ impl Table {
         let mut t = Self::new(name, header);
         t.rows = rows;
         t
+    }
+
+    /// The table with the comment lines `lines` before its header (each written as given, `#`
+    /// included, followed by a newline).
+    pub fn with_preamble(mut self, lines: Vec<String>) -> Self {
+        self.preamble = lines;
+        self
+    }
+
+    /// The comment lines before the header (`# instrument = pipette`), as written.
+    pub fn preamble(&self) -> &[String] {
+        &self.preamble
     }
 
     /// Appends a row (one cell per column).
@@ -123,9 +138,15 @@ impl Table {
         self.column(name)?.to_f64()
     }
 
-    /// The table as the bytes of its CSV file (RFC 4180 quoting where a cell needs it).
+    /// The table as the bytes of its CSV file (RFC 4180 quoting where a cell needs it): the
+    /// preamble lines, the header, the rows.
     pub fn to_csv(&self) -> io::Result<Vec<u8>> {
-        let mut w = csv::Writer::from_writer(Vec::new());
+        let mut head = Vec::new();
+        for l in &self.preamble {
+            head.extend_from_slice(l.as_bytes());
+            head.push(b'\n');
+        }
+        let mut w = csv::Writer::from_writer(head);
         w.write_record(&self.header).map_err(io::Error::other)?;
         for r in &self.rows {
             w.write_record(r).map_err(io::Error::other)?;
@@ -133,8 +154,16 @@ impl Table {
         w.into_inner().map_err(|e| io::Error::other(e.to_string()))
     }
 
-    /// Reads a table back from CSV bytes (the header first), named `name`.
+    /// Reads a table back from CSV bytes (leading `#` lines as the preamble, then the header),
+    /// named `name`.
     pub fn from_csv(name: impl Into<String>, bytes: &[u8]) -> io::Result<Self> {
+        let mut preamble = Vec::new();
+        let mut bytes = bytes;
+        while bytes.first() == Some(&b'#') {
+            let end = bytes.iter().position(|&b| b == b'\n').unwrap_or(bytes.len());
+            preamble.push(String::from_utf8_lossy(&bytes[..end]).into_owned());
+            bytes = &bytes[(end + 1).min(bytes.len())..];
+        }
         let mut r = csv::ReaderBuilder::new()
             .has_headers(true)
             .flexible(false)
@@ -145,7 +174,7 @@ impl Table {
             .iter()
             .map(str::to_string)
             .collect();
-        let mut t = Self::new(name, header);
+        let mut t = Self::new(name, header).with_preamble(preamble);
         for rec in r.records() {
             let rec = rec.map_err(io::Error::other)?;
             t.rows.push(rec.iter().map(str::to_string).collect());
@@ -170,6 +199,10 @@ mod tests {
         );
         assert_eq!(Table::from_csv("a.csv", &bytes).unwrap(), t);
         assert_eq!(t.stem(), "a");
+        let p = t.clone().with_preamble(vec!["# instrument = pipette".into()]);
+        let bytes = p.to_csv().unwrap();
+        assert!(bytes.starts_with(b"# instrument = pipette\nx_m,label\n"));
+        assert_eq!(Table::from_csv("a.csv", &bytes).unwrap(), p);
     }
 
     #[test]
