@@ -53,8 +53,8 @@ mod input;
 mod instrument;
 
 pub use figures::ReduceOptions;
-pub use input::Readings;
 pub(crate) use input::read_readings;
+pub use input::Readings;
 
 use crate::error::Error;
 use crate::instruments::reduction::{
@@ -126,10 +126,7 @@ impl ReduceResult {
 /// r.write("out")?; // out/soil_a_reduced/
 /// # Ok::<(), settle::Error>(())
 /// ```
-pub fn reduce(
-    readings: impl Into<Readings>,
-    opts: &ReduceOptions,
-) -> Result<ReduceResult, Error> {
+pub fn reduce(readings: impl Into<Readings>, opts: &ReduceOptions) -> Result<ReduceResult, Error> {
     let readings = readings.into();
     let (setup, lab) = read_readings(&readings, opts)?;
     let file = readings.path();

@@ -52,12 +52,6 @@ const KNOWN: &[&[&str]] = &[
         "scenes/funnel_pour/setup.rs",
         "scenes/funnel_pour/simulate.rs",
     ],
-    &[
-        "reduce/figures.rs",
-        "reduce/input.rs",
-        "reduce/instrument.rs",
-        "reduce/mod.rs",
-    ],
     &["engine/world/mod.rs", "engine/world/surface.rs"],
     &[
         "scenes/restitution_drop/fit.rs",
