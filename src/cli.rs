@@ -268,13 +268,15 @@ pub fn main() -> i32 {
             hydrometer,
             out,
         } => {
-            let req = crate::reduce::Request {
-                file: readings,
+            let opts = crate::reduce::ReduceOptions {
                 standard,
                 hydrometer,
-                out_dir: out,
             };
-            outcome(crate::reduce::run(&req), |r| (&r.lines, &r.warnings))
+            let done = crate::reduce::reduce(readings, &opts).and_then(|r| {
+                let dest = r.write(&out)?;
+                Ok((r.lines(&dest), r.warnings))
+            });
+            outcome(done, |(lines, warnings)| (lines, warnings))
         }
         Command::Laws {
             spheres,

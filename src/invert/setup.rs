@@ -11,25 +11,33 @@ use crate::instruments::reduction::{
     PipetteRegion, Reduced, Standard, TestSetup,
 };
 use crate::instruments::Analysis;
+use crate::reduce::{Readings, ReduceOptions};
 use std::path::Path;
 
 /// Reads one readings file: its [`Test`] (readings of resolution `resolution`, else the
 /// instrument's default) and its standard reduction.
 pub fn read_test(file: &Path, resolution: Option<f64>) -> Result<(Test, Vec<Reduced>), Error> {
-    if !file.is_file() {
-        return Err(Error::bad_input(
-            file,
-            None,
-            "no such readings file (give the path of a CSV in the format of `settle reduce`)",
-        ));
+    read_test_of(&Readings::File(file.to_path_buf()), resolution)
+}
+
+/// [`read_test`] of readings given as a file or in memory.
+pub(crate) fn read_test_of(
+    readings: &Readings,
+    resolution: Option<f64>,
+) -> Result<(Test, Vec<Reduced>), Error> {
+    let file = &readings.path();
+    if let Readings::File(f) = readings {
+        if !f.is_file() {
+            return Err(Error::bad_input(
+                file,
+                None,
+                "no such readings file (give the path of a CSV in the format of `settle reduce`)",
+            ));
+        }
     }
-    let rq = crate::reduce::Request {
-        file: file.to_path_buf(),
-        ..Default::default()
-    };
-    let (setup, readings) = crate::reduce::read(file, &rq)?;
-    let test = test_of(file, &setup, &readings, resolution)?;
-    Ok((test, reduce(&setup, &readings)))
+    let (setup, lab) = crate::reduce::read_readings(readings, &ReduceOptions::default())?;
+    let test = test_of(file, &setup, &lab, resolution)?;
+    Ok((test, reduce(&setup, &lab)))
 }
 
 /// The analysis of a file's test: μ_w at the mean temperature of its readings, ρ_f the file's

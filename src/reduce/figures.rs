@@ -3,11 +3,20 @@
 //! of one figure or named choice. Below [`super::input`] (the table) and [`super::instrument`]
 //! (which figures apply to which instrument), which both read the figures through it.
 
-use super::Request;
 use crate::error::Error;
 use crate::instruments::reduction::{HydrometerType, Standard};
 use std::collections::BTreeMap;
 use std::path::Path;
+
+/// The options of `settle reduce` (and of the reduction `settle invert` makes of each file): the
+/// standard and the hydrometer, overriding the readings' `# standard` and `# hydrometer` lines.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct ReduceOptions {
+    /// `--standard`: `d422` or `d7928` (None: the file's `# standard`).
+    pub standard: Option<String>,
+    /// `--hydrometer`: `152H` or `151H` (None: the file's `# hydrometer`).
+    pub hydrometer: Option<String>,
+}
 
 /// The instrument that uses only the hydrometer's figures.
 pub(super) const HYDROMETER: &str = "hydrometer";
@@ -184,7 +193,7 @@ pub(super) fn required(file: &Path, key: &str, x: Option<f64>, what: &str) -> Re
 pub(super) fn kinds(
     file: &Path,
     p: &Parsed,
-    req: &Request,
+    req: &ReduceOptions,
 ) -> Result<(Standard, HydrometerType), Error> {
     let standard = choice(
         file,

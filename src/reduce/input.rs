@@ -3,14 +3,103 @@
 //! [`Error::BadInput`] naming the file, the key or the row and column (1-based), and what is
 //! allowed.
 
-use super::figures::{bad, split, Parsed};
+use super::figures::{bad, split, Parsed, ReduceOptions};
 use super::instrument::{setup, RowRules};
-use super::Request;
 use crate::error::Error;
 use crate::instruments::reduction::{LabReading, TestSetup};
 use crate::io::fmt::num;
+use crate::io::Table;
 use std::collections::BTreeMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
+
+/// The readings of one test: a readings file, or the same in memory.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Readings {
+    /// A readings file (CSV, the format of `docs/commands/reduce.md`).
+    File(PathBuf),
+    /// A readings file's content in memory: its `# key = value` figures (in order) and its
+    /// table (the file's columns: `time_min` or `time_s`, `reading` (or `drawn_mass_g`,
+    /// `apparent_mass_g`), `temperature_c` [, `blank_reading`]). The table's name stands for
+    /// the file: it names the results folder (`<stem>_reduced`) and the errors.
+    Table {
+        /// The test's figures, `(key, value)` as the file's `# key = value` lines give them.
+        figures: Vec<(String, String)>,
+        /// The readings.
+        table: Table,
+    },
+}
+
+impl Readings {
+    /// Readings in memory: `figures` (key, value) and the table of readings.
+    pub fn table<K: Into<String>, V: Into<String>>(
+        figures: impl IntoIterator<Item = (K, V)>,
+        table: Table,
+    ) -> Self {
+        Readings::Table {
+            figures: figures
+                .into_iter()
+                .map(|(k, v)| (k.into(), v.into()))
+                .collect(),
+            table,
+        }
+    }
+
+    /// The path errors and records name: the file, or the table's name.
+    pub fn path(&self) -> PathBuf {
+        match self {
+            Readings::File(p) => p.clone(),
+            Readings::Table { table, .. } => PathBuf::from(table.name()),
+        }
+    }
+
+    /// The stem of the results folder's name (`<stem>_reduced`, `<stem>_inverted`).
+    pub fn stem(&self) -> String {
+        self.path()
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "readings".into())
+    }
+
+    /// The text of the readings file (read from the file, or written from memory).
+    pub(crate) fn text(&self) -> Result<String, Error> {
+        match self {
+            Readings::File(file) => {
+                std::fs::read_to_string(file).map_err(|e| Error::Io(file.clone(), e))
+            }
+            Readings::Table { figures, table } => {
+                let mut t = String::new();
+                for (k, v) in figures {
+                    t.push_str(&format!("# {k} = {v}\n"));
+                }
+                t.push_str(&table.header().join(","));
+                t.push('\n');
+                for r in table.rows() {
+                    t.push_str(&r.join(","));
+                    t.push('\n');
+                }
+                Ok(t)
+            }
+        }
+    }
+}
+
+impl From<PathBuf> for Readings {
+    fn from(p: PathBuf) -> Self {
+        Readings::File(p)
+    }
+}
+
+impl From<&Path> for Readings {
+    fn from(p: &Path) -> Self {
+        Readings::File(p.to_path_buf())
+    }
+}
+
+impl From<&str> for Readings {
+    fn from(p: &str) -> Self {
+        Readings::File(PathBuf::from(p))
+    }
+}
 
 /// The columns a readings file may have (which apply to which instrument: [`columns`]).
 const COLUMNS: [&str; 7] = [
@@ -23,9 +112,13 @@ const COLUMNS: [&str; 7] = [
     "blank_reading",
 ];
 
-/// Reads and checks a readings file: the test's figures and its readings.
-pub fn read(file: &Path, req: &Request) -> Result<(TestSetup, Vec<LabReading>), Error> {
-    let text = std::fs::read_to_string(file).map_err(|e| Error::Io(file.to_path_buf(), e))?;
+/// Reads and checks readings (a file or in memory): the test's figures and its readings.
+pub(crate) fn read_readings(
+    readings: &Readings,
+    req: &ReduceOptions,
+) -> Result<(TestSetup, Vec<LabReading>), Error> {
+    let text = readings.text()?;
+    let file = &readings.path();
     // A spreadsheet's UTF-8 byte-order mark is not part of the first key or column name.
     let p = split(file, text.trim_start_matches('\u{feff}'))?;
     let (s, rules) = setup(file, &p, req)?;

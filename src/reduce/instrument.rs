@@ -4,9 +4,9 @@
 //! else than its author thought.
 
 use super::figures::{
-    bad, d7928_keys, figure, keys_of, kinds, required, Parsed, HYDROMETER, PIPETTE, SPHERE,
+    bad, d7928_keys, figure, keys_of, kinds, required, Parsed, ReduceOptions, HYDROMETER, PIPETTE,
+    SPHERE,
 };
-use super::Request;
 use crate::error::Error;
 use crate::instruments::reduction::d7928::MeasuredHydrometer;
 use crate::instruments::reduction::{
@@ -122,7 +122,7 @@ impl RowRules {
 pub(super) fn setup(
     file: &Path,
     p: &Parsed,
-    req: &Request,
+    req: &ReduceOptions,
 ) -> Result<(TestSetup, RowRules), Error> {
     let kind = match p.figures.get("instrument") {
         None => "hydrometer".to_string(),
@@ -475,7 +475,7 @@ fn sphere(file: &Path, p: &Parsed, height_m: f64, s: &mut TestSetup) -> Result<R
 fn hydrometer(
     file: &Path,
     p: &Parsed,
-    req: &Request,
+    req: &ReduceOptions,
     s: &mut TestSetup,
 ) -> Result<RowRules, Error> {
     refuse_foreign(file, p, "hydrometer")?;

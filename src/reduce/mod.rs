@@ -2,8 +2,27 @@
 //! (ASTM D422 or D7928), pipette draws and buoyancy-sphere weighings (seed 000 eqs. 16–18, 22;
 //! `# instrument = pipette | buoyancy-sphere`, [`crate::instruments::reduction`]) into
 //! `OUT/<stem>_reduced/`: `percent_finer.csv`, `percent_finer.svg` and `reduce.toml`.
-//! [`read`] is the one entry point that reads a readings file, for every instrument
-//! (`settle invert` reads through it too).
+//! `read_readings` is the one place that reads readings, for every instrument (`settle invert`
+//! reads through it too).
+//!
+//! # From Rust
+//!
+//! [`reduce`] runs the command in memory: the readings as a file or as a table
+//! ([`Readings`]), the options of the command line ([`ReduceOptions`], its defaults those of
+//! `settle reduce`); it returns a [`ReduceResult`] with every table, the chart as SVG text and
+//! the typed figures, and [`ReduceResult::write`] writes the folder the command writes.
+//!
+//! ```no_run
+//! use settle::Table;
+//! use settle::reduce::{reduce, Readings, ReduceOptions};
+//! let mut t = Table::new("soil_a.csv", ["time_min", "reading", "temperature_c"]);
+//! t.push(vec!["1".into(), "45.5".into(), "21.5".into()]);
+//! let figures = [("standard", "d422"), ("hydrometer", "152H"), ("dry_mass_g", "50"),
+//!     ("specific_gravity", "2.7"), ("meniscus_correction", "1"), ("blank_reading", "6")];
+//! let r = reduce(Readings::table(figures, t), &ReduceOptions::default())?;
+//! println!("{:?}", r.table("percent_finer").unwrap().f64s("diameter_m"));
+//! # Ok::<(), settle::Error>(())
+//! ```
 //!
 //! # The readings file
 //!
@@ -33,71 +52,94 @@ mod figures;
 mod input;
 mod instrument;
 
-pub use input::read;
+pub use figures::ReduceOptions;
+pub(crate) use input::read_readings;
+pub use input::Readings;
 
 use crate::error::Error;
 use crate::instruments::reduction::{
-    reduce, Instrument, LabReading, PipetteRegion, Reduced, TestSetup,
+    reduce as reduce_readings, Instrument, LabReading, PipetteRegion, Reduced, TestSetup,
 };
-use crate::io::chart::{scatter_svg, Scale, Series};
+use crate::io::chart::{Chart, Scale, Series};
 use crate::io::fmt::{clean, sig_plain};
-use crate::io::{self, StagedDir};
+use crate::io::{self, Outputs, StagedDir, Table};
 use std::path::{Path, PathBuf};
 
-/// What `settle reduce` is asked to do.
-#[derive(Clone, Debug, Default)]
-pub struct Request {
-    /// The readings file.
-    pub file: PathBuf,
-    /// `--standard`, overriding the file's `standard`.
-    pub standard: Option<String>,
-    /// `--hydrometer`, overriding the file's `hydrometer`.
-    pub hydrometer: Option<String>,
-    /// Output folder; results go to `out_dir/<stem>_reduced/`.
-    pub out_dir: PathBuf,
-}
-
-/// What a reduction produced.
+/// What a reduction produced, in memory: the tables and files `settle reduce` writes
+/// (`percent_finer.csv`, `percent_finer.svg`, `reduce.toml`) and the typed figures.
 #[derive(Clone, Debug)]
-pub struct Report {
-    /// The results folder.
-    pub out: PathBuf,
+pub struct ReduceResult {
+    /// The results folder's name, `<stem>_reduced`.
+    pub name: String,
+    /// The readings file (or the name of the table in memory).
+    pub input: PathBuf,
     /// The test's figures as read.
     pub setup: TestSetup,
     /// Every reading reduced.
     pub reduced: Vec<Reduced>,
-    /// Console summary, one line each.
-    pub lines: Vec<String>,
     /// Validity warnings (percent finer outside 0–100 %).
     pub warnings: Vec<String>,
+    /// The tables and files of `OUT/<stem>_reduced/`.
+    pub outputs: Outputs,
 }
 
-/// Runs `settle reduce`: reads, checks, reduces and writes `OUT/<stem>_reduced/`.
-pub fn run(req: &Request) -> Result<Report, Error> {
-    let file = &req.file;
-    let (setup, readings) = read(file, req)?;
-    let stem = file
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "readings".into());
-    let name = format!("{stem}_reduced");
-    let dest = req.out_dir.join(&name);
-    if io::check_destination(&dest).is_err() {
-        return Err(Error::bad_argument(
-            "--out",
-            &dest,
-            "exists and was not created by settle (no .settle-run marker), so settle will not \
-             replace it: choose another --out",
-        ));
+impl ReduceResult {
+    /// The table of the file `name` (`percent_finer` or `percent_finer.csv`).
+    pub fn table(&self, name: &str) -> Option<&Table> {
+        self.outputs.get(name)
     }
-    let reduced = reduce(&setup, &readings);
-    let ioe = |e: std::io::Error| Error::Io(dest.clone(), e);
-    let stage = StagedDir::new(&req.out_dir, &name).map_err(ioe)?;
-    write_csv(&stage.path("percent_finer.csv"), &reduced).map_err(ioe)?;
-    write_chart(&stage.path("percent_finer.svg"), &stem, &setup, &reduced).map_err(ioe)?;
-    let record = record(file, &setup, &readings);
-    io::write_atomic(&stage.path("reduce.toml"), record.as_bytes()).map_err(ioe)?;
-    let out = stage.commit().map_err(ioe)?;
+
+    /// Writes `out_dir/<stem>_reduced/` as `settle reduce --out OUT_DIR` does (staged, then
+    /// moved into place; refused when that folder exists and was not made by settle); returns
+    /// the folder.
+    pub fn write(&self, out_dir: impl AsRef<Path>) -> Result<PathBuf, Error> {
+        let out_dir = out_dir.as_ref();
+        let dest = out_dir.join(&self.name);
+        if io::check_destination(&dest).is_err() {
+            return Err(Error::bad_argument(
+                "--out",
+                &dest,
+                "exists and was not created by settle (no .settle-run marker), so settle will \
+                 not replace it: choose another --out",
+            ));
+        }
+        let ioe = |e: std::io::Error| Error::Io(dest.clone(), e);
+        let stage = StagedDir::new(out_dir, &self.name).map_err(ioe)?;
+        self.outputs.write_into(&stage.path("")).map_err(ioe)?;
+        stage.commit().map_err(ioe)
+    }
+
+    /// The console summary of `settle reduce`, the results written to `out`.
+    pub fn lines(&self, out: &Path) -> Vec<String> {
+        summary(&self.input, out, &self.setup, &self.reduced)
+    }
+}
+
+/// `settle reduce` in memory: reads and checks the readings (a file or a table), reduces every
+/// reading by the standard (or the instrument's equations) and makes the outputs. Bad input is
+/// [`Error::BadInput`] naming the file (or table), the key or the row and column.
+///
+/// ```no_run
+/// use settle::reduce::{reduce, ReduceOptions};
+/// let r = reduce("lab/soil_a.csv", &ReduceOptions::default())?;
+/// let finer = r.table("percent_finer").unwrap().f64s("percent_finer");
+/// r.write("out")?; // out/soil_a_reduced/
+/// # Ok::<(), settle::Error>(())
+/// ```
+pub fn reduce(readings: impl Into<Readings>, opts: &ReduceOptions) -> Result<ReduceResult, Error> {
+    let readings = readings.into();
+    let (setup, lab) = read_readings(&readings, opts)?;
+    let file = readings.path();
+    let stem = readings.stem();
+    let reduced = reduce_readings(&setup, &lab);
+    let ioe = |e: std::io::Error| Error::Io(file.clone(), e);
+    let mut outputs = Outputs::new();
+    outputs.table(csv_table(&reduced));
+    outputs.file(
+        "percent_finer.svg",
+        chart(&stem, &setup, &reduced).map_err(ioe)?,
+    );
+    outputs.file("reduce.toml", record(&file, &setup, &lab));
     let warnings = reduced
         .iter()
         .filter(|r| !(0.0..=100.0).contains(&r.percent_finer))
@@ -110,19 +152,19 @@ pub fn run(req: &Request) -> Result<Report, Error> {
             )
         })
         .collect();
-    let lines = summary(file, &out, &setup, &reduced);
-    Ok(Report {
-        out,
+    Ok(ReduceResult {
+        name: format!("{stem}_reduced"),
+        input: file,
         setup,
         reduced,
-        lines,
         warnings,
+        outputs,
     })
 }
 
 /// How the readings were reduced, for the console and the chart: `ASTM D7928, 152H`,
 /// `pipette, seed 000 eq. 17`, `buoyancy sphere, seed 000 eq. 22`.
-pub fn method(s: &TestSetup) -> String {
+pub(crate) fn method(s: &TestSetup) -> String {
     match s.instrument {
         Instrument::Hydrometer(h) => {
             format!("ASTM {}, {}", s.standard.name().to_uppercase(), h.name())
@@ -165,7 +207,7 @@ fn summary(file: &Path, out: &Path, s: &TestSetup, red: &[Reduced]) -> Vec<Strin
     lines
 }
 
-fn write_csv(path: &Path, red: &[Reduced]) -> std::io::Result<()> {
+fn csv_table(red: &[Reduced]) -> Table {
     let rows: Vec<Vec<String>> = red
         .iter()
         .map(|r| {
@@ -184,9 +226,9 @@ fn write_csv(path: &Path, red: &[Reduced]) -> std::io::Result<()> {
             ]
         })
         .collect();
-    io::write_csv(
-        path,
-        &[
+    Table::with_rows(
+        "percent_finer.csv",
+        [
             "time_s",
             "time_min",
             "reading",
@@ -198,23 +240,19 @@ fn write_csv(path: &Path, red: &[Reduced]) -> std::io::Result<()> {
             "diameter_m",
             "percent_finer",
         ],
-        &rows,
+        rows,
     )
 }
 
-fn write_chart(path: &Path, stem: &str, s: &TestSetup, red: &[Reduced]) -> std::io::Result<()> {
+fn chart(stem: &str, s: &TestSetup, red: &[Reduced]) -> std::io::Result<String> {
     let points = red
         .iter()
         .map(|r| (r.diameter_m * 1e6, r.percent_finer))
         .collect();
-    scatter_svg(
-        path,
-        &format!("{stem}: percent finer ({})", method(s)),
-        "particle diameter [µm]",
-        "percent finer [%]",
-        Scale::Log,
-        Scale::Linear,
-        &[Series::sorted_line(
+    Chart::new(format!("{stem}: percent finer ({})", method(s)))
+        .x("particle diameter [µm]", Scale::Log)
+        .y("percent finer [%]", Scale::Linear)
+        .series(Series::sorted_line(
             match s.instrument {
                 Instrument::Hydrometer(_) => {
                     format!("{} reduction", s.standard.name().to_uppercase())
@@ -223,8 +261,8 @@ fn write_chart(path: &Path, stem: &str, s: &TestSetup, red: &[Reduced]) -> std::
             },
             points,
             0,
-        )],
-    )
+        ))
+        .svg_string()
 }
 
 /// reduce.toml: what was reduced, how, by which settle.

@@ -628,3 +628,56 @@ fn the_atech_d422_example_gives_its_printed_percent_finer() {
     let p = num(&rows[0], "percent_finer");
     assert!((p - 37.6).abs() <= 0.05, "{p}");
 }
+
+/// The library entry `settle::reduce::reduce` makes in memory exactly the files `settle reduce`
+/// writes (tables cell for cell, the chart and the record byte for byte), from the file and from
+/// the same readings given as an in-memory table.
+#[test]
+fn the_in_memory_reduction_equals_the_files_the_command_writes() {
+    use settle::reduce::{reduce as reduce_in_memory, Readings, ReduceOptions};
+    let file = Path::new("data/lab/envalysis_clayloam_d422.csv");
+    let out = tmp();
+    assert_exit(&reduce(file, out.path(), &[]), 0);
+    let dir = out.path().join("envalysis_clayloam_d422_reduced");
+    let r = reduce_in_memory(file, &ReduceOptions::default()).unwrap();
+    assert_eq!(r.name, "envalysis_clayloam_d422_reduced");
+    let on_disk = settle::Table::from_csv(
+        "percent_finer.csv",
+        &std::fs::read(dir.join("percent_finer.csv")).unwrap(),
+    )
+    .unwrap();
+    assert_eq!(r.table("percent_finer"), Some(&on_disk));
+    for f in ["percent_finer.svg", "reduce.toml"] {
+        assert_eq!(
+            r.outputs.bytes(f).unwrap(),
+            std::fs::read(dir.join(f)).unwrap(),
+            "{f}"
+        );
+    }
+    // The same readings as figures and a table in memory.
+    let text = std::fs::read_to_string(file).unwrap();
+    let mut figures = Vec::new();
+    let mut lines = Vec::new();
+    for l in text.lines().map(str::trim).filter(|l| !l.is_empty()) {
+        match l.strip_prefix('#').and_then(|c| c.split_once('=')) {
+            Some((k, v)) => figures.push((k.trim().to_string(), v.trim().to_string())),
+            None if l.starts_with('#') => {}
+            None => lines.push(l.split(',').map(str::to_string).collect::<Vec<_>>()),
+        }
+    }
+    let table = settle::Table::with_rows(
+        "envalysis_clayloam_d422.csv",
+        lines[0].clone(),
+        lines[1..].to_vec(),
+    );
+    let m = reduce_in_memory(Readings::table(figures, table), &ReduceOptions::default()).unwrap();
+    assert_eq!(m.table("percent_finer"), Some(&on_disk));
+    assert_eq!(m.name, r.name);
+    // Written by the library: the same files as the command line's.
+    let lib = tmp();
+    let written = m.write(lib.path()).unwrap();
+    assert_eq!(
+        std::fs::read(written.join("percent_finer.csv")).unwrap(),
+        std::fs::read(dir.join("percent_finer.csv")).unwrap()
+    );
+}

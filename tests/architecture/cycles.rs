@@ -41,12 +41,6 @@ const KNOWN: &[&[&str]] = &[
         "scenes/funnel_pour/simulate.rs",
     ],
     &[
-        "reduce/figures.rs",
-        "reduce/input.rs",
-        "reduce/instrument.rs",
-        "reduce/mod.rs",
-    ],
-    &[
         "scenes/restitution_drop/fit.rs",
         "scenes/restitution_drop/mod.rs",
         "scenes/restitution_drop/setup.rs",
