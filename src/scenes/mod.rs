@@ -74,12 +74,10 @@ pub fn run_scene(
     ctx: &RunContext,
 ) -> Result<(Vec<free_settling::SphereResult>, SceneReport), crate::error::Error> {
     Ok(match &p.scene {
-        SceneSpec::FreeSettling(f) => staged(out, |s| free_settling::run_scene(p, f, s))?,
-        SceneSpec::RestitutionDrop(r) => {
-            (Vec::new(), staged(out, |s| restitution_drop::run(p, r, s))?)
-        }
-        SceneSpec::TiltFriction(t) => (Vec::new(), staged(out, |s| tilt_friction::run(p, t, s))?),
-        SceneSpec::FunnelPour(f) => (Vec::new(), staged(out, |s| funnel_pour::run(p, f, s, ctx))?),
+        SceneSpec::FreeSettling(f) => free_settling::run_scene(p, f, out)?,
+        SceneSpec::RestitutionDrop(r) => (Vec::new(), restitution_drop::run(p, r, out)?),
+        SceneSpec::TiltFriction(t) => (Vec::new(), tilt_friction::run(p, t, out)?),
+        SceneSpec::FunnelPour(f) => (Vec::new(), funnel_pour::run(p, f, out, ctx)?),
         SceneSpec::Sedimentation(sd) => (
             Vec::new(),
             staged(out, |s| sedimentation::run(p, sd, s, ctx))?,

@@ -71,7 +71,7 @@ pub use setup::Geometry;
 pub use simulate::{run_repeat, run_repeat_with, simulate, simulate_with, RepeatOutcome};
 
 use crate::error::Error;
-use crate::io::StagedDir;
+use crate::io::Outputs;
 use crate::scenario::FunnelPourSpec;
 use crate::scenes::{Prepared, RunContext, SceneReport};
 use std::time::Instant;
@@ -85,13 +85,13 @@ pub const DOMAIN_MARGIN_M: f64 = 0.1;
 /// Default interval of the time series when `record.every_s` is not set, s.
 pub const DEFAULT_RECORD_EVERY_S: f64 = 0.01;
 
-/// Funnel pour (kind `funnel_pour`): runs the repeats, writes `balls.csv`, `counts.csv`,
-/// `timeseries.csv`, `z_distribution.csv` + `.svg` and `presence.csv` + `.svg` (see
-/// [`output`]). Interrupted, it writes the repeats that finished.
+/// Funnel pour (kind `funnel_pour`): runs the repeats, adds `balls.csv`, `counts.csv`,
+/// `timeseries.csv`, `z_distribution.csv` + `.svg` and `presence.csv` + `.svg` to `out` (see
+/// [`output`]). Interrupted, it adds the repeats that finished.
 pub fn run(
     p: &Prepared,
     f: &FunnelPourSpec,
-    stage: &StagedDir,
+    out: &mut Outputs,
     ctx: &RunContext,
 ) -> Result<SceneReport, Error> {
     let t0 = Instant::now();
@@ -104,7 +104,7 @@ pub fn run(
         });
     }
     let wall_s = t0.elapsed().as_secs_f64();
-    output::write_all(p, f, &results, stage)?;
+    output::fill(p, f, &results, out)?;
     let balls: Vec<crate::scenes::validity::SphereAt> = p
         .spheres
         .iter()
