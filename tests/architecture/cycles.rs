@@ -47,24 +47,12 @@ const KNOWN: &[&[&str]] = &[
         "scenes/sedimentation/step/kernel.rs",
     ],
     &[
-        "scenes/funnel_pour/mod.rs",
-        "scenes/funnel_pour/placement.rs",
-        "scenes/funnel_pour/setup.rs",
-        "scenes/funnel_pour/simulate.rs",
-    ],
-    &[
         "reduce/figures.rs",
         "reduce/input.rs",
         "reduce/instrument.rs",
         "reduce/mod.rs",
     ],
     &["engine/world/mod.rs", "engine/world/surface.rs"],
-    &[
-        "scenes/restitution_drop/fit.rs",
-        "scenes/restitution_drop/mod.rs",
-        "scenes/restitution_drop/setup.rs",
-        "scenes/restitution_drop/simulate.rs",
-    ],
 ];
 
 /// One source file as the resolver sees it.

@@ -417,12 +417,10 @@ pub fn drop_chart(title: &str, results: &[SphereResult]) -> Chart {
         ));
     }
     by_d.into_iter().enumerate().fold(
-        Chart::new(title)
-            .x("fall height (mm)", Scale::Linear)
-            .y(
-                "settling distance, ball bottom below surface (mm)",
-                Scale::Linear,
-            ),
+        Chart::new(title).x("fall height (mm)", Scale::Linear).y(
+            "settling distance, ball bottom below surface (mm)",
+            Scale::Linear,
+        ),
         |c, (i, (d_um, pts))| {
             c.series(Series::sorted_line(
                 format!("d = {} mm", d_um as f64 / 1000.0),

@@ -57,49 +57,21 @@ pub mod setup;
 pub mod simulate;
 
 pub use fit::{Comparison, Tally};
-pub use setup::drop_settings;
+pub use setup::{drop_settings, Setup};
 pub use simulate::{simulate_drop, DropError, DropOutcome};
 
 #[cfg(doc)]
 use crate::contact::ConstantFit;
-use crate::contact::{restitution_fits, LawFit, RestitutionLaw};
+#[cfg(doc)]
+use crate::contact::RestitutionLaw;
+use crate::contact::{restitution_fits, LawFit};
 #[cfg(doc)]
 use crate::engine::dim3::World;
 use crate::engine::EngineSettings;
 use crate::error::Error;
 use crate::io::Outputs;
-use crate::scenario::{RestitutionDropSpec, RestitutionSpec, SphereSpec};
+use crate::scenario::RestitutionSpec;
 use crate::scenes::{Prepared, SceneReport};
-
-/// What a restitution drop needs from its prepared scenario.
-#[derive(Clone, Copy, Debug)]
-pub struct Setup<'a> {
-    /// The `[restitution_drop]` table: heights, measurements, tolerance.
-    pub spec: &'a RestitutionDropSpec,
-    /// The ball (the scenario's one `[[spheres]]` entry).
-    pub ball: &'a SphereSpec,
-    /// The contact's restitution law (`[contacts]`).
-    pub law: RestitutionLaw,
-    /// The contact's Coulomb friction coefficient (`contacts.friction`).
-    pub friction: f64,
-}
-
-impl<'a> Setup<'a> {
-    /// The setup of a `restitution_drop` scenario from its spec.
-    pub fn of(spec: &'a RestitutionSpec) -> Self {
-        Self {
-            spec: &spec.drop,
-            ball: &spec.ball,
-            law: spec.contacts.restitution_law(),
-            friction: spec.contacts.friction,
-        }
-    }
-
-    /// Largest drop height, m.
-    pub fn max_drop_height_m(&self) -> f64 {
-        self.spec.drop_heights_m.iter().copied().fold(0.0, f64::max)
-    }
-}
 
 /// Drops the ball from every height of the setup, in order.
 fn simulate_all(
