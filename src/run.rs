@@ -497,16 +497,18 @@ fn write_combined(out_dir: &Path, reports: &[FileReport]) -> Result<(), Error> {
         }
         all.extend(r.results.iter().cloned());
     }
-    out_fs::write_summary(&stage.path("summary.csv"), &rows).map_err(io)?;
-    out_fs::write_combined_charts(
-        &stage,
+    let mut combined = output::Outputs::new();
+    combined.table(out_fs::summary_table(rows));
+    out_fs::combined_charts(
+        &mut combined,
         reports.iter().map(|r| (&r.prepared.common, &r.results[..])),
     )
     .map_err(io)?;
     let stats = out_fs::metrics(&all);
     if !stats.is_empty() {
-        out_fs::write_metrics(&stage.path("metrics.csv"), &stats).map_err(io)?;
+        combined.table(out_fs::metrics_table(&stats));
     }
+    combined.write_into(&stage.path("")).map_err(io)?;
     // Sedimentation: one table of each instrument's error against the input curve per sample.
     let sed: Vec<&output::Outputs> = reports
         .iter()

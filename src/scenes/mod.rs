@@ -76,39 +76,12 @@ pub fn run_scene(
     ctx: &RunContext,
 ) -> Result<(Vec<free_settling::SphereResult>, SceneReport), crate::error::Error> {
     Ok(match &p.scene {
-        SceneSpec::FreeSettling(f) => staged(out, |s| free_settling::run_scene(p, f, s))?,
-        SceneSpec::RestitutionDrop(r) => {
-            (Vec::new(), staged(out, |s| restitution_drop::run(p, r, s))?)
-        }
-        SceneSpec::TiltFriction(t) => (Vec::new(), staged(out, |s| tilt_friction::run(p, t, s))?),
-        SceneSpec::FunnelPour(f) => (Vec::new(), staged(out, |s| funnel_pour::run(p, f, s, ctx))?),
+        SceneSpec::FreeSettling(f) => free_settling::run_scene(p, f, out)?,
+        SceneSpec::RestitutionDrop(r) => (Vec::new(), restitution_drop::run(p, r, out)?),
+        SceneSpec::TiltFriction(t) => (Vec::new(), tilt_friction::run(p, t, out)?),
+        SceneSpec::FunnelPour(f) => (Vec::new(), funnel_pour::run(p, f, out, ctx)?),
         SceneSpec::Sedimentation(sd) => (Vec::new(), sedimentation::run(p, sd, out, ctx)?),
     })
-}
-
-/// Runs a scene that still writes its files into a staging folder, in a private temporary
-/// folder, and reads what it wrote into `out`.
-// TODO(issue 24 item 6): gone once every scene fills `Outputs` itself.
-fn staged<T>(
-    out: &mut crate::io::Outputs,
-    f: impl FnOnce(&crate::io::StagedDir) -> Result<T, crate::error::Error>,
-) -> Result<T, crate::error::Error> {
-    use std::sync::atomic::{AtomicUsize, Ordering};
-    static N: AtomicUsize = AtomicUsize::new(0);
-    let parent = std::env::temp_dir().join(format!(
-        "settle-scene-{}-{}",
-        std::process::id(),
-        N.fetch_add(1, Ordering::Relaxed)
-    ));
-    let io = |e: std::io::Error| crate::error::Error::Io(parent.clone(), e);
-    let stage = crate::io::StagedDir::new(&parent, "scene").map_err(io)?;
-    let r = f(&stage);
-    let read = crate::io::Outputs::read_dir(&stage.path(""));
-    drop(stage);
-    let _ = std::fs::remove_dir_all(&parent);
-    let r = r?;
-    out.extend(read.map_err(io)?);
-    Ok(r)
 }
 
 /// The load of scenario `s` as its kind's scene estimates it (`scenes/<kind>/cost.rs`), for

@@ -20,11 +20,7 @@ fn cli_run(file: &Path, set: &[&str], out: &Path) -> PathBuf {
         cmd.arg("--set").arg(s);
     }
     let o = cmd.output().expect("settle runs");
-    assert!(
-        o.status.success(),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let name = std::fs::read_dir(out)
         .unwrap()
         .flatten()
@@ -69,7 +65,10 @@ fn assert_same_outputs(file: &str, set: &[&str], kind: Kind) {
             "{file}: {name} differs between the library and the command line"
         );
     }
-    for p in files.iter().filter(|p| p.extension().is_some_and(|e| e == "svg")) {
+    for p in files
+        .iter()
+        .filter(|p| p.extension().is_some_and(|e| e == "svg"))
+    {
         let name = p.to_string_lossy().replace('\\', "/");
         assert_eq!(
             r.outputs().bytes(&name).as_deref(),
@@ -129,7 +128,10 @@ fn set_is_the_command_lines_set() {
     let vb = b.table("summary").unwrap().f64s("v_simulated_m_s").unwrap();
     // Stokes: the terminal speed is inversely proportional to the viscosity.
     let ratio = va[0] / vb[0];
-    assert!((ratio - 2.0).abs() < 0.02, "v(1 mPa s)/v(2 mPa s) = {ratio}");
+    assert!(
+        (ratio - 2.0).abs() < 0.02,
+        "v(1 mPa s)/v(2 mPa s) = {ratio}"
+    );
 
     let err = s.set("fluid.viscosity_pa_s", "-1").unwrap_err();
     let o = settle()
@@ -200,12 +202,15 @@ fn write_writes_what_settle_run_writes() {
     }
     let theirs = tmp();
     std::fs::create_dir(theirs.path().join(r.scenario().name())).unwrap();
-    std::fs::write(theirs.path().join(r.scenario().name()).join("notes.txt"), "mine").unwrap();
+    std::fs::write(
+        theirs.path().join(r.scenario().name()).join("notes.txt"),
+        "mine",
+    )
+    .unwrap();
     let err = r.write(theirs.path()).unwrap_err();
     assert!(matches!(err, Error::BadInput(_)), "{err}");
     assert_eq!(
-        std::fs::read_to_string(theirs.path().join(r.scenario().name()).join("notes.txt"))
-            .unwrap(),
+        std::fs::read_to_string(theirs.path().join(r.scenario().name()).join("notes.txt")).unwrap(),
         "mine"
     );
 }

@@ -19,14 +19,12 @@
 use super::SphereResult;
 use crate::fluid::bingham::{cd_fedem, cd_from_terminal_velocity, reynolds_bingham};
 use crate::io::chart::ticks::significant;
-use crate::io::chart::{grid_svg, Band, Chart, Curve, Marker, Scale, Series};
+use crate::io::chart::{Band, Chart, Curve, Marker, Scale, Series};
 use crate::io::fmt::opt;
-use crate::io::write_csv;
+use crate::io::Table;
 use crate::scenario::inputs::MeasuredCurves;
 use crate::scenario::{Common, RheologyModel};
 use std::collections::BTreeMap;
-use std::io;
-use std::path::Path;
 
 /// Most points drawn per time-series line of `velocity.svg` (`timeseries.csv` keeps them all).
 const LINE_POINTS: usize = 2000;
@@ -34,21 +32,19 @@ const LINE_POINTS: usize = 2000;
 /// Markers shown on each time-series line of `velocity.svg` (the line goes through every sample).
 const MARKERS_PER_LINE: usize = 12;
 
-/// Writes `velocity.svg`: velocity against time of every sphere with recorded samples, and the
+/// `velocity.svg`: velocity against time of every sphere with recorded samples, and the
 /// analytic Stokes curve of each sphere that has one (released at `v0_m_s`). With transient forces
 /// (`exact` = Some(name of the solution)), the analytic curve is the recorded exact column
 /// (`velocity_analytic_m_s`: the Boussinesq–Basset closed form, or the exponential approach with
 /// added mass) instead. The measured v(t) of `measured` (`[reference]`), if any, is drawn as
-/// hollow markers named by its source. Writes nothing and returns false when no sphere has
-/// samples.
-pub fn write_velocity_chart(
-    path: &Path,
+/// hollow markers named by its source. None when no sphere has samples.
+pub fn velocity_chart(
     title: &str,
     results: &[SphereResult],
     v0_m_s: f64,
     exact: Option<&str>,
     measured: Option<&MeasuredCurves>,
-) -> io::Result<bool> {
+) -> Option<Chart> {
     let mut chart = Chart::new(title)
         .x("time t (s)", Scale::Linear)
         .x_from_zero(true)
@@ -123,10 +119,7 @@ pub fn write_velocity_chart(
     if let Some(m) = measured.filter(|m| !m.velocity.is_empty()) {
         chart = chart.series(measured_series(&m.source, &m.velocity, results.len()));
     }
-    if any {
-        chart.svg(path)?;
-    }
-    Ok(any)
+    any.then_some(chart)
 }
 
 /// The measured points of a `[reference]` curve: hollow markers without a line, labelled with
@@ -141,19 +134,18 @@ fn measured_series(source: &str, points: &[(f64, f64)], colour: usize) -> Series
     }
 }
 
-/// Writes `gap.svg`: the gap between each sphere's lowest point and the bottom of a container of
+/// `gap.svg`: the gap between each sphere's lowest point and the bottom of a container of
 /// fluid height `height_m` (h − depth − d/2, as `gap_to_bottom_m` of `timeseries.csv`) against
 /// time, with the measured gap of `measured` as hollow markers (like ten Cate et al. 2002,
-/// Fig. 5a). Writes nothing and returns false without a measured gap or recorded samples.
-pub fn write_gap_chart(
-    path: &Path,
+/// Fig. 5a). None without a measured gap or recorded samples.
+pub fn gap_chart(
     title: &str,
     results: &[SphereResult],
     height_m: f64,
     measured: &MeasuredCurves,
-) -> io::Result<bool> {
+) -> Option<Chart> {
     if measured.gap.is_empty() || results.iter().all(|r| r.samples.is_empty()) {
-        return Ok(false);
+        return None;
     }
     let mut chart = Chart::new(title)
         .x("time t (s)", Scale::Linear)
@@ -185,8 +177,7 @@ pub fn write_gap_chart(
         &measured.gap,
         results.len(),
     ));
-    chart.svg(path)?;
-    Ok(true)
+    Some(chart)
 }
 
 /// Re′ and C_d of one sphere, from its measured and its simulated terminal velocity.
@@ -249,9 +240,9 @@ pub fn cd_re_points(s: &Common, results: &[SphereResult]) -> Vec<CdRe> {
         .collect()
 }
 
-/// Writes `cd_re.csv`: per sphere, Re′ and C_d from the measured and the simulated velocity, and
+/// `cd_re.csv`: per sphere, Re′ and C_d from the measured and the simulated velocity, and
 /// eq. 19 at the simulated Re′ (dimensionless).
-pub fn write_cd_re_csv(path: &Path, points: &[CdRe]) -> io::Result<()> {
+pub fn cd_re_table(points: &[CdRe]) -> Table {
     let rows: Vec<Vec<String>> = points
         .iter()
         .map(|p| {
@@ -266,9 +257,9 @@ pub fn write_cd_re_csv(path: &Path, points: &[CdRe]) -> io::Result<()> {
             ]
         })
         .collect();
-    write_csv(
-        path,
-        &[
+    Table::with_rows(
+        "cd_re.csv",
+        [
             "sphere_id",
             "suspension",
             "re_bingham_measured",
@@ -277,13 +268,13 @@ pub fn write_cd_re_csv(path: &Path, points: &[CdRe]) -> io::Result<()> {
             "cd_simulated",
             "cd_eq19_at_simulated",
         ],
-        &rows,
+        rows,
     )
 }
 
-/// Writes `cd_re.svg`: C_d against Re′, log–log: the points of the measured velocities (hollow),
+/// `cd_re.svg`: C_d against Re′, log–log: the points of the measured velocities (hollow),
 /// the simulated ones (filled) and eq. 19 (like f-EDEM Fig. 1).
-pub fn write_cd_re_chart(path: &Path, title: &str, points: &[CdRe]) -> io::Result<()> {
+pub fn cd_re_chart(title: &str, points: &[CdRe]) -> Chart {
     let pairs = |re: fn(&CdRe) -> Option<f64>, cd: fn(&CdRe) -> Option<f64>| -> Vec<(f64, f64)> {
         points
             .iter()
@@ -351,7 +342,6 @@ pub fn write_cd_re_chart(path: &Path, title: &str, points: &[CdRe]) -> io::Resul
             "f-EDEM eq. 19: 24/Re′ (Re′ < 1), 29.12/Re′ + 0.195 (≤ 150), 0.4",
             curve,
         ))
-        .svg(path)
 }
 
 /// Spheres grouped by suspension (0 when none; the suspension number is the colour index, the
@@ -381,11 +371,11 @@ fn suspension_name(k: u32) -> String {
     }
 }
 
-/// Writes `parity.svg`: simulated against measured terminal velocity of every measured sphere,
+/// `parity.svg`: simulated against measured terminal velocity of every measured sphere,
 /// log–log, one colour and shape per suspension, with the parity line and ±10 % and ±25 % bands.
 /// Spheres the simulation holds at rest (v = 0) cannot show on log axes: the legend counts them.
-/// Returns false (nothing written) when no sphere is measured.
-pub fn write_parity_chart(path: &Path, title: &str, results: &[&SphereResult]) -> io::Result<bool> {
+/// None when no sphere is measured.
+pub fn parity_chart(title: &str, results: &[&SphereResult]) -> Option<Chart> {
     let groups = by_suspension(results);
     let shown = |p: &&(f64, f64)| p.0 > 0.0 && p.1 > 0.0 && p.0.is_finite() && p.1.is_finite();
     let all: Vec<(f64, f64)> = groups
@@ -393,7 +383,7 @@ pub fn write_parity_chart(path: &Path, title: &str, results: &[&SphereResult]) -
         .flat_map(|g| g[2].iter().filter(shown).copied())
         .collect();
     if all.is_empty() {
-        return Ok(false);
+        return None;
     }
     let lo = all
         .iter()
@@ -457,8 +447,7 @@ pub fn write_parity_chart(path: &Path, title: &str, results: &[&SphereResult]) -
             line: false,
         });
     }
-    chart.svg(path)?;
-    Ok(true)
+    Some(chart)
 }
 
 /// Terminal velocity against sphere density, one colour and shape per diameter: measured
@@ -497,17 +486,12 @@ pub fn terminal_velocity_chart(title: &str, results: &[&SphereResult]) -> Chart 
     chart
 }
 
-/// Writes the combined `terminal_velocity.svg`: one panel per suspension (two per row, like
-/// f-EDEM Fig. 11 a–f), terminal velocity against sphere density, one colour and shape per
-/// diameter, measured hollow and simulated filled. Returns false (nothing written) when no
-/// sphere is measured.
-pub fn write_combined_terminal_chart(
-    path: &Path,
-    title: &str,
-    results: &[&SphereResult],
-) -> io::Result<bool> {
+/// The panels of the combined `terminal_velocity.svg`: one per suspension (drawn two per row,
+/// like f-EDEM Fig. 11 a–f), terminal velocity against sphere density, one colour and shape
+/// per diameter, measured hollow and simulated filled. None when no sphere is measured.
+pub fn combined_terminal_panels(results: &[&SphereResult]) -> Option<Vec<Chart>> {
     if results.iter().all(|r| r.case.spec.v_measured_m_s.is_none()) {
-        return Ok(false);
+        return None;
     }
     let mut groups: BTreeMap<u32, Vec<&SphereResult>> = BTreeMap::new();
     for r in results {
@@ -524,6 +508,5 @@ pub fn write_combined_terminal_chart(
                 .size(560, 400)
         })
         .collect();
-    grid_svg(path, title, &panels, 2)?;
-    Ok(true)
+    Some(panels)
 }

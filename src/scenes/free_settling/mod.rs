@@ -45,7 +45,7 @@
 //!
 //! [`setup`]: run options, dimension, per-sphere quantities fixed at release;
 //! [`simulate`]: the step loop as named stages, free engine and Rapier path;
-//! [`output`]: every file the kind writes; [`charts`]: its charts and the combined ones;
+//! [`output`]: every table and chart of the kind; [`charts`]: its charts and the combined ones;
 //! [`run_scene`] is the entry point of `settle run`.
 
 pub mod charts;
@@ -88,13 +88,13 @@ pub fn history_states(
     su.transient.as_ref()?.history.as_ref().map(|m| m.states())
 }
 
-/// Runs the spheres of a free-settling or drop scenario and writes its files into `stage`:
-/// the entry point of `settle run` for these kinds. Interrupted (Ctrl-C/SIGTERM), it writes
+/// Runs the spheres of a free-settling or drop scenario and adds its tables and charts to
+/// `out`: the entry point of `settle run` for these kinds. Interrupted (Ctrl-C/SIGTERM), it adds
 /// nothing and returns [`Error::InterruptedUnwritten`] with the scenario file.
 pub fn run_scene(
     p: &Prepared,
     spec: &FreeSettlingSpec,
-    stage: &crate::io::StagedDir,
+    out: &mut crate::io::Outputs,
 ) -> Result<(Vec<SphereResult>, SceneReport), Error> {
     let interrupted = || Error::InterruptedUnwritten(p.path.clone());
     let sc = Scene {
@@ -106,9 +106,11 @@ pub fn run_scene(
         Err(Halt::Unstable(u)) => return Err(Error::Unstable(p.path.clone(), u)),
         Err(Halt::Interrupted) => return Err(interrupted()),
     };
-    let report = output::write_all(p, spec, &results, stage).map_err(|e| match e {
+    let mut made = crate::io::Outputs::new();
+    let report = output::fill(p, spec, &results, &mut made).map_err(|e| match e {
         Error::Io(_, io) if io.kind() == std::io::ErrorKind::Interrupted => interrupted(),
         e => e,
     })?;
+    out.extend(made);
     Ok((results, report))
 }

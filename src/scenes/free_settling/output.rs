@@ -1,4 +1,5 @@
-//! Every file a free-settling or drop run writes.
+//! Every table and chart of a free-settling or drop run ([`fill`] adds them to the run's
+//! [`Outputs`]).
 //!
 //! - `kind = "free_settling"`: `summary.csv` (one row per sphere), `metrics.csv` and
 //!   `terminal_velocity.svg` (like f-EDEM Fig. 11) when measurements exist; in a Bingham fluid
@@ -11,7 +12,7 @@
 //!   `record.timeseries`, with `gap.svg` when `[reference]` gives a measured gap and there is a
 //!   container; `probes.csv` when probe times are set.
 //!
-//! A several-file run also gets the charts of [`write_combined_charts`] in `OUT/combined/`.
+//! A several-file run also gets the charts of [`combined_charts`] in `OUT/combined/`.
 //!
 //! `run.toml` is written by [`crate::run`] from the returned [`SceneReport`].
 
@@ -19,76 +20,69 @@ use super::charts;
 use super::setup::uses_rapier;
 use super::SphereResult;
 use crate::error::Error;
-use crate::io::chart::{scatter_svg, Scale, Series};
+use crate::io::chart::{Chart, Scale, Series};
 use crate::io::fmt::{num, opt};
 use crate::io::metrics::ErrorStats;
-use crate::io::StagedDir;
+use crate::io::{Outputs, Table};
 use crate::scenario::{Common, Entry, FreeSettlingSpec, Submergence};
 use crate::scenes::{Prepared, SceneReport};
 use std::collections::BTreeMap;
 use std::io;
-use std::path::Path;
 
-/// Writes the files of a free-settling or drop run into the staging folder and reports the
-/// run's steps, bodies and (Rapier) engine settings. An interruption requested while the time
-/// series is written ends it with an [`io::ErrorKind::Interrupted`] error.
-pub fn write_all(
+/// Adds the tables and charts of a free-settling or drop run to `out` and reports the run's
+/// steps, bodies and (Rapier) engine settings. An interruption requested while the time series
+/// is built ends it with an [`io::ErrorKind::Interrupted`] error.
+pub fn fill(
     p: &Prepared,
     spec: &FreeSettlingSpec,
     results: &[SphereResult],
-    stage: &StagedDir,
+    out: &mut Outputs,
 ) -> Result<SceneReport, Error> {
     let s = &p.common;
-    let io = |e: io::Error| Error::Io(stage.dest().to_path_buf(), e);
+    let io = |e: io::Error| Error::Io(p.path.clone(), e);
     let integ = s.time.integrator.name();
     if spec.entry == Entry::Drop {
         let sub = match s.submergence {
             Submergence::Full => "full",
             Submergence::Partial => "partial",
         };
-        write_drop_summary(&stage.path("summary.csv"), results, s.time.dt_s, integ, sub)
+        out.table(drop_summary_table(results, s.time.dt_s, integ, sub));
+        let title = format!(
+            "{}: settling distance against fall height ({sub} submergence)",
+            s.name
+        );
+        out.chart("settling_distance.svg", &drop_chart(&title, results))
             .map_err(io)?;
-        write_drop_chart(
-            &stage.path("settling_distance.svg"),
-            &format!(
-                "{}: settling distance against fall height ({sub} submergence)",
-                s.name
-            ),
-            results,
-        )
-        .map_err(io)?;
     } else {
         let rows: Vec<Vec<String>> = results
             .iter()
             .map(|r| summary_row(r, s.time.dt_s, integ))
             .collect();
-        write_summary(&stage.path("summary.csv"), &rows).map_err(io)?;
+        out.table(summary_table(rows));
         let stats = metrics(results);
         if !stats.is_empty() {
-            write_metrics(&stage.path("metrics.csv"), &stats).map_err(io)?;
-            write_chart(
-                &stage.path("terminal_velocity.svg"),
-                &format!(
-                    "{}: terminal velocity, measured (hollow) and simulated (filled)",
-                    s.name
-                ),
-                results,
-            )
-            .map_err(io)?;
+            out.table(metrics_table(&stats));
+            let title = format!(
+                "{}: terminal velocity, measured (hollow) and simulated (filled)",
+                s.name
+            );
+            out.chart("terminal_velocity.svg", &chart(&title, results))
+                .map_err(io)?;
         }
         let cd_re = charts::cd_re_points(s, results);
         if !cd_re.is_empty() {
-            charts::write_cd_re_csv(&stage.path("cd_re.csv"), &cd_re).map_err(io)?;
+            out.table(charts::cd_re_table(&cd_re));
             let title = format!(
                 "{}: drag coefficient against Bingham Reynolds number",
                 s.name
             );
-            charts::write_cd_re_chart(&stage.path("cd_re.svg"), &title, &cd_re).map_err(io)?;
+            out.chart("cd_re.svg", &charts::cd_re_chart(&title, &cd_re))
+                .map_err(io)?;
         }
     }
     if s.record.timeseries {
         let height = spec.container.as_ref().map(|c| c.height_m);
-        write_timeseries(&stage.path("timeseries.csv"), results, height).map_err(io)?;
+        out.table(timeseries_table(results, height).map_err(io)?);
         let title = format!("{}: settling velocity against time", s.name);
         let v0 = spec.release.velocity_m_s;
         let exact = s.transient.as_ref().filter(|t| t.any()).map(|t| {
@@ -99,22 +93,18 @@ pub fn write_all(
             }
         });
         let measured = p.reference.as_ref();
-        charts::write_velocity_chart(
-            &stage.path("velocity.svg"),
-            &title,
-            results,
-            v0,
-            exact,
-            measured,
-        )
-        .map_err(io)?;
+        if let Some(c) = charts::velocity_chart(&title, results, v0, exact, measured) {
+            out.chart("velocity.svg", &c).map_err(io)?;
+        }
         if let (Some(h), Some(m)) = (height, measured) {
             let title = format!("{}: gap between sphere and bottom against time", s.name);
-            charts::write_gap_chart(&stage.path("gap.svg"), &title, results, h, m).map_err(io)?;
+            if let Some(c) = charts::gap_chart(&title, results, h, m) {
+                out.chart("gap.svg", &c).map_err(io)?;
+            }
         }
     }
     if results.iter().any(|r| !r.probes.is_empty()) {
-        write_probes(&stage.path("probes.csv"), results).map_err(io)?;
+        out.table(probes_table(results));
     }
     let engine_settings = uses_rapier(s).then(|| {
         let d_min = p
@@ -236,40 +226,28 @@ pub fn summary_row(r: &SphereResult, dt_s: f64, integrator: &str) -> Vec<String>
     ]
 }
 
-fn csv_err(e: csv::Error) -> io::Error {
-    io::Error::other(e)
+/// `summary.csv` of free settling: the rows of [`summary_row`] under [`SUMMARY_HEADER`].
+pub fn summary_table(rows: Vec<Vec<String>>) -> Table {
+    Table::with_rows("summary.csv", SUMMARY_HEADER, rows)
 }
 
-/// Writes `summary.csv` rows (with header) to `path`.
-pub fn write_summary(path: &Path, rows: &[Vec<String>]) -> io::Result<()> {
-    let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
-    w.write_record(SUMMARY_HEADER).map_err(csv_err)?;
-    for r in rows {
-        w.write_record(r).map_err(csv_err)?;
-    }
-    w.flush()
-}
-
-/// Writes `timeseries.csv`; stops with an [`io::ErrorKind::Interrupted`] error when an
-/// interruption is requested (checked before each sphere's rows). `height_m`: the container's
-/// fluid height, for the gap between the sphere and the bottom (`gap_to_bottom_m`, empty
-/// without a container).
-pub fn write_timeseries(
-    path: &Path,
-    results: &[SphereResult],
-    height_m: Option<f64>,
-) -> io::Result<()> {
-    let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
-    w.write_record([
-        "sphere_id",
-        "time_s",
-        "depth_m",
-        "velocity_m_s",
-        "velocity_analytic_m_s",
-        "depth_analytic_m",
-        "gap_to_bottom_m",
-    ])
-    .map_err(csv_err)?;
+/// `timeseries.csv`; stops with an [`io::ErrorKind::Interrupted`] error when an interruption
+/// is requested (checked before each sphere's rows). `height_m`: the container's fluid height,
+/// for the gap between the sphere and the bottom (`gap_to_bottom_m`, empty without a
+/// container).
+pub fn timeseries_table(results: &[SphereResult], height_m: Option<f64>) -> io::Result<Table> {
+    let mut t = Table::new(
+        "timeseries.csv",
+        [
+            "sphere_id",
+            "time_s",
+            "depth_m",
+            "velocity_m_s",
+            "velocity_analytic_m_s",
+            "depth_analytic_m",
+            "gap_to_bottom_m",
+        ],
+    );
     for r in results {
         if crate::interrupt::requested() {
             return Err(io::Error::new(
@@ -278,7 +256,7 @@ pub fn write_timeseries(
             ));
         }
         for s in &r.samples {
-            w.write_record([
+            t.push(vec![
                 r.case.id.clone(),
                 num(s.time_s),
                 num(s.depth_m),
@@ -286,30 +264,29 @@ pub fn write_timeseries(
                 opt(s.velocity_analytic_m_s),
                 opt(s.depth_analytic_m),
                 opt(height_m.map(|h| h - s.depth_m - 0.5 * r.case.spec.diameter_m)),
-            ])
-            .map_err(csv_err)?;
+            ]);
         }
     }
-    w.flush()
+    Ok(t)
 }
 
-/// Writes `probes.csv` (velocity at the probe times).
-pub fn write_probes(path: &Path, results: &[SphereResult]) -> io::Result<()> {
-    let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
-    w.write_record([
-        "sphere_id",
-        "time_s",
-        "velocity_m_s",
-        "velocity_analytic_m_s",
-    ])
-    .map_err(csv_err)?;
+/// `probes.csv` (velocity at the probe times).
+pub fn probes_table(results: &[SphereResult]) -> Table {
+    let mut t = Table::new(
+        "probes.csv",
+        [
+            "sphere_id",
+            "time_s",
+            "velocity_m_s",
+            "velocity_analytic_m_s",
+        ],
+    );
     for r in results {
-        for (t, v, a) in &r.probes {
-            w.write_record([r.case.id.clone(), num(*t), num(*v), opt(*a)])
-                .map_err(csv_err)?;
+        for (time, v, a) in &r.probes {
+            t.push(vec![r.case.id.clone(), num(*time), num(*v), opt(*a)]);
         }
     }
-    w.flush()
+    t
 }
 
 /// Error statistics per suspension and overall (`all`), for spheres with a measurement.
@@ -335,53 +312,51 @@ pub fn metrics(results: &[SphereResult]) -> Vec<ErrorStats> {
     out
 }
 
-/// Writes `metrics.csv`.
-pub fn write_metrics(path: &Path, stats: &[ErrorStats]) -> io::Result<()> {
-    let mut w = csv::Writer::from_path(path).map_err(csv_err)?;
-    w.write_record(ErrorStats::HEADER).map_err(csv_err)?;
-    for s in stats {
-        w.write_record(s.row()).map_err(csv_err)?;
-    }
-    w.flush()
+/// `metrics.csv`: one row per group of [`metrics`].
+pub fn metrics_table(stats: &[ErrorStats]) -> Table {
+    Table::with_rows(
+        "metrics.csv",
+        ErrorStats::HEADER,
+        stats.iter().map(|s| s.row()).collect(),
+    )
 }
 
-/// Writes the charts of a several-file run into `stage` (`OUT/combined/`) from each file's
-/// scenario and results: `parity.svg` and `terminal_velocity.svg` when spheres are measured, and
-/// `cd_re.csv` with `cd_re.svg` over every Bingham run (see [`charts`]).
-pub fn write_combined_charts<'a>(
-    stage: &StagedDir,
+/// The tables and charts of a several-file run (`OUT/combined/`) from each file's scenario
+/// and results, added to `out`: `parity.svg` and `terminal_velocity.svg` when spheres are
+/// measured, and `cd_re.csv` with `cd_re.svg` over every Bingham run (see [`charts`]).
+pub fn combined_charts<'a>(
+    out: &mut Outputs,
     runs: impl IntoIterator<Item = (&'a Common, &'a [SphereResult])>,
 ) -> io::Result<()> {
     let runs: Vec<(&Common, &[SphereResult])> = runs.into_iter().collect();
     let all: Vec<&SphereResult> = runs.iter().flat_map(|r| r.1.iter()).collect();
     let n = runs.len();
-    charts::write_parity_chart(
-        &stage.path("parity.svg"),
-        &format!("{n} scenarios: simulated against measured terminal velocity"),
-        &all,
-    )?;
-    charts::write_combined_terminal_chart(
-        &stage.path("terminal_velocity.svg"),
-        &format!("{n} scenarios: terminal velocity, measured (hollow) and simulated (filled)"),
-        &all,
-    )?;
+    let title = format!("{n} scenarios: simulated against measured terminal velocity");
+    if let Some(c) = charts::parity_chart(&title, &all) {
+        out.chart("parity.svg", &c)?;
+    }
+    let title =
+        format!("{n} scenarios: terminal velocity, measured (hollow) and simulated (filled)");
+    if let Some(panels) = charts::combined_terminal_panels(&all) {
+        out.grid_chart("terminal_velocity.svg", &title, &panels, 2)?;
+    }
     let cd_re: Vec<charts::CdRe> = runs
         .iter()
         .flat_map(|(s, r)| charts::cd_re_points(s, r))
         .collect();
     if !cd_re.is_empty() {
-        charts::write_cd_re_csv(&stage.path("cd_re.csv"), &cd_re)?;
+        out.table(charts::cd_re_table(&cd_re));
         let title = format!("{n} scenarios: drag coefficient against Bingham Reynolds number");
-        charts::write_cd_re_chart(&stage.path("cd_re.svg"), &title, &cd_re)?;
+        out.chart("cd_re.svg", &charts::cd_re_chart(&title, &cd_re))?;
     }
     Ok(())
 }
 
 /// Terminal velocity against sphere density, one colour per diameter: measured (hollow) and
-/// simulated (filled), like f-EDEM Fig. 11.
-pub fn write_chart(path: &Path, title: &str, results: &[SphereResult]) -> io::Result<()> {
+/// simulated (filled), like f-EDEM Fig. 11 (`terminal_velocity.svg`).
+pub fn chart(title: &str, results: &[SphereResult]) -> Chart {
     let all: Vec<&SphereResult> = results.iter().collect();
-    charts::terminal_velocity_chart(title, &all).svg(path)
+    charts::terminal_velocity_chart(title, &all)
 }
 
 /// Header of a drop `summary.csv`. `settling_distance_m` is the depth of the ball's lowest point
@@ -402,19 +377,17 @@ pub const DROP_HEADER: [&str; 12] = [
     "submergence",
 ];
 
-/// Writes the drop `summary.csv` (`kind = "drop"`).
-pub fn write_drop_summary(
-    path: &Path,
+/// The drop `summary.csv` (`kind = "drop"`).
+pub fn drop_summary_table(
     results: &[SphereResult],
     dt_s: f64,
     integrator: &str,
     submergence: &str,
-) -> io::Result<()> {
-    let mut w = csv::Writer::from_path(path).map_err(io::Error::other)?;
-    w.write_record(DROP_HEADER).map_err(io::Error::other)?;
+) -> Table {
+    let mut t = Table::new("summary.csv", DROP_HEADER);
     for r in results {
         let d = r.case.spec.diameter_m;
-        w.write_record([
+        t.push(vec![
             r.case.id.clone(),
             num(d),
             num(r.case.spec.density_kg_m3),
@@ -427,15 +400,14 @@ pub fn write_drop_summary(
             num(dt_s),
             integrator.to_string(),
             submergence.to_string(),
-        ])
-        .map_err(io::Error::other)?;
+        ]);
     }
-    w.flush()
+    t
 }
 
-/// Writes `settling_distance.svg`: settling distance against fall height, one series per
-/// diameter (like f-EDEM Fig. 16).
-pub fn write_drop_chart(path: &Path, title: &str, results: &[SphereResult]) -> io::Result<()> {
+/// `settling_distance.svg`: settling distance against fall height, one series per diameter
+/// (like f-EDEM Fig. 16).
+pub fn drop_chart(title: &str, results: &[SphereResult]) -> Chart {
     let mut by_d: BTreeMap<u64, Vec<(f64, f64)>> = BTreeMap::new();
     for r in results {
         let key = (r.case.spec.diameter_m * 1e6).round() as u64;
@@ -444,20 +416,17 @@ pub fn write_drop_chart(path: &Path, title: &str, results: &[SphereResult]) -> i
             r.final_bottom_depth_m * 1e3,
         ));
     }
-    let series: Vec<Series> = by_d
-        .into_iter()
-        .enumerate()
-        .map(|(i, (d_um, pts))| {
-            Series::sorted_line(format!("d = {} mm", d_um as f64 / 1000.0), pts, i)
-        })
-        .collect();
-    scatter_svg(
-        path,
-        title,
-        "fall height (mm)",
-        "settling distance, ball bottom below surface (mm)",
-        Scale::Linear,
-        Scale::Linear,
-        &series,
+    by_d.into_iter().enumerate().fold(
+        Chart::new(title).x("fall height (mm)", Scale::Linear).y(
+            "settling distance, ball bottom below surface (mm)",
+            Scale::Linear,
+        ),
+        |c, (i, (d_um, pts))| {
+            c.series(Series::sorted_line(
+                format!("d = {} mm", d_um as f64 / 1000.0),
+                pts,
+                i,
+            ))
+        },
     )
 }

@@ -68,32 +68,26 @@ pub mod simulate;
 mod tests;
 
 pub use census::{z_range, Ball, Census, Place, RepeatResult, Sample};
-pub use placement::{place_balls, Unplaceable};
-pub use setup::Geometry;
-pub use simulate::{run_repeat, run_repeat_with, simulate, simulate_with, RepeatOutcome};
+pub use placement::{place_balls, Unplaceable, PLACEMENT_GAP};
+pub use setup::{Geometry, DOMAIN_MARGIN_M};
+pub use simulate::{
+    run_repeat, run_repeat_with, simulate, simulate_with, RepeatOutcome, DEFAULT_RECORD_EVERY_S,
+    REST_WINDOW_S,
+};
 
 use crate::error::Error;
-use crate::io::StagedDir;
+use crate::io::Outputs;
 use crate::scenario::FunnelPourSpec;
 use crate::scenes::{Prepared, RunContext, SceneReport};
 use std::time::Instant;
 
-/// Time over which every ball must stay slower than `rest_speed_m_s` before a run stops early, s.
-pub const REST_WINDOW_S: f64 = 0.05;
-/// Clearance of the random initial placement, as a fraction of the ball's diameter.
-pub const PLACEMENT_GAP: f64 = 0.05;
-/// Margin of the domain beyond the scene's bounding box, m.
-pub const DOMAIN_MARGIN_M: f64 = 0.1;
-/// Default interval of the time series when `record.every_s` is not set, s.
-pub const DEFAULT_RECORD_EVERY_S: f64 = 0.01;
-
-/// Funnel pour (kind `funnel_pour`): runs the repeats, writes `balls.csv`, `counts.csv`,
-/// `timeseries.csv`, `z_distribution.csv` + `.svg` and `presence.csv` + `.svg` (see
-/// [`output`]). Interrupted, it writes the repeats that finished.
+/// Funnel pour (kind `funnel_pour`): runs the repeats, adds `balls.csv`, `counts.csv`,
+/// `timeseries.csv`, `z_distribution.csv` + `.svg` and `presence.csv` + `.svg` to `out` (see
+/// [`output`]). Interrupted, it adds the repeats that finished.
 pub fn run(
     p: &Prepared,
     f: &FunnelPourSpec,
-    stage: &StagedDir,
+    out: &mut Outputs,
     ctx: &RunContext,
 ) -> Result<SceneReport, Error> {
     let t0 = Instant::now();
@@ -106,7 +100,7 @@ pub fn run(
         });
     }
     let wall_s = t0.elapsed().as_secs_f64();
-    output::write_all(p, f, &results, stage)?;
+    output::fill(p, f, &results, out)?;
     let balls: Vec<crate::scenes::validity::SphereAt> = p
         .spheres
         .iter()

@@ -1,4 +1,4 @@
-//! Output files of a funnel pour (`kind = "funnel_pour"`, f-EDEM §4.2):
+//! Output tables and charts of a funnel pour (`kind = "funnel_pour"`, f-EDEM §4.2):
 //!
 //! - `balls.csv`: every ball at the end of every repeat (`repeat, seed, ball, diameter_m, x_m,
 //!   y_m, z_m, speed_m_s, place`), z above the cylinder bottom, x and y from its axis;
@@ -19,12 +19,11 @@
 use super::{Geometry, Place, RepeatResult};
 use crate::error::Error;
 use crate::io::fmt::num;
-use crate::io::StagedDir;
+use crate::io::{Outputs, Table};
 use crate::scenario::FunnelPourSpec;
 use crate::scenes::Prepared;
 use plotters::prelude::*;
 use std::io;
-use std::path::Path;
 
 /// One bin of the vertical distribution.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -121,28 +120,25 @@ pub fn presence(
     out
 }
 
-fn csv_writer(path: &Path) -> io::Result<csv::Writer<std::fs::File>> {
-    csv::Writer::from_path(path).map_err(io::Error::other)
-}
-
-/// Writes `balls.csv`.
-pub fn write_balls(path: &Path, results: &[RepeatResult]) -> io::Result<()> {
-    let mut w = csv_writer(path)?;
-    w.write_record([
-        "repeat",
-        "seed",
-        "ball",
-        "diameter_m",
-        "x_m",
-        "y_m",
-        "z_m",
-        "speed_m_s",
-        "place",
-    ])
-    .map_err(io::Error::other)?;
+/// `balls.csv`.
+pub fn balls_table(results: &[RepeatResult]) -> Table {
+    let mut t = Table::new(
+        "balls.csv",
+        [
+            "repeat",
+            "seed",
+            "ball",
+            "diameter_m",
+            "x_m",
+            "y_m",
+            "z_m",
+            "speed_m_s",
+            "place",
+        ],
+    );
     for r in results {
         for (i, b) in r.balls.iter().enumerate() {
-            w.write_record([
+            t.push(vec![
                 r.index.to_string(),
                 r.seed.to_string(),
                 i.to_string(),
@@ -152,44 +148,40 @@ pub fn write_balls(path: &Path, results: &[RepeatResult]) -> io::Result<()> {
                 num(b.position_m[2]),
                 num(b.speed_m_s),
                 b.place.label().to_string(),
-            ])
-            .map_err(io::Error::other)?;
+            ]);
         }
     }
-    w.flush()
+    t
 }
 
-/// Writes `counts.csv`.
-pub fn write_counts(
-    path: &Path,
-    results: &[RepeatResult],
-    count_time_s: Option<f64>,
-) -> io::Result<()> {
-    let mut w = csv_writer(path)?;
-    w.write_record([
-        "repeat",
-        "seed",
-        "count_time_s",
-        "in_paste_at_count_time",
-        "in_domain_at_count_time",
-        "in_paste",
-        "in_funnel",
-        "falling",
-        "outside",
-        "away",
-        "lost",
-        "z_min_m",
-        "z_max_m",
-        "max_speed_at_opening_m_s",
-        "end_time_s",
-        "steps",
-    ])
-    .map_err(io::Error::other)?;
+/// `counts.csv`.
+pub fn counts_table(results: &[RepeatResult], count_time_s: Option<f64>) -> Table {
+    let mut t = Table::new(
+        "counts.csv",
+        [
+            "repeat",
+            "seed",
+            "count_time_s",
+            "in_paste_at_count_time",
+            "in_domain_at_count_time",
+            "in_paste",
+            "in_funnel",
+            "falling",
+            "outside",
+            "away",
+            "lost",
+            "z_min_m",
+            "z_max_m",
+            "max_speed_at_opening_m_s",
+            "end_time_s",
+            "steps",
+        ],
+    );
     for r in results {
         let c = r.census();
         let at = r.census_at_count;
         let z = r.z_range_m();
-        w.write_record([
+        t.push(vec![
             r.index.to_string(),
             r.seed.to_string(),
             count_time_s.map(num).unwrap_or_default(),
@@ -206,31 +198,31 @@ pub fn write_counts(
             num(r.max_speed_at_opening_m_s),
             num(r.end_time_s),
             r.steps.to_string(),
-        ])
-        .map_err(io::Error::other)?;
+        ]);
     }
-    w.flush()
+    t
 }
 
-/// Writes `timeseries.csv`.
-pub fn write_timeseries(path: &Path, results: &[RepeatResult]) -> io::Result<()> {
-    let mut w = csv_writer(path)?;
-    w.write_record([
-        "repeat",
-        "time_s",
-        "in_paste",
-        "falling",
-        "in_funnel",
-        "outside",
-        "away",
-        "lost",
-        "max_speed_m_s",
-    ])
-    .map_err(io::Error::other)?;
+/// `timeseries.csv`.
+pub fn timeseries_table(results: &[RepeatResult]) -> Table {
+    let mut t = Table::new(
+        "timeseries.csv",
+        [
+            "repeat",
+            "time_s",
+            "in_paste",
+            "falling",
+            "in_funnel",
+            "outside",
+            "away",
+            "lost",
+            "max_speed_m_s",
+        ],
+    );
     for r in results {
         for s in &r.samples {
             let c = s.census;
-            w.write_record([
+            t.push(vec![
                 r.index.to_string(),
                 num(s.time_s),
                 c.paste.to_string(),
@@ -240,21 +232,21 @@ pub fn write_timeseries(path: &Path, results: &[RepeatResult]) -> io::Result<()>
                 c.away.to_string(),
                 c.lost.to_string(),
                 num(s.max_speed_m_s),
-            ])
-            .map_err(io::Error::other)?;
+            ]);
         }
     }
-    w.flush()
+    t
 }
 
-/// Writes `z_distribution.csv`.
-pub fn write_z_distribution(path: &Path, bins: &[ZBin], repeats: usize) -> io::Result<()> {
-    let mut w = csv_writer(path)?;
-    w.write_record(["z_lo_m", "z_hi_m", "count", "per_repeat", "fraction"])
-        .map_err(io::Error::other)?;
+/// `z_distribution.csv`.
+pub fn z_distribution_table(bins: &[ZBin], repeats: usize) -> Table {
+    let mut t = Table::new(
+        "z_distribution.csv",
+        ["z_lo_m", "z_hi_m", "count", "per_repeat", "fraction"],
+    );
     let total: usize = bins.iter().map(|b| b.count).sum();
     for b in bins {
-        w.write_record([
+        t.push(vec![
             num(b.z_lo_m),
             num(b.z_hi_m),
             b.count.to_string(),
@@ -264,22 +256,21 @@ pub fn write_z_distribution(path: &Path, bins: &[ZBin], repeats: usize) -> io::R
             } else {
                 0.0
             }),
-        ])
-        .map_err(io::Error::other)?;
+        ]);
     }
-    w.flush()
+    t
 }
 
-/// Writes `presence.csv`.
-pub fn write_presence(path: &Path, cells: &[PresenceCell]) -> io::Result<()> {
-    let mut w = csv_writer(path)?;
-    w.write_record(["plane_z_m", "x_m", "y_m", "probability"])
-        .map_err(io::Error::other)?;
-    for c in cells {
-        w.write_record([num(c.plane_z_m), num(c.x_m), num(c.y_m), num(c.probability)])
-            .map_err(io::Error::other)?;
-    }
-    w.flush()
+/// `presence.csv`.
+pub fn presence_table(cells: &[PresenceCell]) -> Table {
+    Table::with_rows(
+        "presence.csv",
+        ["plane_z_m", "x_m", "y_m", "probability"],
+        cells
+            .iter()
+            .map(|c| vec![num(c.plane_z_m), num(c.x_m), num(c.y_m), num(c.probability)])
+            .collect(),
+    )
 }
 
 fn err(e: impl std::fmt::Display) -> io::Error {
@@ -300,9 +291,16 @@ fn tick(v: f64) -> String {
 }
 
 /// The vertical distribution as horizontal bars (balls per repeat against Z, in cm), with
-/// f-EDEM's range 8.5–13.5 cm and the paste surface marked (f-EDEM Fig. 21).
-pub fn write_z_chart(
-    path: &Path,
+/// f-EDEM's range 8.5–13.5 cm and the paste surface marked (f-EDEM Fig. 21): the text of
+/// `z_distribution.svg`.
+pub fn z_chart(title: &str, bins: &[ZBin], repeats: usize, height_m: f64) -> io::Result<String> {
+    let mut text = String::new();
+    draw_z_chart(&mut text, title, bins, repeats, height_m)?;
+    Ok(text)
+}
+
+fn draw_z_chart(
+    text: &mut String,
     title: &str,
     bins: &[ZBin],
     repeats: usize,
@@ -316,7 +314,7 @@ pub fn write_z_chart(
         * 1.1;
     let top = bins.last().map_or(height_m, |b| b.z_hi_m.max(height_m));
     let y_max = top * 100.0 * 1.05;
-    let root = SVGBackend::new(path, (700, 800)).into_drawing_area();
+    let root = SVGBackend::with_string(text, (700, 800)).into_drawing_area();
     root.fill(&WHITE).map_err(err)?;
     let mut chart = ChartBuilder::on(&root)
         .caption(title, ("sans-serif", 20))
@@ -384,9 +382,21 @@ fn heat(p: f64) -> RGBColor {
 }
 
 /// The presence maps, one panel per plane (3 per row), cells coloured by probability, with the
-/// cylinder's circle (f-EDEM Fig. 22).
-pub fn write_presence_chart(
-    path: &Path,
+/// cylinder's circle (f-EDEM Fig. 22): the text of `presence.svg`.
+pub fn presence_chart(
+    title: &str,
+    cells: &[PresenceCell],
+    planes_z_m: &[f64],
+    radius_m: f64,
+    cell_m: f64,
+) -> io::Result<String> {
+    let mut text = String::new();
+    draw_presence_chart(&mut text, title, cells, planes_z_m, radius_m, cell_m)?;
+    Ok(text)
+}
+
+fn draw_presence_chart(
+    text: &mut String,
     title: &str,
     cells: &[PresenceCell],
     planes_z_m: &[f64],
@@ -395,8 +405,8 @@ pub fn write_presence_chart(
 ) -> io::Result<()> {
     let cols = planes_z_m.len().clamp(1, 3);
     let rows = planes_z_m.len().div_ceil(3).max(1);
-    let root =
-        SVGBackend::new(path, (360 * cols as u32, 380 * rows as u32 + 95)).into_drawing_area();
+    let root = SVGBackend::with_string(text, (360 * cols as u32, 380 * rows as u32 + 95))
+        .into_drawing_area();
     root.fill(&WHITE).map_err(err)?;
     let (top, body) = root.split_vertically(95);
     top.titled(title, ("sans-serif", 18)).map_err(err)?;
@@ -485,21 +495,21 @@ pub fn write_presence_chart(
     Ok(())
 }
 
-/// Writes every output file of a funnel pour into the staging folder.
-pub fn write_all(
+/// Adds every table and chart of a funnel pour to `out`.
+pub fn fill(
     p: &Prepared,
     spec: &FunnelPourSpec,
     results: &[RepeatResult],
-    stage: &StagedDir,
+    out: &mut Outputs,
 ) -> Result<(), Error> {
     let s = &p.common;
     let f = &spec.funnel;
     let geo = Geometry::of(spec);
-    let io = |e: io::Error| Error::Io(stage.dest().to_path_buf(), e);
+    let io = |e: io::Error| Error::Io(p.path.clone(), e);
     let reps = results.len();
-    write_balls(&stage.path("balls.csv"), results).map_err(io)?;
-    write_counts(&stage.path("counts.csv"), results, f.count_time_s).map_err(io)?;
-    write_timeseries(&stage.path("timeseries.csv"), results).map_err(io)?;
+    out.table(balls_table(results));
+    out.table(counts_table(results, f.count_time_s));
+    out.table(timeseries_table(results));
     // Balls count as in the paste once their lowest point is below the surface: bins up to
     // H + the largest radius.
     let r_max = results
@@ -508,33 +518,29 @@ pub fn write_all(
         .map(|b| 0.5 * b.diameter_m)
         .fold(0.0, f64::max);
     let bins = z_histogram(results, f.z_bin_m, geo.paste_height_m + r_max);
-    write_z_distribution(&stage.path("z_distribution.csv"), &bins, reps).map_err(io)?;
-    write_z_chart(
-        &stage.path("z_distribution.svg"),
-        &format!(
-            "{}: ball centres in the paste ({reps} repeat(s); f-EDEM Fig. 21)",
-            s.name
-        ),
-        &bins,
-        reps,
-        geo.paste_height_m,
-    )
-    .map_err(io)?;
+    out.table(z_distribution_table(&bins, reps));
+    let title = format!(
+        "{}: ball centres in the paste ({reps} repeat(s); f-EDEM Fig. 21)",
+        s.name
+    );
+    let svg = z_chart(&title, &bins, reps, geo.paste_height_m).map_err(io)?;
+    out.file("z_distribution.svg", svg);
     if !f.planes_z_m.is_empty() {
         let cells = presence(results, &f.planes_z_m, geo.cylinder_radius_m, f.grid_cell_m);
-        write_presence(&stage.path("presence.csv"), &cells).map_err(io)?;
-        write_presence_chart(
-            &stage.path("presence.svg"),
-            &format!(
-                "{}: presence probability on horizontal planes ({reps} repeat(s); f-EDEM Fig. 22)",
-                s.name
-            ),
+        out.table(presence_table(&cells));
+        let title = format!(
+            "{}: presence probability on horizontal planes ({reps} repeat(s); f-EDEM Fig. 22)",
+            s.name
+        );
+        let svg = presence_chart(
+            &title,
             &cells,
             &f.planes_z_m,
             geo.cylinder_radius_m,
             f.grid_cell_m,
         )
         .map_err(io)?;
+        out.file("presence.svg", svg);
     }
     Ok(())
 }

@@ -1,8 +1,11 @@
 //! The random initial placement of the balls in the funnel and its column.
 
-use super::{Geometry, PLACEMENT_GAP};
+use super::setup::Geometry;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+
+/// Clearance of the random initial placement, as a fraction of the ball's diameter.
+pub const PLACEMENT_GAP: f64 = 0.05;
 
 /// A ball that found no free place in the funnel and column in 100 000 random tries.
 #[derive(Clone, Debug, PartialEq)]

@@ -1,11 +1,14 @@
 //! The scene's geometry (see the [module doc](super)): the cylinder, the funnel and its column,
 //! where a ball is, and the colliders that make the walls.
 
-use super::{Place, DOMAIN_MARGIN_M};
+use super::census::Place;
 use crate::engine::dim3;
 use crate::scenario::FunnelPourSpec;
 use rapier3d_f64::math::{Pose, Rotation, Vector as RVector};
 use rapier3d_f64::prelude::{ColliderBuilder, ColliderHandle};
+
+/// Margin of the domain beyond the scene's bounding box, m.
+pub const DOMAIN_MARGIN_M: f64 = 0.1;
 
 /// Geometry of the scene, SI units, derived from the scenario (see the [module doc](super)).
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -4,10 +4,9 @@
 //! checkpoints (`Checkpoints`) and resumption ([`run_repeat_with`]). [`simulate_with`] runs the
 //! repeats in parallel.
 
-use super::{
-    place_balls, Ball, Census, Geometry, Place, RepeatResult, Sample, DEFAULT_RECORD_EVERY_S,
-    REST_WINDOW_S,
-};
+use super::census::{Ball, Census, Place, RepeatResult, Sample};
+use super::placement::place_balls;
+use super::setup::Geometry;
 use crate::dynamics::Unstable;
 use crate::engine::{dim3, BodyId, EngineSettings};
 use crate::error::Error;
@@ -15,6 +14,11 @@ use crate::scenario::FunnelPourSpec;
 use crate::scenes::{Prepared, RunContext};
 use rapier3d_f64::prelude::ColliderHandle;
 use std::time::Instant;
+
+/// Time over which every ball must stay slower than `rest_speed_m_s` before a run stops early, s.
+pub const REST_WINDOW_S: f64 = 0.05;
+/// Default interval of the time series when `record.every_s` is not set, s.
+pub const DEFAULT_RECORD_EVERY_S: f64 = 0.01;
 
 /// Everything a repeat needs to continue from where it is: saved in its checkpoint (part
 /// `repeat<i>`, see [`crate::checkpoint`]). The field order is the checkpoint's format.

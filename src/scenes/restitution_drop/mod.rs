@@ -57,49 +57,21 @@ pub mod setup;
 pub mod simulate;
 
 pub use fit::{Comparison, Tally};
-pub use setup::drop_settings;
+pub use setup::{drop_settings, Setup};
 pub use simulate::{simulate_drop, DropError, DropOutcome};
 
 #[cfg(doc)]
 use crate::contact::ConstantFit;
-use crate::contact::{restitution_fits, LawFit, RestitutionLaw};
+#[cfg(doc)]
+use crate::contact::RestitutionLaw;
+use crate::contact::{restitution_fits, LawFit};
 #[cfg(doc)]
 use crate::engine::dim3::World;
 use crate::engine::EngineSettings;
 use crate::error::Error;
-use crate::io::StagedDir;
-use crate::scenario::{RestitutionDropSpec, RestitutionSpec, SphereSpec};
+use crate::io::Outputs;
+use crate::scenario::RestitutionSpec;
 use crate::scenes::{Prepared, SceneReport};
-
-/// What a restitution drop needs from its prepared scenario.
-#[derive(Clone, Copy, Debug)]
-pub struct Setup<'a> {
-    /// The `[restitution_drop]` table: heights, measurements, tolerance.
-    pub spec: &'a RestitutionDropSpec,
-    /// The ball (the scenario's one `[[spheres]]` entry).
-    pub ball: &'a SphereSpec,
-    /// The contact's restitution law (`[contacts]`).
-    pub law: RestitutionLaw,
-    /// The contact's Coulomb friction coefficient (`contacts.friction`).
-    pub friction: f64,
-}
-
-impl<'a> Setup<'a> {
-    /// The setup of a `restitution_drop` scenario from its spec.
-    pub fn of(spec: &'a RestitutionSpec) -> Self {
-        Self {
-            spec: &spec.drop,
-            ball: &spec.ball,
-            law: spec.contacts.restitution_law(),
-            friction: spec.contacts.friction,
-        }
-    }
-
-    /// Largest drop height, m.
-    pub fn max_drop_height_m(&self) -> f64 {
-        self.spec.drop_heights_m.iter().copied().fold(0.0, f64::max)
-    }
-}
 
 /// Drops the ball from every height of the setup, in order.
 fn simulate_all(
@@ -146,11 +118,10 @@ fn fit_lines(tally: &Tally, heights: usize, tolerance: f64, fits: &[LawFit]) -> 
     lines
 }
 
-/// Restitution drop (kind `restitution_drop`): drops the ball from every height and writes
-/// `summary.csv`, `fit.csv` (when measurements are given) and `rebound_height.svg`.
-pub fn run(p: &Prepared, rd: &RestitutionSpec, stage: &StagedDir) -> Result<SceneReport, Error> {
+/// Restitution drop (kind `restitution_drop`): drops the ball from every height and adds
+/// `summary.csv`, `fit.csv` (when measurements are given) and `rebound_height.svg` to `out`.
+pub fn run(p: &Prepared, rd: &RestitutionSpec, out: &mut Outputs) -> Result<SceneReport, Error> {
     let s = &p.common;
-    let io = |e: std::io::Error| Error::Io(stage.dest().to_path_buf(), e);
     let setup = Setup::of(rd);
     let spec = setup.spec;
     let g = s.gravity_m_s2;
@@ -164,7 +135,7 @@ pub fn run(p: &Prepared, rd: &RestitutionSpec, stage: &StagedDir) -> Result<Scen
             Comparison::of(o, &setup.law, g, measured)
         })
         .collect();
-    output::write_summary(&stage.path("summary.csv"), &outcomes, &rows).map_err(io)?;
+    out.table(output::summary_table(&outcomes, &rows));
     let mut lines: Vec<String> = outcomes.iter().zip(&rows).map(|(o, c)| c.line(o)).collect();
 
     let fits = restitution_fits(
@@ -175,25 +146,14 @@ pub fn run(p: &Prepared, rd: &RestitutionSpec, stage: &StagedDir) -> Result<Scen
     );
     if !fits.is_empty() {
         let tally = Tally::of(&rows, spec.tolerance);
-        output::write_fit(
-            &stage.path("fit.csv"),
-            &setup,
-            g,
-            &tally,
-            outcomes.len(),
-            &fits,
-        )
-        .map_err(io)?;
+        out.table(output::fit_table(&setup, g, &tally, outcomes.len(), &fits));
         lines.extend(fit_lines(&tally, outcomes.len(), spec.tolerance, &fits));
     }
-    output::write_chart(
-        &stage.path("rebound_height.svg"),
-        &s.name,
-        &setup,
-        g,
-        &outcomes,
+    out.chart(
+        "rebound_height.svg",
+        &output::chart(&s.name, &setup, g, &outcomes),
     )
-    .map_err(io)?;
+    .map_err(|e| Error::Io(p.path.clone(), e))?;
 
     Ok(SceneReport {
         warnings: Vec::new(),

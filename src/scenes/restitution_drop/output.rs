@@ -1,4 +1,4 @@
-//! Output files of a restitution drop:
+//! Output tables and chart of a restitution drop:
 //!
 //! - `summary.csv`: one row per drop height (`drop_height_m, rebound_height_m,
 //!   measured_rebound_height_m, rel_error, restitution_effective, restitution_law,
@@ -14,12 +14,10 @@ use super::{Comparison, DropOutcome, Setup, Tally};
 use crate::contact::{LawFit, RestitutionLaw};
 use crate::io::chart::{Chart, Curve, Scale, Series};
 use crate::io::fmt::num;
-use crate::io::write_csv;
-use std::io;
-use std::path::Path;
+use crate::io::Table;
 
-/// Writes `summary.csv`: one row per drop and its comparison.
-pub fn write_summary(path: &Path, outcomes: &[DropOutcome], rows: &[Comparison]) -> io::Result<()> {
+/// `summary.csv`: one row per drop and its comparison.
+pub fn summary_table(outcomes: &[DropOutcome], rows: &[Comparison]) -> Table {
     let records: Vec<Vec<String>> = outcomes
         .iter()
         .zip(rows)
@@ -43,9 +41,9 @@ pub fn write_summary(path: &Path, outcomes: &[DropOutcome], rows: &[Comparison])
             ]
         })
         .collect();
-    write_csv(
-        path,
-        &[
+    Table::with_rows(
+        "summary.csv",
+        [
             "drop_height_m",
             "rebound_height_m",
             "measured_rebound_height_m",
@@ -59,7 +57,7 @@ pub fn write_summary(path: &Path, outcomes: &[DropOutcome], rows: &[Comparison])
             "impact_speed_m_s",
             "lift_off_speed_m_s",
         ],
-        &records,
+        records,
     )
 }
 
@@ -86,17 +84,16 @@ fn fit_record(
     ]
 }
 
-/// Writes `fit.csv`: first the scenario's law as simulated (Rapier, air; its within-count and
+/// `fit.csv`: first the scenario's law as simulated (Rapier, air; its within-count and
 /// error from `tally` over `simulated` drops), then every model of `fits` (no air, gravity
 /// `g_m_s2`).
-pub fn write_fit(
-    path: &Path,
+pub fn fit_table(
     setup: &Setup,
     g_m_s2: f64,
     tally: &Tally,
     simulated: usize,
     fits: &[LawFit],
-) -> io::Result<()> {
+) -> Table {
     let spec = setup.spec;
     let (heights, measured) = (&spec.drop_heights_m, &spec.measured_rebound_heights_m);
     let mut records = vec![fit_record(
@@ -120,9 +117,9 @@ pub fn write_fit(
             heights.len(),
         )
     }));
-    write_csv(
-        path,
-        &[
+    Table::with_rows(
+        "fit.csv",
+        [
             "model",
             "restitution",
             "restitution_exponent",
@@ -133,19 +130,13 @@ pub fn write_fit(
             "tolerance",
             "heights",
         ],
-        &records,
+        records,
     )
 }
 
-/// Writes `rebound_height.svg`: the ideal rebound e(v)² H of the law (no air, gravity `g_m_s2`;
+/// `rebound_height.svg`: the ideal rebound e(v)² H of the law (no air, gravity `g_m_s2`;
 /// a dashed reference curve), the simulated rebounds (filled) and the measured ones (hollow), mm.
-pub fn write_chart(
-    path: &Path,
-    name: &str,
-    setup: &Setup,
-    g_m_s2: f64,
-    outcomes: &[DropOutcome],
-) -> io::Result<()> {
+pub fn chart(name: &str, setup: &Setup, g_m_s2: f64, outcomes: &[DropOutcome]) -> Chart {
     let (law, spec) = (&setup.law, setup.spec);
     let heights = &spec.drop_heights_m;
     let e_at = |h: f64| law.at((2.0 * g_m_s2 * h).sqrt());
@@ -194,5 +185,5 @@ pub fn write_chart(
             line: false,
         });
     }
-    chart.svg(path)
+    chart
 }

@@ -1,7 +1,7 @@
 //! One drop of the restitution scene: the ball falls from rest onto the plate in a Rapier 3D
 //! [`World`] and is followed to the apex of its first bounce (see the [module doc](super)).
 
-use super::Setup;
+use super::setup::Setup;
 use crate::engine::dim3::{up, FluidBody, World};
 use crate::engine::{EngineSettings, Unstable};
 use crate::scenario::Common;

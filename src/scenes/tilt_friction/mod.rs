@@ -43,7 +43,7 @@ use crate::engine::dim3::World;
 use crate::engine::EngineSettings;
 use crate::error::Error;
 use crate::io::fmt::{g, short};
-use crate::io::StagedDir;
+use crate::io::Outputs;
 use crate::scenario::TiltFrictionSpec;
 use crate::scenes::{Prepared, SceneReport};
 
@@ -97,11 +97,10 @@ fn lines(
     lines
 }
 
-/// Tilt friction (kind `tilt_friction`): runs the threshold search and writes `summary.csv`,
-/// `threshold.csv` and `tilt_displacement.svg`.
-pub fn run(p: &Prepared, tf: &TiltFrictionSpec, stage: &StagedDir) -> Result<SceneReport, Error> {
+/// Tilt friction (kind `tilt_friction`): runs the threshold search and adds `summary.csv`,
+/// `threshold.csv` and `tilt_displacement.svg` to `out`.
+pub fn run(p: &Prepared, tf: &TiltFrictionSpec, out: &mut Outputs) -> Result<SceneReport, Error> {
     let s = &p.common;
-    let io = |e: std::io::Error| Error::Io(stage.dest().to_path_buf(), e);
     let spec = &tf.tilt;
     let setup = TiltSetup::new(s, tf);
     let search = tilt_threshold(&setup, &spec.angles_deg, spec.bisection_tolerance_deg)
@@ -110,26 +109,22 @@ pub fn run(p: &Prepared, tf: &TiltFrictionSpec, stage: &StagedDir) -> Result<Sce
     let TiltSearch { runs, bracket } = search;
     let expected = setup.friction.atan().to_degrees();
 
-    output::write_summary(&stage.path("summary.csv"), &runs).map_err(io)?;
-    output::write_threshold(
-        &stage.path("threshold.csv"),
+    out.table(output::summary_table(&runs));
+    out.table(output::threshold_table(
         setup.friction,
         expected,
         found,
         bracket,
-    )
-    .map_err(io)?;
+    ));
     let title = format!(
         "{}: displacement down the slope after {} s",
         s.name, spec.duration_s
     );
-    output::write_chart(
-        &stage.path("tilt_displacement.svg"),
-        &title,
-        &runs,
-        expected,
+    out.chart(
+        "tilt_displacement.svg",
+        &output::chart(&title, &runs, expected),
     )
-    .map_err(io)?;
+    .map_err(|e| Error::Io(p.path.clone(), e))?;
 
     Ok(SceneReport {
         warnings: Vec::new(),

@@ -1,4 +1,4 @@
-//! Output files of a tilt test:
+//! Output tables and chart of a tilt test:
 //!
 //! - `summary.csv`: one row per angle run, the given angles and the bisection's, sorted by angle
 //!   (`angle_deg, displacement_m, slides, source`; `source` is `given` or `bisection`);
@@ -10,12 +10,10 @@ use super::TiltOutcome;
 use crate::io::chart::ticks::significant;
 use crate::io::chart::{Chart, Curve, Scale, Series};
 use crate::io::fmt::{num, opt};
-use crate::io::write_csv;
-use std::io;
-use std::path::Path;
+use crate::io::Table;
 
-/// Writes `summary.csv`.
-pub fn write_summary(path: &Path, runs: &[TiltOutcome]) -> io::Result<()> {
+/// `summary.csv`.
+pub fn summary_table(runs: &[TiltOutcome]) -> Table {
     let rows: Vec<Vec<String>> = runs
         .iter()
         .map(|r| {
@@ -27,25 +25,24 @@ pub fn write_summary(path: &Path, runs: &[TiltOutcome]) -> io::Result<()> {
             ]
         })
         .collect();
-    write_csv(
-        path,
-        &["angle_deg", "displacement_m", "slides", "source"],
-        &rows,
+    Table::with_rows(
+        "summary.csv",
+        ["angle_deg", "displacement_m", "slides", "source"],
+        rows,
     )
 }
 
-/// Writes `threshold.csv`: `friction`, the expected threshold atan(μ) `expected_deg`, the
+/// `threshold.csv`: `friction`, the expected threshold atan(μ) `expected_deg`, the
 /// threshold `found_deg` and the `bracket` (sticks at, slides at) of the search, degrees.
-pub fn write_threshold(
-    path: &Path,
+pub fn threshold_table(
     friction: f64,
     expected_deg: f64,
     found_deg: Option<f64>,
     bracket: Option<(f64, f64)>,
-) -> io::Result<()> {
-    write_csv(
-        path,
-        &[
+) -> Table {
+    Table::with_rows(
+        "threshold.csv",
+        [
             "friction",
             "expected_threshold_deg",
             "threshold_deg",
@@ -53,7 +50,7 @@ pub fn write_threshold(
             "slides_at_deg",
             "error_deg",
         ],
-        &[vec![
+        vec![vec![
             num(friction),
             num(expected_deg),
             opt(found_deg),
@@ -64,14 +61,9 @@ pub fn write_threshold(
     )
 }
 
-/// Writes `tilt_displacement.svg`: sticking and sliding runs (displacement in mm against the
+/// `tilt_displacement.svg`: sticking and sliding runs (displacement in mm against the
 /// angle in degrees) and the line θ = atan(μ) = `expected_deg`.
-pub fn write_chart(
-    path: &Path,
-    title: &str,
-    runs: &[TiltOutcome],
-    expected_deg: f64,
-) -> io::Result<()> {
+pub fn chart(title: &str, runs: &[TiltOutcome], expected_deg: f64) -> Chart {
     let pts = |slides: bool| -> Vec<(f64, f64)> {
         runs.iter()
             .filter(|r| r.slides == slides)
@@ -109,5 +101,4 @@ pub fn write_chart(
             )
             .dashed(),
         )
-        .svg(path)
 }

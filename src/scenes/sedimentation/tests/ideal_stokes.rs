@@ -40,11 +40,7 @@ fn run(sample: u32, extra: &[&str]) -> (Vec<Snap>, crate::scenes::sedimentation:
                 .collect(),
         })
     };
-    simulate(&su,
-        State::initial(&su),
-        &[],
-        &mut OnRecord(rec),
-    );
+    simulate(&su, State::initial(&su), &[], &mut OnRecord(rec));
     let c0 = su.model_mass_kg / 2500.0 / (su.width_m * su.height_m * su.thickness_m);
     (snaps, su, c0)
 }
@@ -289,13 +285,7 @@ fn ideal_stokes_free_update_follows_the_analytic_stokes_solution() {
                 }
             }
         };
-        simulate_on(
-            step_loop,
-            &su,
-            start.clone(),
-            &[],
-            &mut OnRecord(check),
-        );
+        simulate_on(step_loop, &su, start.clone(), &[], &mut OnRecord(check));
         assert!(
             checked > 1000 && landed > 1000,
             "{step_loop:?}: {checked} {landed}"
