@@ -137,9 +137,7 @@ impl Scenario {
     #[staticmethod]
     fn from_dict(d: &Bound<'_, PyDict>) -> PyResult<Self> {
         let table = toml_table(d, "")?;
-        settle::Scenario::from_table(table)
-            .map(Self)
-            .map_err(to_py)
+        settle::Scenario::from_table(table).map(Self).map_err(to_py)
     }
 
     /// A new scenario with `key = value` (`value` as TOML text) applied as `--set` does.
