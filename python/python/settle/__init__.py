@@ -146,7 +146,7 @@ def _frame(header: List[str], columns: List[Any]) -> "pandas.DataFrame":
     import numpy as np
     import pandas as pd
 
-    data = {}
+    data: Dict[str, Any] = {}
     for name, col in zip(header, columns):
         if isinstance(col, bytes):
             data[name] = np.frombuffer(col, dtype=np.float64)
