@@ -235,10 +235,7 @@ class Result:
         return os.fspath(self._inner.write(os.fspath(folder)))
 
     def __repr__(self) -> str:
-        return (
-            f"<settle.Result {self.scenario.name!r} {self.status}, "
-            f"tables {list(t for t, _, _ in self._inner.raw_tables())}>"
-        )
+        return f"<settle.Result {self._inner.scenario.name!r} {self.status}>"
 
 
 def load(path: PathLike) -> Scenario:
