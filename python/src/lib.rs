@@ -200,9 +200,9 @@ impl RunResult {
         Scenario(self.0.scenario().clone())
     }
 
-    /// Every table as `(stem, header, columns)`: a numeric column is the bytes of its native
+    /// Every table as `(stem, header, columns, preamble)`: a numeric column is the bytes of its native
     /// f64 values (empty cells NaN; read with numpy.frombuffer), a text column a list of
-    /// str with None for an empty cell.
+    /// str with None for an empty cell; the preamble the comment lines before the header.
     fn raw_tables<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyTuple>>> {
         self.0
             .tables()
@@ -238,6 +238,7 @@ impl RunResult {
                         t.stem().into_pyobject(py)?.into_any(),
                         PyList::new(py, t.header())?.into_any(),
                         PyList::new(py, cols)?.into_any(),
+                        PyList::new(py, t.preamble())?.into_any(),
                     ],
                 )
             })

@@ -140,9 +140,19 @@ def _toml_loads(text: str) -> Dict[str, Any]:
     return tomllib.loads(text)
 
 
-def _frame(header: List[str], columns: List[Any]) -> "pandas.DataFrame":
-    """A DataFrame of a table: numeric columns float64, text columns as pandas infers them
-    from str cells (empty cells NaN), as ``pandas.read_csv`` of the file reads them."""
+# The cells pandas.read_csv reads as booleans by default.
+_BOOLS: Dict[Optional[str], Optional[bool]] = {
+    "true": True, "True": True, "TRUE": True,
+    "false": False, "False": False, "FALSE": False,
+    None: None,
+}
+
+
+def _frame(header: List[str], columns: List[Any], preamble: List[str]) -> "pandas.DataFrame":
+    """A DataFrame of a table: numeric columns float64, true/false columns bool, other text
+    columns as pandas infers them from str cells (empty cells NaN), as ``pandas.read_csv`` of
+    the file reads them. The comment lines before the header (``# instrument = pipette``), if
+    any, are in ``df.attrs["preamble"]``."""
     import numpy as np
     import pandas as pd
 
@@ -150,11 +160,20 @@ def _frame(header: List[str], columns: List[Any]) -> "pandas.DataFrame":
     for name, col in zip(header, columns):
         if isinstance(col, bytes):
             data[name] = np.frombuffer(col, dtype=np.float64)
+        elif col and _BOOLS.keys() >= set(col) and not all(c is None for c in col):
+            # true/false cells: bool, as read_csv reads them (object with NaN when some are empty)
+            if None in col:
+                data[name] = [np.nan if c is None else _BOOLS[c] for c in col]
+            else:
+                data[name] = np.array([_BOOLS[c] for c in col], dtype=bool)
         elif None in col:
             data[name] = [np.nan if c is None else c for c in col]
         else:
             data[name] = col
-    return pd.DataFrame(data, columns=header)
+    df = pd.DataFrame(data, columns=header)
+    if preamble:
+        df.attrs["preamble"] = list(preamble)
+    return df
 
 
 class Result:
@@ -172,10 +191,11 @@ class Result:
     def tables(self) -> Dict[str, "pandas.DataFrame"]:
         """Every table of the run, keyed by the stem of its CSV file (``summary``,
         ``timeseries``, ``pictures/t_10s``): equal, cell for cell, to ``pandas.read_csv`` of
-        the file ``settle run`` writes."""
+        the file ``settle run`` writes (numeric columns float64, true/false columns bool; the
+        comment lines a readings file has before its header in ``df.attrs["preamble"]``)."""
         if self._tables is None:
             self._tables = {
-                stem: _frame(header, cols) for stem, header, cols in self._inner.raw_tables()
+                stem: _frame(header, cols, pre) for stem, header, cols, pre in self._inner.raw_tables()
             }
         return self._tables
 
