@@ -208,3 +208,17 @@ def test_write_refuses_a_folder_settle_did_not_make(tmp_path: Path) -> None:
     with pytest.raises(settle.ScenarioError):
         r.write(tmp_path)
     assert (foreign / "mine.txt").read_text() == "not settle's"
+
+
+def test_unstable_run_raises_unstable_error_with_the_cli_message(tmp_path: Path) -> None:
+    file = SCENARIOS / "stokes_single.toml"
+    p = cli(
+        "run", str(file), "--dt", "5e-3", "--set", "time.integrator=explicit",
+        "--out", str(tmp_path / "cli"), check=False,
+    )
+    assert p.returncode == 3
+    with pytest.raises(settle.UnstableError) as e:
+        settle.run(file, dt=5e-3, overrides=["time.integrator=explicit"],
+                   out=tmp_path / "py", progress=False)
+    assert p.stderr.strip() == f"error: {e.value}"
+    assert not (tmp_path / "py").exists()
