@@ -213,11 +213,14 @@ impl RunResult {
                     .iter()
                     .map(|h| match t.column(h) {
                         Some(Column::Numbers(v)) => {
-                            let mut bytes = Vec::with_capacity(v.len() * 8);
-                            for x in v {
-                                bytes.extend_from_slice(&x.unwrap_or(f64::NAN).to_ne_bytes());
-                            }
-                            Ok(PyBytes::new(py, &bytes).into_any())
+                            // written straight into the Python bytes object
+                            let b = PyBytes::new_with(py, v.len() * 8, |buf| {
+                                for (cell, x) in buf.chunks_exact_mut(8).zip(&v) {
+                                    cell.copy_from_slice(&x.unwrap_or(f64::NAN).to_ne_bytes());
+                                }
+                                Ok(())
+                            })?;
+                            Ok(b.into_any())
                         }
                         Some(Column::Text(v)) => {
                             let cells: Vec<Option<String>> = v
