@@ -1,0 +1,28 @@
+"""Typed use of the package, checked by mypy --strict (test_types.py): the stubs and the
+annotations of settle must accept what a user writes."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pandas as pd
+
+import settle
+
+
+def terminal_velocity_m_s(scenario_file: Path, viscosity_pa_s: float) -> float:
+    s: settle.Scenario = settle.load(scenario_file).set("fluid.viscosity_pa_s", viscosity_pa_s)
+    r: settle.Result = settle.run(s, dt=1e-4, overrides={"drag.law": "dallavalle"}, progress=False)
+    summary: pd.DataFrame = r.tables["summary"]
+    warnings: list[str] = r.warnings
+    status: str = r.status
+    assert status == "complete", warnings
+    return float(summary["v_simulated_m_s"].iloc[0])
+
+
+def error_key(text: str) -> str | None:
+    try:
+        settle.Scenario.from_toml(text)
+    except settle.ScenarioError as e:
+        return e.key
+    return None

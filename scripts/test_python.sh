@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# The Python package's tests (issue 25): a virtual environment in target/py-venv, the package
+# built into it by maturin (release), then pytest on python/tests. The tests compare with the
+# command line, so the release binary is built first. Needs a Rust toolchain and Python >= 3.9
+# with venv; reaches PyPI (maturin, pandas, pytest) on its first run only.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ROOT="$PWD"
+VENV="$ROOT/target/py-venv"
+PY="${PYTHON:-python3}"
+
+cargo build --release
+if [ ! -x "$VENV/bin/python" ]; then
+    "$PY" -m venv "$VENV"
+fi
+"$VENV/bin/python" -m pip install -q --disable-pip-version-check "maturin>=1.5,<2" pandas pytest mypy pandas-stubs
+(cd python && VIRTUAL_ENV="$VENV" PATH="$VENV/bin:$PATH" maturin develop --release -q)
+SETTLE_BIN="$ROOT/target/release/settle" "$VENV/bin/python" -m pytest -q python/tests "$@"
