@@ -54,7 +54,7 @@
 //! | 2 engine | [`engine`] | the Rapier worlds |
 //! | 3 scenario | [`scenario`] | schema, loading, validation, input files, the typed scenario and the registry of kinds |
 //! | 4 scenes | [`scenes`] | one folder per kind (its scene and its cost), and the scene API ([`scenes::Prepared`], [`scenes::RunContext`], [`scenes::SceneReport`]) |
-//! | 5 application | [`api`], [`run`], [`sweep`], [`bench`](mod@bench), [`reduce`], [`invert`], [`laws`], [`fit`], [`cli`] | the commands |
+//! | 5 application | [`api`], [`run`](mod@run), [`sweep`], [`bench`](mod@bench), [`reduce`], [`invert`], [`laws`], [`fit`], [`cli`] | the commands |
 
 // Layer 0: infrastructure.
 pub mod checkpoint;

@@ -218,7 +218,7 @@ pub fn run_one_with(p: &Prepared, out_dir: &Path, ctx: &RunContext) -> Result<Fi
 #[derive(Clone, Debug)]
 pub struct Executed {
     /// The tables and files of the run (without `run.toml` and the report page, which
-    /// [`write`] adds).
+    /// [`write`](fn@write) adds).
     pub outputs: output::Outputs,
     /// Per-sphere results (free settling and drops).
     pub results: Vec<free_settling::SphereResult>,

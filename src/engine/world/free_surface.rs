@@ -4,7 +4,7 @@
 use crate::fluid::Submergence;
 
 /// The fluid's extent, for scenes where bodies travel through air before they enter the fluid
-/// (see [`World::set_free_surface`]). SI units.
+/// (see [`super::World::set_free_surface`]). SI units.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct FreeSurface {
     /// Height of the free surface on the last axis, m: the fluid lies below it.

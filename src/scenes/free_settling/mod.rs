@@ -14,7 +14,7 @@
 //! # Equations
 //!
 //! - Net weight `W = (m − m_f) g`, `m = ρ π d³/6`, `m_f = ρ_f π d³/6`; drag from the scenario's law
-//!   ([`crate::scenes::sphere_drag`]).
+//!   ([`crate::scenario::Common::sphere_drag`]).
 //! - The force-balance terminal velocity solves drag = net weight (f-EDEM eq. 15); it may sit on a
 //!   jump of eq. 19 or be zero (`static`: the yield stress holds the sphere).
 //! - For Stokes drag, the analytic solution v(t) = v_t + (v₀ − v_t) e^{−t/τ}, τ = m/(3π μ d)

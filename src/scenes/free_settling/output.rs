@@ -14,7 +14,7 @@
 //!
 //! A several-file run also gets the charts of [`combined_charts`] in `OUT/combined/`.
 //!
-//! `run.toml` is written by [`crate::run`] from the returned [`SceneReport`].
+//! `run.toml` is written by [`crate::run`](mod@crate::run) from the returned [`SceneReport`].
 
 use super::charts;
 use super::setup::uses_rapier;
