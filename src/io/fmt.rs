@@ -286,4 +286,17 @@ mod tests {
         assert_eq!(clean_reading(1.000_000_000_04), "1");
         assert_eq!(clean_reading(0.1 + 0.2), "0.3");
     }
+
+    /// Human and file numbers: significant digits without `-0`, files without float noise.
+    #[test]
+    fn numbers_print_without_noise() {
+        assert_eq!(sig_plain(0.66, 4), "0.6600");
+        assert_eq!(sig_plain(1252.0, 4), "1252");
+        assert_eq!(sig_plain(-1e-12, 3), "-0.00000000000100");
+        assert_eq!(sig_plain(-0.0004, 1), "-0.0004");
+        assert_eq!(sig_plain(-0.0, 3), "0");
+        assert_eq!(clean(0.1629 - 0.00164 * 39.0), "0.09894");
+        assert_eq!(clean(55e-6 * 1e6), "55");
+        assert_eq!(clean(-0.0), "0");
+    }
 }

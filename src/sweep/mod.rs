@@ -23,6 +23,8 @@ mod plan;
 mod report;
 mod table;
 mod targets;
+#[cfg(test)]
+mod tests;
 mod values;
 pub mod vary;
 

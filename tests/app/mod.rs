@@ -13,6 +13,5 @@ mod readings;
 mod reduce;
 mod report;
 mod rerun;
-mod sweep;
 mod tutorial;
 mod vary;

@@ -289,20 +289,6 @@ fn a_folder_settle_did_not_create_is_not_replaced() {
     assert_eq!(tree(&out).len(), 2, "{:?}", tree(&out));
 }
 
-/// Human and file numbers: significant digits without `-0`, files without float noise.
-#[test]
-fn numbers_print_without_noise() {
-    use settle::io::fmt::{clean, sig_plain};
-    assert_eq!(sig_plain(0.66, 4), "0.6600");
-    assert_eq!(sig_plain(1252.0, 4), "1252");
-    assert_eq!(sig_plain(-1e-12, 3), "-0.00000000000100");
-    assert_eq!(sig_plain(-0.0004, 1), "-0.0004");
-    assert_eq!(sig_plain(-0.0, 3), "0");
-    assert_eq!(clean(0.1629 - 0.00164 * 39.0), "0.09894");
-    assert_eq!(clean(55e-6 * 1e6), "55");
-    assert_eq!(clean(-0.0), "0");
-}
-
 const PIPETTE_HEAD: &str = "# instrument = pipette\n# dry_mass_g = 50\n# specific_gravity = 2.65\n\
 # pipette_volume_ml = 10\n# pipette_depth_cm = 10\n# blank_reading = 0.005\n";
 

@@ -2,10 +2,9 @@
 //! explicit scheme is reported unstable where theory says, and the stable integrator meets the
 //! accuracy targets at large steps.
 
-use crate::common::tmp;
-use settle::dynamics::Integrator;
-use settle::run::prepare;
-use settle::sweep::{finish, grid, run_cases, shard, summarise, Row, Status};
+use crate::dynamics::Integrator;
+use crate::run::prepare;
+use crate::sweep::{finish, grid, run_cases, shard, summarise, Row, Status};
 use std::path::Path;
 
 fn strip_wall(rows: &[Row]) -> Vec<Row> {
@@ -43,22 +42,22 @@ fn merged_shards_equal_the_unsharded_sweep_row_for_row() {
     let cases = grid(&Integrator::ALL, &[1e-2, 3e-3, 1e-3, 1e-4, 1e-5]);
     let mut whole = run_cases(&p, &cases).unwrap();
     finish(&mut whole);
-    let dir = tmp();
+    let dir = tempfile::tempdir().unwrap();
     for i in 1..=4 {
         let part = run_cases(&p, &shard(&cases, i, 4)).unwrap();
-        settle::sweep::write_rows(&dir.path().join(format!("sweep_part_{i}_of_4.csv")), &part)
+        crate::sweep::write_rows(&dir.path().join(format!("sweep_part_{i}_of_4.csv")), &part)
             .unwrap();
     }
     let mut merged = Vec::new();
     for i in 1..=4 {
         merged.extend(
-            settle::sweep::read_rows(&dir.path().join(format!("sweep_part_{i}_of_4.csv"))).unwrap(),
+            crate::sweep::read_rows(&dir.path().join(format!("sweep_part_{i}_of_4.csv"))).unwrap(),
         );
     }
     finish(&mut merged);
     // Values go through CSV: compare after the same round trip for the unsharded rows.
-    settle::sweep::write_rows(&dir.path().join("whole.csv"), &whole).unwrap();
-    let whole = settle::sweep::read_rows(&dir.path().join("whole.csv")).unwrap();
+    crate::sweep::write_rows(&dir.path().join("whole.csv"), &whole).unwrap();
+    let whole = crate::sweep::read_rows(&dir.path().join("whole.csv")).unwrap();
     assert!(same(&strip_wall(&whole), &strip_wall(&merged)));
     assert_eq!(whole.len(), 3 * 5 * 3);
 }
@@ -150,7 +149,7 @@ fn funnel_pour_sweep_counts_balls_and_loses_none() {
 /// printed round.
 #[test]
 fn dt_range_is_log_spaced_from_hi_down_to_lo() {
-    let v = settle::sweep::dt_range(1e-3, 1e-1, 2);
+    let v = crate::sweep::dt_range(1e-3, 1e-1, 2);
     assert_eq!(v.len(), 5);
     assert_eq!((v[0], v[2], v[4]), (1e-1, 1e-2, 1e-3));
     assert!((v[1] - 10f64.powf(-1.5)).abs() < 1e-12);
@@ -174,7 +173,7 @@ fn shards_partition_the_grid() {
 
 #[test]
 fn option_parsers_accept_the_documented_forms_only() {
-    use settle::sweep::{parse_dt, parse_dt_range, parse_shard, parse_tol, DtRange, Shard};
+    use crate::sweep::{parse_dt, parse_dt_range, parse_shard, parse_tol, DtRange, Shard};
     assert_eq!(parse_shard("2/8"), Ok(Shard { index: 2, count: 8 }));
     for bad in ["0/2", "3/2", "1/0", "2", "a/b", "-1/2"] {
         assert!(parse_shard(bad).is_err(), "{bad}");
@@ -227,14 +226,14 @@ fn rows_round_trip_through_csv() {
         ),
         row(Integrator::Exponential, 1e-5, Status::Stable, "", 1.25e-3),
     ];
-    let text = settle::sweep::to_csv(&rows).unwrap();
+    let text = crate::sweep::to_csv(&rows).unwrap();
     let s = String::from_utf8(text.clone()).unwrap();
-    assert!(s.starts_with(&settle::sweep::HEADER.join(",")), "{s}");
+    assert!(s.starts_with(&crate::sweep::HEADER.join(",")), "{s}");
     assert!(s.contains("explicit,0.01,unstable,"), "{s}");
     assert!(s.contains("exponential,1e-5,stable,,0.25,12,b1"), "{s}");
-    let back = settle::sweep::from_csv(text.as_slice()).unwrap();
+    let back = crate::sweep::from_csv(text.as_slice()).unwrap();
     assert!(same(&rows, &back));
-    assert!(settle::sweep::from_csv(&b"integrator,dt_s\nrk4,1\n"[..]).is_err());
+    assert!(crate::sweep::from_csv(&b"integrator,dt_s\nrk4,1\n"[..]).is_err());
 }
 
 /// `finish` takes the finest stable dt as the reference of each integrator, body and quantity.
@@ -262,7 +261,7 @@ fn run_cases_refuses_kinds_it_cannot_sweep() {
     ] {
         let p = prepare(Path::new(f), None, &[]).unwrap();
         let e = run_cases(&p, &grid(&[Integrator::Exponential], &[1e-3])).unwrap_err();
-        assert!(matches!(e, settle::error::Error::BadInput(_)), "{f}: {e}");
+        assert!(matches!(e, crate::error::Error::BadInput(_)), "{f}: {e}");
         assert_eq!(e.exit_code(), 2);
     }
 }
