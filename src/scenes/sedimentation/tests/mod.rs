@@ -3,6 +3,7 @@
 
 mod contacts;
 mod ideal_stokes;
+mod issue_12_contacts_honoured;
 
 use crate::error::BadInput;
 use crate::scenario::Scenario;
