@@ -204,3 +204,6 @@ pub fn run(p: &Prepared, rd: &RestitutionSpec, stage: &StagedDir) -> Result<Scen
         interrupted: false,
     })
 }
+
+#[cfg(test)]
+mod tests;

@@ -140,3 +140,6 @@ pub fn run(p: &Prepared, tf: &TiltFrictionSpec, stage: &StagedDir) -> Result<Sce
         interrupted: false,
     })
 }
+
+#[cfg(test)]
+mod tests;
