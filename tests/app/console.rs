@@ -184,8 +184,7 @@ fn the_cylinder_table_and_its_warnings() {
             .unwrap_or_else(|| panic!("no row for {} in:\n{text}", r[at("instrument")]));
         let max: f64 = r[at("max_abs_error_percent")].parse().unwrap();
         assert!(
-            line.split_whitespace()
-                .any(|c| shows(c, max)),
+            line.split_whitespace().any(|c| shows(c, max)),
             "{line} lacks {max}"
         );
     }

@@ -136,9 +136,9 @@ fn base64_decode(text: &str) -> Vec<u8> {
     for quad in text.as_bytes().chunks(4) {
         assert_eq!(quad.len(), 4, "base64 comes in groups of 4: {text}");
         let pad = quad.iter().filter(|&&c| c == b'=').count();
-        let n = quad
-            .iter()
-            .fold(0u32, |n, &c| (n << 6) | if c == b'=' { 0 } else { value(c) });
+        let n = quad.iter().fold(0u32, |n, &c| {
+            (n << 6) | if c == b'=' { 0 } else { value(c) }
+        });
         out.extend_from_slice(&n.to_be_bytes()[1..4 - pad]);
     }
     out

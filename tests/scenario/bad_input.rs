@@ -388,7 +388,10 @@ fn sample_csv_percent_out_of_range() {
     let path = good("sedimentation_sample1.toml");
     let e = settle::load(&path)
         .expect("good scenario")
-        .set("sample.csv", "\"../tests/bad_scenarios/bad_sample_percent.csv\"")
+        .set(
+            "sample.csv",
+            "\"../tests/bad_scenarios/bad_sample_percent.csv\"",
+        )
         .expect_err("percent finer 120 must be refused");
     let line = e.to_string();
     let settle::Error::BadInput(e) = e else {

@@ -259,7 +259,10 @@ fn restitution_fits_state_fitted_and_predicted_errors() {
 fn tilt_threshold_is_atan_mu() {
     let scenario = settle::load("scenarios/tilt_friction.toml").unwrap();
     let eff = effective(&scenario);
-    let angles = eff["tilt"]["angles_deg"].as_array().expect("tilt.angles_deg").len();
+    let angles = eff["tilt"]["angles_deg"]
+        .as_array()
+        .expect("tilt.angles_deg")
+        .len();
     let duration_s = number(&eff["tilt"], "duration_s");
     let mu = number(&eff["contacts"], "friction");
     assert_eq!(mu, 0.341);

@@ -3,7 +3,9 @@
 use std::path::{Path, PathBuf};
 
 fn good(file: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios").join(file)
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenarios")
+        .join(file)
 }
 
 /// The good sample CSV reads to the same distribution as the physics layer's reader.
