@@ -218,3 +218,6 @@ pub fn write_csv(path: &Path, header: &[&str], rows: &[Vec<String>]) -> io::Resu
     let bytes = w.into_inner().map_err(io::Error::other)?;
     write_atomic(path, &bytes)
 }
+
+#[cfg(test)]
+mod tests;

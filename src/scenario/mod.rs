@@ -5,7 +5,7 @@
 //! record. Every quantity is in SI units with the unit in the key name. Unknown keys are errors,
 //! and so is a table the kind does not use. `docs/scenarios/<kind>.md` documents every key of
 //! every kind (unit, default, allowed range), checked against this schema by
-//! `tests/scenario/schema_docs.rs`.
+//! `src/scenario/tests/schema_docs.rs`.
 //!
 //! Parse, don't validate: [`parse`] returns a [`Parsed`] scenario with the typed parts the
 //! scenes take: the [`Common`] part every kind reads (its fluid as a [`RheologyModel`] and a

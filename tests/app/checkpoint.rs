@@ -294,15 +294,5 @@ fn cost_guard_refuses_runs_beyond_the_limits() {
         }
     }
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
-    // --force lifts the time limit (checked without running it).
-    let p = settle::run::prepare(
-        Path::new("scenarios/paste_68_balls.toml"),
-        Some(1e-8),
-        &["repeats.count=15".into()],
-    )
-    .unwrap();
-    let path = Path::new("scenarios/paste_68_balls.toml");
-    assert!(settle::scenes::cost::check(&p.scenario, path, false).is_err());
-    let c = settle::scenes::cost::check(&p.scenario, path, true).unwrap();
-    assert!(c.wall_s > 24.0 * 3600.0, "{c:?}");
+    // --force lifting the time limit: `scenes::tests::cost_guard_force` (a unit test).
 }

@@ -193,13 +193,27 @@ fn a_record_takes_new_overrides_on_top_and_needs_its_scenario() {
         &first,
     );
     let record = first.join("stokes_single/run.toml");
-    let p = settle::run::prepare(&record, None, &["fluid.viscosity_pa_s=0.003".into()]).unwrap();
-    assert_eq!(p.scenario.time.end_s, 0.02, "the recorded override");
-    assert_eq!(p.scenario.fluid.viscosity_pa_s, Some(0.003), "the new one");
+    let s = settle::load(&record)
+        .unwrap()
+        .set("fluid.viscosity_pa_s", "0.003")
+        .unwrap();
+    let effective: toml::Table = s.to_toml().unwrap().parse().unwrap();
+    assert_eq!(
+        effective["time"]["end_s"].as_float(),
+        Some(0.02),
+        "the recorded override"
+    );
+    assert_eq!(
+        effective["fluid"]["viscosity_pa_s"].as_float(),
+        Some(0.003),
+        "the new one"
+    );
     // A [run] table without [scenario] is refused, naming the missing table.
     let bad = dir.path().join("bad.toml");
     std::fs::write(&bad, "[run]\nstatus = \"complete\"\n").unwrap();
-    let e = settle::run::prepare(&bad, None, &[]).unwrap_err();
+    let Err(settle::Error::BadInput(e)) = settle::load(&bad) else {
+        panic!("{} accepted", bad.display());
+    };
     assert_eq!(e.key.as_deref(), Some("scenario"), "{e}");
     assert!(e.message.contains("run record"), "{e}");
     let o = settle()

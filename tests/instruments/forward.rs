@@ -14,22 +14,20 @@
 //!   b = c₀ v t/(P ρ_p − c₀);
 //! - two sizes: the fine size above the coarse front is denser by the jump condition
 //!   c⁺ (s − v⁺) = c⁻ (s − v⁻);
-//! - against the simulation (`settle run`, contacts and lubrication off, 20 000 grains, samples 4
+//! - against the simulation (`scenes::sedimentation::tests::instruments`, contacts and lubrication off, 20 000 grains, samples 4
 //!   to 320 s and 2 to 130 s): every reading of the hydrometer, the sphere and the pipette in
 //!   `instruments.csv` is the same instrument on the forward field of the input curve within 3σ
-//!   (the run's own 1σ) plus the model tolerance stated at [`MODEL_TOL_PERCENT`] (1 point), and
+//!   (the run's own 1σ) plus the model tolerance stated there (`MODEL_TOL_PERCENT`, 1 point), and
 //!   the ideal Stokes field of the same curve is not (sample 2 at 60 s: 37 % simulated, 35 %
 //!   forward, 21 % ideal). At 100 000 grains over the whole day (run by hand) every reading is
 //!   within 2.3σ of the forward one with no model tolerance.
 
-use crate::common::{read_csv_records, settle, tmp};
 use settle::fluid::{DragLaw, SphereDrag};
 use settle::instruments::forward::hindered::{Hindered, SUB_DIAMETER_STEP};
 use settle::instruments::forward::speed::terminal_speed_m_s;
-use settle::instruments::forward::{field_of, fields_for, unit_fields, Bins, Column, Settling};
+use settle::instruments::forward::{field_of, unit_fields, Bins, Column, Settling};
 use settle::instruments::{ideal_field, Analysis};
 use std::f64::consts::PI;
-use std::path::Path;
 
 const H: f64 = 0.457;
 const HINDERED: Settling = Settling::Hindered {
@@ -355,126 +353,6 @@ fn the_fine_size_is_denser_above_the_coarse_front() {
     assert!((u[k] / (r * excess(&col.analysis)) - 1.0).abs() < 1e-6);
 }
 
-/// Model tolerance of the comparison with the simulation, percent finer points: what the scene
-/// does that the continuum does not. Mainly the representative grains' self-weight: each grain
-/// counts its whole weight in its own voidage cell, so it sees φ larger than the mean by about
-/// φ₀ × cells / grains (16 × 115 cells of 4 mm, 20 000 grains: 9 % of φ₀ = 0.002), i.e. speeds
-/// 0.8 % slower (ε^3.7), diameters 0.4 % finer, up to 1 point on sample 4's steep 25–35 µm part
-/// (dF/d ln d ≈ 270 %). The 220 discrete diameters of the scene (the classes as narrow bins give
-/// the same forward readings as the continuous curve within 0.01 point) and the forward model's
-/// sub-diameter staircase are negligible; the scene's cell averaging of φ is not separated from
-/// the statistics (at 100 000 grains every reading is within 2.3σ with no tolerance).
-pub const MODEL_TOL_PERCENT: f64 = 1.0;
-
-/// Bins of a piecewise log-linear cumulative curve: its points are the edges.
-fn bins_of(d: &settle::sample::Distribution) -> (Bins, Vec<f64>) {
-    let edges = d.points.iter().map(|p| p.0).collect();
-    let w = d
-        .points
-        .windows(2)
-        .map(|p| (p[1].1 - p[0].1) / 100.0)
-        .collect();
-    (Bins { edges_m: edges }, w)
-}
-
-/// One reading of a run against the same instrument on the forward field: (instrument, time s,
-/// simulated w_o %, forward w_o %, the run's 1σ %).
-type Row = (String, f64, f64, f64, f64);
-
-/// Every reading of `instruments.csv` in `run_dir` (scenario `scenario` with `overrides`)
-/// against the same instrument on the hindered forward field of the input curve.
-fn against_forward(scenario: &str, overrides: &[String], run_dir: &Path) -> Vec<Row> {
-    use settle::run::prepare;
-    use settle::scenes::sedimentation::{setup, InstrumentSet};
-    let p = prepare(Path::new(scenario), None, overrides).unwrap();
-    let su = setup(&p.scenario, &p.path).unwrap();
-    let set = InstrumentSet::new(&su);
-    let an = set.analysis;
-    let col = Column {
-        height_m: su.height_m,
-        layers: set.layers,
-        analysis: an,
-    };
-    let (bins, w) = bins_of(&su.distribution);
-    let rows = read_csv_records(&run_dir.join("instruments.csv"));
-    let times: Vec<f64> = rows.iter().map(|r| r["time_s"].parse().unwrap()).collect();
-    let fields = fields_for(&col, HINDERED, &bins, &w, &times);
-    rows.iter()
-        .zip(&times)
-        .zip(&fields)
-        .map(|((r, &t), f)| {
-            let g = |k: &str| r[k].parse::<f64>().unwrap();
-            let kind = r["instrument"].clone();
-            let fwd = match kind.as_str() {
-                "hydrometer" => {
-                    let re = set.hydrometer.read(f).unwrap();
-                    set.hydrometer.point(&an, &re, t).percent_finer
-                }
-                "buoyancy" => set.sphere.point(&an, &set.sphere.read(f), t).percent_finer,
-                "pipette" => {
-                    an.percent_finer_from_concentration(set.pipette.field_concentration(&an, f))
-                }
-                x => panic!("instrument {x}"),
-            };
-            (kind, t, g("percent_finer"), fwd, g("sd_percent"))
-        })
-        .collect()
-}
-
-/// The run's overrides: contacts and lubrication off (the model has neither), 20 000 grains,
-/// 4 mm voidage cells (half the steps of 2 mm, and a quarter of the representative grains'
-/// self-weight bias, see [`MODEL_TOL_PERCENT`]), up to `end_s`.
-fn run_overrides(end_s: f64) -> Vec<String> {
-    vec![
-        "sample.contacts=false".into(),
-        "sample.lubrication=false".into(),
-        "sample.particles=20000".into(),
-        "sample.voidage_cell_m=0.004".into(),
-        format!("time.end_s={end_s}"),
-        format!("sample.record_times_s=[{end_s}]"),
-        "sample.snapshot_times_s=[]".into(),
-    ]
-}
-
-#[test]
-fn the_forward_field_reads_what_the_simulation_reads() {
-    // Sample 4 up to 320 s (its steep part: 25–35 µm leave 0.137 m between 120 and 240 s),
-    // sample 2 up to 130 s (50–70 µm: its 16–22-point error at 60 s).
-    let dir = tmp();
-    for (sample, end_s) in [(4u32, 320.0), (2, 130.0)] {
-        let sc = format!("scenarios/sedimentation_sample{sample}.toml");
-        let ov = run_overrides(end_s);
-        let mut cmd = settle();
-        cmd.args(["run", &sc, "-q", "--out"]).arg(dir.path());
-        for o in &ov {
-            cmd.args(["--set", o]);
-        }
-        let out = cmd.output().unwrap();
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        let run = dir.path().join(format!("sedimentation_sample{sample}"));
-        let rows = against_forward(&sc, &ov, &run);
-        assert!(rows.len() >= 5, "sample {sample}: {} readings", rows.len());
-        let ideal = read_csv_records(&run.join("instruments.csv"));
-        let mut ideal_misses = 0;
-        for ((kind, t, sim, fwd, sd), r) in rows.iter().zip(&ideal) {
-            let tol = 3.0 * sd + MODEL_TOL_PERCENT;
-            assert!(
-                (sim - fwd).abs() <= tol,
-                "sample {sample} {kind} t {t}: simulated {sim:.2} vs forward {fwd:.2} (σ {sd:.2})"
-            );
-            let id: f64 = r["ideal_percent_finer"].parse().unwrap();
-            if (sim - id).abs() > tol {
-                ideal_misses += 1;
-            }
-        }
-        // The ideal Stokes model of the same curve does not pass the same test.
-        assert!(
-            ideal_misses >= 1,
-            "sample {sample}: ideal Stokes within tolerance"
-        );
-    }
-}
+// Against the simulation (the scene's `instruments.csv` against the same instruments on the
+// forward field): `scenes::sedimentation::tests::instruments` (a unit test: it reads the
+// scene's instruments).

@@ -6,7 +6,8 @@
 //! eq. 21 pressure sum converges to the displaced weight; the sphere and pipette read known
 //! fields and grains.
 //!
-//! End to end (`ideal-stokes`, 50 000 grains): at every reading of every instrument,
+//! End to end (`ideal-stokes`, 50 000 grains; `scenes::sedimentation::tests::instruments`, a unit
+//! test, as it reads the scene's instruments): at every reading of every instrument,
 //! |w_o − F(φ_o)| ≤ 4σ + (the instrument's own approximation) + 0.3 %, where σ is the 1σ of w_o
 //! from the grain count (`sd_percent`) and the instrument's own approximation is what the same
 //! instrument reads on the exact ideal suspension of the discretised sample
@@ -17,15 +18,12 @@
 mod forward;
 mod reduction;
 
-use crate::common::{read_csv_records, tmp};
+use crate::common::{read_csv_records, settle, tmp};
 use settle::instruments::buoyancy::BuoyancySphere;
 use settle::instruments::hydrometer::{Hydrometer, HydrometerSpec};
 use settle::instruments::pipette::{GrainSample, Pipette};
 use settle::instruments::{ideal_field, Analysis, LayeredField};
-use settle::run::{prepare, run_one};
-use settle::scenes::sedimentation::{setup, InstrumentSet};
 use std::f64::consts::PI;
-use std::path::Path;
 
 const H: f64 = 0.457;
 const RHO_F: f64 = 1000.0;
@@ -283,135 +281,33 @@ fn the_hydrometer_error_comes_from_its_finite_bulb() {
     );
 }
 
-#[test]
-fn ideal_stokes_instruments_match_the_input_curve() {
-    let dir = tmp();
-    for sample in [1u32, 4, 5] {
-        let path = format!("scenarios/sedimentation_sample{sample}.toml");
-        let ov: Vec<String> = vec![
-            "physics=ideal-stokes".into(),
-            "sample.particles=50000".into(),
-            "sample.max_step_s=1e5".into(),
-            "sample.record_times_s=[86400.0]".into(),
-            "sample.snapshot_times_s=[]".into(),
-        ];
-        let p = prepare(Path::new(&path), None, &ov).unwrap();
-        let su = setup(&p.scenario, &p.path).unwrap();
-        let set = InstrumentSet::new(&su);
-        let an = set.analysis;
-        let rep = run_one(&p, dir.path()).unwrap();
-        let rows = read_csv_records(&rep.out.join("granulometry.csv"));
-        let input = &su.distribution;
-        // The discretised sample the simulation carries: F_n(d) = mass fraction of classes ≤ d.
-        let finer_n = |d: f64| -> f64 {
-            su.classes
-                .iter()
-                .filter(|c| c.diameter_m <= d * (1.0 + 1e-12))
-                .map(|c| c.mass_fraction)
-                .sum()
-        };
-        let mut n = 0;
-        for r in rows.iter().filter(|r| r["instrument"] != "input") {
-            let g = |k: &str| r[k].parse::<f64>().unwrap();
-            let (t, d, w, sd) = (
-                g("time_s"),
-                g("diameter_m"),
-                g("percent_finer"),
-                g("sd_percent"),
-            );
-            let exact = ideal_field(&an, su.height_m, 4000, t, finer_n);
-            // The same instrument on the exact suspension of the discretised sample.
-            let pe = match r["instrument"].as_str() {
-                "hydrometer" => {
-                    let re = set.hydrometer.read(&exact).unwrap();
-                    set.hydrometer.point(&an, &re, t)
-                }
-                "buoyancy" => set.sphere.point(&an, &set.sphere.read(&exact), t),
-                "pipette" => {
-                    let mut pt = settle::instruments::Point {
-                        time_s: t,
-                        depth_m: set.pipette.depth_m,
-                        diameter_m: an.limiting_diameter_m(set.pipette.depth_m, t),
-                        percent_finer: 0.0,
-                        sd_percent: 0.0,
-                    };
-                    pt.percent_finer = an.percent_finer_from_concentration(
-                        set.pipette.field_concentration(&an, &exact),
-                    );
-                    pt
-                }
-                x => panic!("instrument {x}"),
-            };
-            let own = (pe.percent_finer - input.percent_finer(pe.diameter_m)).abs();
-            let shift = (input.percent_finer(d) - input.percent_finer(pe.diameter_m)).abs();
-            let err = (w - input.percent_finer(d)).abs();
-            let tol = 4.0 * sd + own + shift + 0.3;
-            assert!(
-                err <= tol,
-                "sample {sample} {} t = {t}: w {w:.2} vs input {:.2} at {d:.3e} m (σ {sd:.2}, own {own:.2})",
-                r["instrument"],
-                input.percent_finer(d)
-            );
-            assert!(
-                (w - pe.percent_finer).abs() <= 4.0 * sd + 0.3,
-                "sample {sample} {} t = {t}: simulated {w:.2} vs exact {:.2} (σ {sd:.2})",
-                r["instrument"],
-                pe.percent_finer
-            );
-            n += 1;
-        }
-        assert_eq!(n, 7 + 10 + 10, "sample {sample}: every reading");
-        // The hydrometer's large error on sample 4 is its own: the exact suspension gives it too.
-        if sample == 4 {
-            let worst = rows
-                .iter()
-                .filter(|r| r["instrument"] == "hydrometer")
-                .map(|r| {
-                    let g = |k: &str| r[k].parse::<f64>().unwrap();
-                    (
-                        g("percent_finer") - g("input_percent_finer"),
-                        g("ideal_percent_finer") - g("input_percent_finer"),
-                    )
-                })
-                .fold(
-                    (0.0f64, 0.0f64),
-                    |a, b| if b.0.abs() > a.0.abs() { b } else { a },
-                );
-            assert!(worst.0.abs() > 10.0, "{worst:?}");
-            assert!((worst.0 - worst.1).abs() < 2.0, "{worst:?}");
-        }
-        for f in [
-            "granulometry.svg",
-            "instruments.csv",
-            "bulb_density.csv",
-            "instrument_errors.csv",
-        ] {
-            assert!(rep.out.join(f).exists(), "{f}");
-        }
-    }
-}
+// End to end (`ideal-stokes`, 50 000 grains) against the input curve:
+// `scenes::sedimentation::tests::instruments` (a unit test: it reads the scene's instruments).
 
 #[test]
 fn several_samples_write_one_error_summary() {
     let dir = tmp();
-    let req = settle::run::RunRequest {
-        files: vec![
-            "scenarios/sedimentation_sample2.toml".into(),
-            "scenarios/sedimentation_sample3.toml".into(),
-        ],
-        out_dir: dir.path().to_path_buf(),
-        dt_s: None,
-        overrides: vec![
-            "physics=ideal-stokes".into(),
-            "sample.particles=5000".into(),
-            "sample.max_step_s=1e5".into(),
-            "sample.record_times_s=[86400.0]".into(),
-            "sample.snapshot_times_s=[]".into(),
-            "instruments.hydrometer_times_s=[120.0, 900.0]".into(),
-        ],
-        ..Default::default()
-    };
-    settle::run::run_files(&req).unwrap();
+    let mut cmd = settle();
+    cmd.args([
+        "run",
+        "-q",
+        "scenarios/sedimentation_sample2.toml",
+        "scenarios/sedimentation_sample3.toml",
+        "--out",
+    ])
+    .arg(dir.path());
+    for o in [
+        "physics=ideal-stokes",
+        "sample.particles=5000",
+        "sample.max_step_s=1e5",
+        "sample.record_times_s=[86400.0]",
+        "sample.snapshot_times_s=[]",
+        "instruments.hydrometer_times_s=[120.0, 900.0]",
+    ] {
+        cmd.args(["--set", o]);
+    }
+    let o = cmd.output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let rows = read_csv_records(&dir.path().join("combined/instrument_errors.csv"));
     assert_eq!(rows.len(), 6);
     assert_eq!(rows[0]["sample"], "2");
@@ -444,13 +340,12 @@ fn bad_instruments_are_refused() {
         ),
         ("instruments.nonsense=1", "nonsense"),
     ] {
-        let e = prepare(
-            Path::new("scenarios/sedimentation_sample1.toml"),
-            None,
-            &[ov.to_string()],
-        )
-        .err()
-        .unwrap_or_else(|| panic!("{ov} accepted"));
+        let (k, v) = ov.split_once('=').unwrap();
+        let e = settle::load("scenarios/sedimentation_sample1.toml")
+            .unwrap()
+            .set(k, v)
+            .err()
+            .unwrap_or_else(|| panic!("{ov} accepted"));
         assert!(e.to_string().contains(key), "{ov}: {e}");
     }
 }

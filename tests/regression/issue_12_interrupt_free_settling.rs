@@ -92,8 +92,9 @@ fn sigterm_stops_many_spheres_on_rapier() {
     sigterm_stops("rapier");
 }
 
-/// In the library: with an interruption requested, the interruptible runner returns
-/// `Halt::Interrupted` at once instead of simulating.
+/// In the library: with an interruption requested, a run returns at once as interrupted
+/// ([`settle::Error::InterruptedUnwritten`]: a free-settling run keeps no partial result)
+/// instead of simulating.
 ///
 /// The interrupt flag is process-wide, and all tests share one process: the body runs in a process
 /// of its own ([`isolated`]), so that the other tests are not interrupted.
@@ -104,23 +105,26 @@ fn an_interrupted_runner_returns_interrupted() {
     ) {
         return;
     }
-    use settle::scenes::free_settling::{run_interruptible, Halt, RunOptions};
     let dir = tmp();
     let file = dir.path().join("many.toml");
     std::fs::write(&file, many_spheres_toml("free", 100)).unwrap();
-    let p = settle::run::prepare(&file, None, &[]).unwrap();
+    let scenario = settle::load(&file).unwrap();
     settle::interrupt::request();
     // The CPU time of this process (it runs alone: [`isolated`]), which a loaded machine does
     // not stretch; wall time where there is no /proc.
     let me = std::process::id();
     let (t0, cpu0) = (Instant::now(), cpu_time(me));
-    let r = run_interruptible(
-        &p.scenario,
-        p.rheology,
-        &p.spheres,
-        RunOptions::of(&p.scenario),
-    );
-    assert!(matches!(r, Err(Halt::Interrupted)), "{r:?}");
+    let r = scenario.run();
+    match &r {
+        Ok(done) => assert_eq!(done.status(), settle::Status::Interrupted),
+        Err(e) => assert!(
+            matches!(
+                e,
+                settle::Error::InterruptedUnwritten(_) | settle::Error::Interrupted(_)
+            ),
+            "{e}"
+        ),
+    }
     // At once: 100 spheres of 10⁶ steps (about a second of CPU each) would take minutes.
     let used = cpu_time(me)
         .zip(cpu0)

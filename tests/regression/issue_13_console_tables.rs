@@ -3,7 +3,7 @@
 //! result; one table mixed `0.1000`, `1.54686e-1` and `1.24795e0`; and Stokes drag on a 10 mm
 //! steel ball in water ran silently to a 373 m/s "force balance".
 
-use crate::app::console::{assert_one_number_format, run, toml_warnings};
+use crate::app::console::{assert_one_number_format, run, shows, toml_warnings};
 use crate::common::{read_csv_records, tmp};
 
 /// The drop's table shows entry speed, settling distance and stop time per ball, the settling
@@ -27,7 +27,7 @@ fn the_drop_table_shows_the_settling_distance() {
         let cells: Vec<&str> = line.split_whitespace().collect();
         assert_eq!(cells[0], r["sphere_id"], "{line}");
         let mm = r["settling_distance_m"].parse::<f64>().unwrap() * 1e3;
-        assert_eq!(cells[at], settle::io::fmt::g(mm), "{line}");
+        assert!(shows(cells[at], mm), "{line} lacks {mm}");
     }
     assert!(!text.contains("0.00000e0"), "{text}");
     assert_one_number_format(&text);

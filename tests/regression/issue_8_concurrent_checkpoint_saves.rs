@@ -6,32 +6,8 @@
 
 use crate::common::{settle, tmp};
 
-/// Many threads writing the same file atomically at once: every write succeeds, the file holds
-/// one of the writes whole, and no temporary file is left behind.
-#[test]
-fn concurrent_atomic_writes_of_one_file_all_succeed() {
-    let dir = tmp();
-    let path = dir.path().join("request.toml");
-    std::thread::scope(|s| {
-        for t in 0..8u8 {
-            let path = &path;
-            s.spawn(move || {
-                for _ in 0..200 {
-                    settle::io::write_atomic(path, &[t; 4096]).unwrap();
-                }
-            });
-        }
-    });
-    let bytes = std::fs::read(&path).unwrap();
-    assert_eq!(bytes.len(), 4096);
-    assert!(bytes.iter().all(|&b| b == bytes[0]), "a torn file");
-    let left: Vec<_> = std::fs::read_dir(dir.path())
-        .unwrap()
-        .flatten()
-        .map(|e| e.file_name())
-        .collect();
-    assert_eq!(left.len(), 1, "{left:?}");
-}
+// Many threads writing the same file atomically at once: `io::tests::issue_8_concurrent_atomic_writes`
+// (a unit test).
 
 /// A two-repeat pour with frequent checkpoints finishes and removes its checkpoint folder.
 #[test]

@@ -13,7 +13,6 @@ mod issue_12_reserved_names;
 #[cfg(unix)]
 mod issue_12_resume_bench_any_dir;
 mod issue_12_sample_csv_read_up_front;
-mod issue_12_sedimentation_contacts_honoured;
 mod issue_12_stale_staging;
 mod issue_12_sweep_bad_options;
 mod issue_12_sweep_unsweepable_kind;

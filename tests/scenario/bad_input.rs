@@ -6,8 +6,8 @@
 //! (`scenarios/stokes_single.toml` or `scenarios/valentik_susp1.toml`) with one defect, described
 //! in its header comment.
 //!
-//! A property test also feeds random mutations of the good scenarios to
-//! `settle::scenario::load_str`, which must return `Ok` or `Err` (one line), never panic.
+//! A property test (`scenario::tests::fuzz`, a unit test) also feeds random mutations of the good
+//! scenarios to `scenario::load_str`, which must return `Ok` or `Err` (one line), never panic.
 
 use crate::common::{settle, tmp, tree};
 use std::ffi::OsString;
@@ -386,12 +386,17 @@ case!(
 #[test]
 fn sample_csv_percent_out_of_range() {
     let path = good("sedimentation_sample1.toml");
-    let e = settle::scenario::load(
-        &path,
-        &["sample.csv=\"../tests/bad_scenarios/bad_sample_percent.csv\"".to_string()],
-    )
-    .expect_err("percent finer 120 must be refused");
+    let e = settle::load(&path)
+        .expect("good scenario")
+        .set(
+            "sample.csv",
+            "\"../tests/bad_scenarios/bad_sample_percent.csv\"",
+        )
+        .expect_err("percent finer 120 must be refused");
     let line = e.to_string();
+    let settle::Error::BadInput(e) = e else {
+        panic!("not a bad input: {line}");
+    };
     assert_eq!(e.key.as_deref(), Some("sample.csv"), "{line}");
     for w in [
         "sedimentation_sample1.toml",
@@ -404,21 +409,8 @@ fn sample_csv_percent_out_of_range() {
     }
 }
 
-/// The good sample CSV reads to the same distribution as the physics layer's reader.
-#[test]
-fn sample_csv_good_file_matches_distribution_load() {
-    let path = good("sedimentation_sample1.toml");
-    let s = settle::scenario::load(&path, &[]).expect("good scenario");
-    let sm = s.sample.as_ref().expect("[sample]");
-    for n in 1..=5 {
-        let mut sm = sm.clone();
-        sm.sample = n;
-        let ours = settle::scenario::inputs::read_sample(&sm, &path).expect("good file");
-        let csv = path.parent().unwrap().join(&sm.csv);
-        let old = settle::sample::Distribution::load(&csv, n).expect("good file");
-        assert_eq!(ours, old, "sample {n}");
-    }
-}
+// The good sample CSV reads as the physics layer's reader reads it: `scenario::tests::sample_csv`
+// (a unit test).
 
 /// Every scenario of `scenarios/` loads (its tables all used by its kind) and its input files
 /// (spheres CSV, sample CSV) read.
@@ -431,14 +423,8 @@ fn every_good_scenario_loads_with_its_inputs() {
         if path.extension().is_none_or(|x| x != "toml") {
             continue;
         }
-        let s = settle::scenario::load(&path, &[])
-            .unwrap_or_else(|e| panic!("{} does not load: {e}", path.display()));
-        settle::scenario::inputs::spheres(&s, &path)
-            .unwrap_or_else(|e| panic!("{}: spheres: {e}", path.display()));
-        if let Some(sm) = &s.sample {
-            settle::scenario::inputs::read_sample(sm, &path)
-                .unwrap_or_else(|e| panic!("{}: sample: {e}", path.display()));
-        }
+        // `settle::load` reads the scenario and its input files (spheres CSV, sample CSV).
+        settle::load(&path).unwrap_or_else(|e| panic!("{} does not load: {e}", path.display()));
         n += 1;
     }
     assert!(n >= 16, "{n} scenarios");
@@ -515,9 +501,7 @@ fn set_restitution_exponent_out_of_range() {
 #[test]
 fn set_transient_in_the_rapier_scenes() {
     for file in ["restitution_drop.toml", "paste_68_balls.toml"] {
-        let on = ["transient.added_mass=true".to_string()];
-        let p = settle::run::prepare(&good(file), None, &on).expect("added mass accepted");
-        assert_eq!(p.common.added_mass_coefficient(), 0.5);
+        // The accepted added mass and its coefficient 0.5: `scenario::tests::transient_rapier`.
         let o = settle_run(&[good(file)], &["--set", "transient.history=basset"]);
         assert_refused(
             &o,
@@ -648,208 +632,5 @@ fn dt_flag_zero_two_files() {
     assert_refused(&o, "valentik_susp1.toml", Some("time.dt_s"), &["allowed"]);
 }
 
-mod fuzz {
-    //! Random mutations of the good scenarios never make the loader panic.
-
-    use proptest::prelude::*;
-    use proptest::test_runner::Config;
-    use std::path::Path;
-
-    const GOOD: [&str; 2] = [
-        include_str!("../../scenarios/stokes_single.toml"),
-        include_str!("../../scenarios/valentik_susp1.toml"),
-    ];
-
-    const KEYS: &[&str] = &[
-        "name",
-        "kind",
-        "dimension",
-        "physics",
-        "engine",
-        "gravity_m_s2",
-        "description",
-        "fluid.density_kg_m3",
-        "fluid.rheology",
-        "fluid.viscosity_pa_s",
-        "fluid.plastic_viscosity_pa_s",
-        "fluid.yield_stress_pa",
-        "drag.law",
-        "drag.voidage",
-        "time.dt_s",
-        "time.end_s",
-        "time.integrator",
-        "container.height_m",
-        "container.diameter_m",
-        "container.width_m",
-        "release.depth_m",
-        "release.velocity_m_s",
-        "spheres",
-        "spheres_csv.path",
-        "spheres_csv.suspension",
-        "measure.section_top_depth_m",
-        "measure.section_bottom_depth_m",
-        "measure.terminal_window_m",
-        "measure.velocity_at_s",
-        "measure.steady_tolerance",
-        "record.every_s",
-        "record.timeseries",
-        "sweep.dt_s",
-        "sweep.tol",
-        "sweep.integrators",
-        "fluid",
-        "time",
-        "x",
-        "\"we\\nird\"",
-        "a.\"b\\nc\"",
-        "diameter_m",
-        "poisson_ratio",
-        "dt_s",
-    ];
-
-    const VALUES: &[&str] = &[
-        "0",
-        "-1",
-        "1",
-        "3",
-        "2",
-        "300",
-        "-0.0",
-        "0.5",
-        "0.7",
-        "1e308",
-        "-1e308",
-        "1e-308",
-        "nan",
-        "-nan",
-        "inf",
-        "-inf",
-        "true",
-        "\"\"",
-        "\"../../etc\"",
-        "\"bingham\"",
-        "\"newtonian\"",
-        "\"bingham-fedem\"",
-        "\"rk4\"",
-        "\"stokes\"",
-        "\"é\\n\"",
-        "[]",
-        "[1, nan]",
-        "[-1.0, 0.0]",
-        "{}",
-        "[{diameter_m = 1e-4, density_kg_m3 = 2000.0}]",
-        "[{diameter_m = nan, density_kg_m3 = -1.0}]",
-        "{ dt_s = 1, end_s = 1 }",
-        "1979-05-27T07:32:00Z",
-        "9223372036854775807",
-        "-9223372036854775808",
-    ];
-
-    const OVERRIDE_KEYS: &[&str] = &[
-        "spheres[0].diameter_m",
-        "spheres[9].diameter_m",
-        "spheres[x].diameter_m",
-        "spheres[0]",
-        "spheres_csv.path.x",
-        "a..b",
-        ".",
-        "",
-        "name.x",
-        "time.dt_s.x",
-    ];
-
-    #[derive(Clone, Debug)]
-    enum Mutation {
-        /// Replace the byte at this fraction of the text.
-        Replace(usize, u8),
-        /// Insert a byte.
-        Insert(usize, u8),
-        /// Delete a run of bytes.
-        Delete(usize, usize),
-        /// Insert the line `KEY = VALUE` before the line at this index.
-        Line(usize, &'static str, &'static str),
-    }
-
-    fn mutation() -> impl Strategy<Value = Mutation> {
-        // Bytes biased towards TOML syntax.
-        let byte = prop_oneof![
-            3 => prop::sample::select(b"=[]{}\".,#'\n-+0123456789eE_ ".to_vec()),
-            1 => any::<u8>(),
-        ];
-        prop_oneof![
-            (any::<usize>(), byte.clone()).prop_map(|(i, b)| Mutation::Replace(i, b)),
-            (any::<usize>(), byte).prop_map(|(i, b)| Mutation::Insert(i, b)),
-            (any::<usize>(), 1usize..20).prop_map(|(i, n)| Mutation::Delete(i, n)),
-            (
-                any::<usize>(),
-                prop::sample::select(KEYS),
-                prop::sample::select(VALUES)
-            )
-                .prop_map(|(i, k, v)| Mutation::Line(i, k, v)),
-        ]
-    }
-
-    fn apply(text: &str, muts: &[Mutation]) -> String {
-        let mut bytes = text.as_bytes().to_vec();
-        for m in muts {
-            let n = bytes.len().max(1);
-            match *m {
-                Mutation::Replace(i, b) => {
-                    if !bytes.is_empty() {
-                        bytes[i % n] = b;
-                    }
-                }
-                Mutation::Insert(i, b) => bytes.insert(i % (bytes.len() + 1), b),
-                Mutation::Delete(i, len) => {
-                    let start = i % n;
-                    let end = (start + len).min(bytes.len());
-                    bytes.drain(start.min(end)..end);
-                }
-                Mutation::Line(i, k, v) => {
-                    let s = String::from_utf8_lossy(&bytes).into_owned();
-                    let mut lines: Vec<&str> = s.lines().collect();
-                    let line = format!("{k} = {v}");
-                    lines.insert(i % (lines.len() + 1), &line);
-                    bytes = lines.join("\n").into_bytes();
-                }
-            }
-        }
-        String::from_utf8_lossy(&bytes).into_owned()
-    }
-
-    fn override_strategy() -> impl Strategy<Value = Vec<String>> {
-        let key = prop_oneof![
-            prop::sample::select(KEYS),
-            prop::sample::select(OVERRIDE_KEYS)
-        ];
-        let one = prop_oneof![
-            4 => (key, prop::sample::select(VALUES)).prop_map(|(k, v)| format!("{k}={v}")),
-            1 => "[a-z_.\\[\\]0-9=\"-]{0,12}",
-        ];
-        prop::collection::vec(one, 0..3)
-    }
-
-    proptest! {
-        #![proptest_config(Config {
-            cases: 200,
-            // Keep regressions out of the source tree (tests/proptest-regressions/); a failure
-            // prints the minimal input to add as a case instead.
-            failure_persistence: None,
-            ..Config::default()
-        })]
-
-        #[test]
-        fn load_str_never_panics(
-            which in 0usize..2,
-            muts in prop::collection::vec(mutation(), 1..6),
-            overrides in override_strategy(),
-        ) {
-            let text = apply(GOOD[which], &muts);
-            // Ok or Err both fine; a panic fails the test. An error is one line.
-            if let Err(e) = settle::scenario::load_str(&text, Path::new("fuzz.toml"), &overrides) {
-                let line = e.to_string();
-                prop_assert_eq!(line.lines().count(), 1, "error is not one line: {:?}", line);
-                prop_assert!(line.starts_with("fuzz.toml: "), "error does not name the file: {}", line);
-            }
-        }
-    }
-}
+// Random mutations of the good scenarios never make the loader panic: `scenario::tests::fuzz`
+// (a property test of `load_str`, a unit test).

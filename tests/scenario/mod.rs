@@ -3,4 +3,3 @@
 mod bad_input;
 mod outputs_docs;
 mod reference_csv;
-mod schema_docs;

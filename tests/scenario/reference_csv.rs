@@ -1,10 +1,8 @@
-//! The measured curves of `[reference]` (`src/scenario/inputs.rs`, [`read_reference`]): read
-//! relative to the scenario file, any extra column ignored, and every bad file refused before
-//! anything runs (exit 2, nothing written), naming the scenario, the key, the CSV and the line,
-//! data row and column (1-based) with what is allowed.
+//! The measured curves of `[reference]` (`src/scenario/inputs.rs`, `read_reference`): every bad
+//! file refused before anything runs (exit 2, nothing written), naming the scenario, the key,
+//! the CSV and the line, data row and column (1-based) with what is allowed.
 
 use crate::common::{assert_exit, settle, tmp};
-use settle::scenario::inputs::read_reference;
 use std::path::Path;
 
 const SCENARIO: &str = r#"
@@ -47,25 +45,8 @@ type Case<'a> = (&'a str, &'a str, (&'a str, &'a str), &'a [&'a str]);
 const GOOD_V: &str = "time_s,velocity_m_s\n0.1,0.01\n0.2,0.02\n";
 const GOOD_GAP: &str = "time_s,gap_over_diameter,gap_m\n-0.01,8.1,0.1215\n0.5,7,0.105\n";
 
-#[test]
-fn the_curves_are_read_relative_to_the_scenario_with_extra_columns_ignored() {
-    let d = tmp();
-    let toml = write(d.path(), GOOD_V, GOOD_GAP, ("", ""));
-    let s = settle::scenario::load(&toml, &[]).unwrap();
-    let m = read_reference(&s, &toml).unwrap().expect("a [reference]");
-    assert_eq!(m.source, "a test");
-    assert_eq!(m.velocity, [(0.1, 0.01), (0.2, 0.02)]);
-    assert_eq!(m.gap, [(-0.01, 0.1215), (0.5, 0.105)]);
-    // Another kind refuses the table, as every table its kind does not use.
-    let toml = write(
-        d.path(),
-        GOOD_V,
-        GOOD_GAP,
-        ("kind = \"free_settling\"", "kind = \"drop\""),
-    );
-    let e = settle::scenario::load(&toml, &[]).unwrap_err().to_string();
-    assert!(e.contains("reference"), "{e}");
-}
+// The curves read relative to the scenario, extra columns ignored:
+// `scenario::tests::reference_csv` (a unit test).
 
 /// Each bad input: `settle run` exits 2 before anything runs, nothing written, the message
 /// naming the key, the file and where in it.

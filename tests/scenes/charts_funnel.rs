@@ -7,7 +7,8 @@ use crate::common::tmp;
 
 #[test]
 fn the_z_distribution_and_presence_maps_have_units_on_both_axes() {
-    let ov: Vec<String> = [
+    let mut scenario = settle::load("scenarios/paste_68_balls.toml").expect("scenario");
+    for kv in [
         "funnel.count=4",
         "funnel.fill_time_s=0.15",
         "funnel.count_time_s=0.4",
@@ -15,18 +16,16 @@ fn the_z_distribution_and_presence_maps_have_units_on_both_axes() {
         "time.dt_s=2e-5",
         "repeats.count=2",
         "repeats.seed=7",
-    ]
-    .iter()
-    .map(|s| s.to_string())
-    .collect();
-    let p = settle::run::prepare(
-        std::path::Path::new("scenarios/paste_68_balls.toml"),
-        None,
-        &ov,
-    )
-    .expect("scenario");
+    ] {
+        let (key, value) = kv.split_once('=').unwrap();
+        scenario = scenario.set(key, value).expect("override");
+    }
     let dir = tmp();
-    let out = settle::run::run_one(&p, dir.path()).expect("runs").out;
+    let out = scenario
+        .run()
+        .expect("runs")
+        .write(dir.path())
+        .expect("writes");
     let z = assert_readable_chart(
         &out.join("z_distribution.svg"),
         "ball centres in the paste",

@@ -17,10 +17,6 @@
 use crate::common::{col, read_csv, tmp};
 use settle::contact::{constant_fit, restitution_fits, RestitutionLaw};
 use settle::fluid::{buoyancy_n, sphere_mass_kg, DragLaw, SphereDrag};
-use settle::run::{prepare, run_one};
-use settle::scenes::restitution_drop::{drop_settings, simulate_drop, Setup};
-use settle::scenes::tilt_friction::{tilt_threshold, TiltSetup};
-use std::path::Path;
 
 const G: f64 = 9.81;
 /// f-EDEM Table A2: drop heights and measured rebound heights, m.
@@ -77,6 +73,19 @@ fn reference_rebound(h: f64, e: impl Fn(f64) -> f64) -> f64 {
     }
 }
 
+/// The effective scenario (defaults filled in) as TOML values.
+fn effective(scenario: &settle::Scenario) -> toml::Table {
+    scenario.to_toml().unwrap().parse().unwrap()
+}
+
+/// The number `key` of the TOML table `t`.
+fn number(t: &toml::Value, key: &str) -> f64 {
+    let v = &t[key];
+    v.as_float()
+        .or_else(|| v.as_integer().map(|i| i as f64))
+        .unwrap_or_else(|| panic!("`{key}` is not a number: {v}"))
+}
+
 /// Table A2 itself: with e_i = √(H_r/H_f) (eq. A4) the mean is f-EDEM's 0.612, and no constant e
 /// brings all five rebounds within 3 % of the measurements: the ratios H_r/H_f span 0.3607–0.3895,
 /// so the best constant (e = 0.6120, the mean itself) misses the 95 mm and 252 mm drops by
@@ -124,15 +133,19 @@ fn no_constant_restitution_matches_table_a2_within_3_percent() {
 /// - `fit.csv` reports the scenario's law as the minimax power fit, and the constant e's 3.83 %.
 #[test]
 fn restitution_drop_reproduces_the_law_and_table_a2_within_3_percent() {
-    let path = Path::new("scenarios/restitution_drop.toml");
-    let p = prepare(path, None, &[]).unwrap();
-    let law = p.scenario.contacts.as_ref().unwrap().restitution_law();
+    let scenario = settle::load("scenarios/restitution_drop.toml").unwrap();
+    let contacts = &effective(&scenario)["contacts"];
+    let law = RestitutionLaw {
+        coefficient: number(contacts, "restitution"),
+        exponent: number(contacts, "restitution_exponent"),
+        reference_speed_m_s: number(contacts, "restitution_reference_speed_m_s"),
+    };
     assert!(law.is_speed_dependent());
     let dir = tmp();
-    let report = run_one(&p, dir.path()).unwrap();
-    assert!(report.out.join("rebound_height.svg").is_file());
-    assert!(report.out.join("run.toml").is_file());
-    let (header, rows) = read_csv(&report.out.join("summary.csv"));
+    let out = scenario.run().unwrap().write(dir.path()).unwrap();
+    assert!(out.join("rebound_height.svg").is_file());
+    assert!(out.join("run.toml").is_file());
+    let (header, rows) = read_csv(&out.join("summary.csv"));
     assert_eq!(
         header[..5],
         [
@@ -171,7 +184,7 @@ fn restitution_drop_reproduces_the_law_and_table_a2_within_3_percent() {
         assert!((err - col(&header, row, "rel_error")).abs() < 1e-12);
         assert!(err.abs() < 0.03, "H = {h}: {err:+.4} against Table A2");
     }
-    let (fh, fit) = read_csv(&report.out.join("fit.csv"));
+    let (fh, fit) = read_csv(&out.join("fit.csv"));
     let row = |model: &str| {
         fit.iter()
             .find(|r| r[0] == model)
@@ -236,71 +249,6 @@ fn restitution_fits_state_fitted_and_predicted_errors() {
     assert!(predicted > power.max_rel_error && constant.max_rel_error > power.max_rel_error);
 }
 
-/// The contact restitution follows a constant `contacts.restitution` (not halved by a plate left
-/// at e = 0, as Rapier's average combine rule would do): 0.3, 0.612 (f-EDEM) and 0.9 within 0.1 %,
-/// from 188 mm.
-#[test]
-fn restitution_follows_the_scenario_value() {
-    for e in [0.3, 0.612, 0.9] {
-        let p = prepare(
-            Path::new("scenarios/restitution_drop.toml"),
-            None,
-            &[
-                format!("contacts.restitution={e}"),
-                "contacts.restitution_exponent=0".into(),
-            ],
-        )
-        .unwrap();
-        let setup = Setup::of(p.scene.restitution_drop().unwrap());
-        let settings = drop_settings(&p.common, &setup, 0.188);
-        let o = simulate_drop(&p.common, &setup, 0.188, settings).unwrap();
-        assert!(
-            (o.restitution_effective / e - 1.0).abs() < 1e-3,
-            "e = {e}: contact e {}",
-            o.restitution_effective
-        );
-        let reference = reference_rebound(0.188, |_| e);
-        assert!(
-            (o.rebound_height_m / reference - 1.0).abs() < 1e-3,
-            "e = {e}: rebound {} vs {reference}",
-            o.rebound_height_m
-        );
-    }
-}
-
-/// A speed-dependent law reaches Rapier through the contact-modification hook: with a steep
-/// k = 0.5 about 2 m/s, the contact e from 95 mm (1.37 m/s) and 398 mm (2.79 m/s) follows
-/// e(v) = 0.5 (v/2)^(−1/2) within 0.1 % (0.605 and 0.423), far from any constant.
-#[test]
-fn speed_dependent_restitution_reaches_the_contact() {
-    let law = RestitutionLaw {
-        coefficient: 0.5,
-        exponent: 0.5,
-        reference_speed_m_s: 2.0,
-    };
-    let p = prepare(
-        Path::new("scenarios/restitution_drop.toml"),
-        None,
-        &[
-            "contacts.restitution=0.5".into(),
-            "contacts.restitution_exponent=0.5".into(),
-            "contacts.restitution_reference_speed_m_s=2".into(),
-        ],
-    )
-    .unwrap();
-    let setup = Setup::of(p.scene.restitution_drop().unwrap());
-    let settings = drop_settings(&p.common, &setup, 0.398);
-    for h in [0.095, 0.398] {
-        let o = simulate_drop(&p.common, &setup, h, settings).unwrap();
-        let e = law.at(o.impact_speed_m_s);
-        assert!(
-            (o.restitution_effective / e - 1.0).abs() < 1e-3,
-            "H = {h}: contact e {} vs law {e}",
-            o.restitution_effective
-        );
-    }
-}
-
 /// `settle run scenarios/tilt_friction.toml` (μ = 0.341, dt = 1e-4 s, 1 s per angle):
 /// - the threshold found by bisection (bracket ≤ 0.1° wide) is within 0.5° of atan(0.341) =
 ///   18.83° (the acceptance of issue 5, item 5);
@@ -309,15 +257,20 @@ fn speed_dependent_restitution_reaches_the_contact() {
 ///   dynamic): displacement ½ g (sin θ − μ cos θ) t² within 1 % at the given sliding angles.
 #[test]
 fn tilt_threshold_is_atan_mu() {
-    let p = prepare(Path::new("scenarios/tilt_friction.toml"), None, &[]).unwrap();
-    let spec = p.scenario.tilt.as_ref().unwrap();
-    let mu = p.scenario.contacts.as_ref().unwrap().friction;
+    let scenario = settle::load("scenarios/tilt_friction.toml").unwrap();
+    let eff = effective(&scenario);
+    let angles = eff["tilt"]["angles_deg"]
+        .as_array()
+        .expect("tilt.angles_deg")
+        .len();
+    let duration_s = number(&eff["tilt"], "duration_s");
+    let mu = number(&eff["contacts"], "friction");
     assert_eq!(mu, 0.341);
     let expected = mu.atan().to_degrees();
     let dir = tmp();
-    let report = run_one(&p, dir.path()).unwrap();
-    assert!(report.out.join("tilt_displacement.svg").is_file());
-    let (th, t) = read_csv(&report.out.join("threshold.csv"));
+    let out = scenario.run().unwrap().write(dir.path()).unwrap();
+    assert!(out.join("tilt_displacement.svg").is_file());
+    let (th, t) = read_csv(&out.join("threshold.csv"));
     let found = col(&th, &t[0], "threshold_deg");
     let width = col(&th, &t[0], "slides_at_deg") - col(&th, &t[0], "sticks_at_deg");
     assert!(width > 0.0 && width <= 0.1, "bracket {width}°");
@@ -326,16 +279,16 @@ fn tilt_threshold_is_atan_mu() {
         "threshold {found}° vs atan(μ) {expected}°"
     );
 
-    let (header, rows) = read_csv(&report.out.join("summary.csv"));
+    let (header, rows) = read_csv(&out.join("summary.csv"));
     assert_eq!(header[..3], ["angle_deg", "displacement_m", "slides"]);
     let given = rows.iter().filter(|r| r[3] == "given").count();
-    assert_eq!(given, spec.angles_deg.len());
+    assert_eq!(given, angles);
     for row in &rows {
         let a = col(&header, row, "angle_deg");
         let x = col(&header, row, "displacement_m");
         let slides: bool = row[2].parse().unwrap();
         let th = a.to_radians();
-        let predicted = 0.5 * G * (th.sin() - mu * th.cos()) * spec.duration_s.powi(2);
+        let predicted = 0.5 * G * (th.sin() - mu * th.cos()) * duration_s.powi(2);
         if a < expected {
             assert!(!slides && x.abs() < 1e-6, "{a}°: moved {x} m");
         } else if row[3] == "given" {
@@ -348,53 +301,6 @@ fn tilt_threshold_is_atan_mu() {
     }
 }
 
-/// The threshold follows `contacts.friction`: with μ = 0.5 it is atan(0.5) = 26.57° within 0.5°.
-#[test]
-fn tilt_threshold_follows_the_friction() {
-    let p = prepare(
-        Path::new("scenarios/tilt_friction.toml"),
-        None,
-        &["contacts.friction=0.5".into()],
-    )
-    .unwrap();
-    let setup = TiltSetup::new(&p.common, p.scene.tilt_friction().unwrap());
-    let search = tilt_threshold(&setup, &[20.0, 26.0, 27.0, 35.0], 0.1).unwrap();
-    let (lo, hi) = search.bracket.expect("bracketed");
-    let expected = 0.5f64.atan().to_degrees();
-    assert!(hi - lo <= 0.1);
-    assert!(
-        (0.5 * (lo + hi) - expected).abs() < 0.5,
-        "threshold {lo}–{hi}° vs {expected}°"
-    );
-}
-
-#[test]
-fn added_mass_in_the_drop_is_off_bit_for_bit_at_zero_and_tiny_in_air() {
-    // `[transient]` with C_m = 0 drops exactly as without it; with C_m = ½ in air the ball's
-    // inertia grows by ½ ρ_air/ρ_steel = 7.4e-5: its fall and rise in air (drag ~0.4 % of the
-    // rebound) change by far less than 1e-3, the contact's restitution not at all.
-    let drop = |extra: &[&str]| {
-        let ov: Vec<String> = extra.iter().map(|s| s.to_string()).collect();
-        let p = prepare(Path::new("scenarios/restitution_drop.toml"), None, &ov).unwrap();
-        let setup = Setup::of(p.scene.restitution_drop().unwrap());
-        let settings = drop_settings(&p.common, &setup, 0.398);
-        simulate_drop(&p.common, &setup, 0.398, settings).unwrap()
-    };
-    let off = drop(&[]);
-    let zero = drop(&[
-        "transient.added_mass=true",
-        "transient.added_mass_coefficient=0",
-    ]);
-    let half = drop(&["transient.added_mass=true"]);
-    assert_eq!(off, zero);
-    let rel = half.rebound_height_m / off.rebound_height_m - 1.0;
-    println!(
-        "398 mm: rebound {} m off, {} m with added mass ({rel:+.2e}); e {} / {}",
-        off.rebound_height_m,
-        half.rebound_height_m,
-        off.restitution_effective,
-        half.restitution_effective
-    );
-    assert_ne!(off, half);
-    assert!(rel.abs() < 1e-3, "{rel}");
-}
+// The drop's and the tilt's own units (the restitution and added mass through the drop's
+// simulation, the threshold search): `scenes::restitution_drop::tests` and
+// `scenes::tilt_friction::tests` (unit tests).

@@ -164,3 +164,6 @@ pub fn run(p: &Prepared, rd: &RestitutionSpec, out: &mut Outputs) -> Result<Scen
         interrupted: false,
     })
 }
+
+#[cfg(test)]
+mod tests;

@@ -1,4 +1,5 @@
-//! Unit tests of the scenes' shared parts (moved from `tests/regression/`): the cost guard; and
+//! Unit tests of the scenes' shared parts (moved from `tests/regression/` and `tests/app/`): the
+//! cost guard and its `--force`; and
 //! [`prepare`], which the scenes' unit tests load their scenarios with.
 
 use crate::error::BadInput;
@@ -6,6 +7,7 @@ use crate::scenario::{self, inputs, Overrides};
 use crate::scenes::Prepared;
 use std::path::Path;
 
+mod cost_guard_force;
 mod issue_17_cylinder_cost_estimate;
 
 /// The scenario file `path` as `settle run --dt DT_S --set OVERRIDES` prepares it (read,

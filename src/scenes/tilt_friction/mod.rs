@@ -135,3 +135,6 @@ pub fn run(p: &Prepared, tf: &TiltFrictionSpec, out: &mut Outputs) -> Result<Sce
         interrupted: false,
     })
 }
+
+#[cfg(test)]
+mod tests;

@@ -1,6 +1,7 @@
 //! Unit tests of the free-settling scene (moved from `tests/engine/free_settling.rs` and
-//! `tests/validation/{paste_drop,transient,valentik}.rs`): one sphere through the scene's own
-//! integrator and through Rapier, against analytic solutions and reference data.
+//! `tests/validation/{paste_drop,transient,valentik,stokes_single,sphere_drag}.rs`): one sphere
+//! through the scene's own integrator and through Rapier, against analytic solutions and
+//! reference data.
 
 use crate::error::BadInput;
 use crate::scenario::inputs::{self, SphereCase};
@@ -9,6 +10,8 @@ use std::path::Path;
 
 mod paste_drop;
 mod rapier;
+mod sphere_drag;
+mod stokes_single;
 mod transient;
 mod valentik;
 

@@ -1,14 +1,17 @@
-//! Issue 12, data loss and hangs, item 7: `[contacts]` on a sedimentation scenario was accepted,
+//! Issue 12, data loss and hangs, item 7 (moved from `tests/regression/`): `[contacts]` on a sedimentation scenario was accepted,
 //! listed in `run.toml`, and ignored: the cylinder's grain contacts were frictionless with
 //! restitution 0 whatever it said, so a run with `friction = 1, restitution = 1` gave the same
 //! results, bit for bit, as one without the table. The cylinder's contact solve now takes
 //! `friction` and `restitution` from `[contacts]` (defaults as before: 0 and 0).
 
-use crate::common::tmp;
-use settle::contact::RestitutionLaw;
-use settle::run::prepare;
-use settle::scenes::sedimentation::{setup, simulate, ContactStats, GrainContacts, State};
+use super::prepare;
+use crate::contact::RestitutionLaw;
+use crate::scenes::sedimentation::{setup, simulate, ContactStats, GrainContacts, State};
 use std::path::Path;
+
+fn tmp() -> tempfile::TempDir {
+    tempfile::tempdir().expect("temp dir")
+}
 
 /// A short run of sample 1 (10 000 grains, 300 s: thousands of close pairs), with an optional
 /// `[contacts]` table written beside the scenario.

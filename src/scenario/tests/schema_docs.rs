@@ -1,7 +1,8 @@
-//! The scenario reference (`docs/scenarios/*.md`) documents every key the schema accepts.
+//! The scenario reference (`docs/scenarios/*.md`) documents every key the schema accepts (moved
+//! from `tests/scenario/schema_docs.rs`).
 //!
 //! The keys come from the code, not from a list: [`trace`] drives the `Deserialize`
-//! implementation of [`settle::scenario::Scenario`] with a deserializer of its own that records
+//! implementation of [`crate::scenario::Scenario`] with a deserializer of its own that records
 //! what serde asks for. A derived `Deserialize` of a struct hands the deserializer the names of
 //! all its fields (`deserialize_struct(name, FIELDS, visitor)`, after `rename` and `rename_all`),
 //! and of an enum the names of all its variants; the tracer answers every field with a value of
@@ -239,7 +240,7 @@ impl Variant {
 /// the tables of `[[spheres]]`, `name`), with the variants of the enum keys.
 fn trace() -> BTreeMap<String, Leaf> {
     let out = Paths::default();
-    settle::scenario::Scenario::deserialize(Tracer {
+    crate::scenario::Scenario::deserialize(Tracer {
         path: String::new(),
         out: &out,
     })
@@ -266,7 +267,7 @@ fn accepts(kind: &str, table: &str) -> bool {
         return true;
     }
     let text = format!("name = \"t\"\nkind = \"{kind}\"\n[{table}]\n");
-    match settle::scenario::load_str(&text, Path::new("t.toml"), &[]) {
+    match crate::scenario::load_str(&text, Path::new("t.toml"), &[]) {
         Ok(_) => true,
         Err(e) => !e.message.contains("is not used by kind"),
     }
