@@ -57,12 +57,12 @@
 //! | 5 application | [`api`], [`run`](mod@run), [`sweep`], [`bench`](mod@bench), [`reduce`], [`invert`], [`laws`], [`fit`], [`cli`] | the commands |
 
 // Layer 0: infrastructure.
-pub mod checkpoint;
+pub(crate) mod checkpoint;
 pub mod error;
 pub mod interrupt;
-pub mod io;
-pub mod numerics;
-pub mod progress;
+pub(crate) mod io;
+pub(crate) mod numerics;
+pub(crate) mod progress;
 // Layer 1: physics.
 pub mod contact;
 pub mod dynamics;
@@ -70,21 +70,21 @@ pub mod fluid;
 pub mod instruments;
 pub mod sample;
 // Layer 2: engine.
-pub mod engine;
+pub(crate) mod engine;
 // Layer 3: scenario.
-pub mod scenario;
+pub(crate) mod scenario;
 // Layer 4: scenes.
-pub mod scenes;
+pub(crate) mod scenes;
 // Layer 5: application.
 pub mod api;
-pub mod bench;
+pub(crate) mod bench;
 pub mod cli;
-pub mod fit;
+pub(crate) mod fit;
 pub mod invert;
 pub mod laws;
 pub mod reduce;
-pub mod run;
-pub mod sweep;
+pub(crate) mod run;
+pub(crate) mod sweep;
 
 pub use api::{load, run, RunOptions, RunResult, Scenario, Status};
 pub use error::Error;
