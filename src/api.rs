@@ -1,7 +1,7 @@
 //! The library API: load a scenario, apply overrides, run it in memory, read its tables, write
-//! its files; the same steps `settle run` takes, as functions. The other commands have theirs
-//! in their modules ([`crate::sweep`], [`crate::reduce`], [`crate::invert`], [`crate::laws`],
-//! [`crate::fit`]).
+//! its files; the same steps `settle run` takes, as functions. `settle reduce` has its own in
+//! [`crate::reduce`]; [`crate::invert`] and [`crate::laws`] expose their computations;
+//! `settle sweep` and `settle fit` are command-line only so far.
 //!
 //! ```no_run
 //! let scenario = settle::load("scenarios/stokes_single.toml")?

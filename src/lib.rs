@@ -36,7 +36,7 @@
 //! | run | [`Scenario::run`], [`Scenario::run_with`] ([`RunOptions`]) |
 //! | read | [`RunResult::tables`], [`RunResult::table`] ([`Table`], [`Column`]), [`RunResult::warnings`], [`RunResult::status`], [`RunResult::record`] |
 //! | write | [`RunResult::write`] |
-//! | other commands | [`sweep`], [`reduce`], [`invert`], [`laws`], [`fit`] (each module opens with what to call) |
+//! | other commands | [`reduce`] (in memory, as `run`); [`invert`] and [`laws`] (their computations); `sweep` and `fit` from the command line so far |
 //! | physics | [`fluid`] (drag laws, buoyancy, Bingham drag), [`dynamics`] (integrators), [`contact`], [`instruments`] (hydrometer, pipette, buoyancy sphere, reductions), [`sample`] |
 //!
 //! Ctrl-C: [`interrupt::request`] stops a run at its next check; the run returns what it did
@@ -49,12 +49,12 @@
 //!
 //! | layer | modules | what |
 //! |---|---|---|
-//! | 0 infrastructure | [`error`], [`numerics`], [`io`], [`checkpoint`], [`interrupt`], [`progress`] | the error type and exit codes, bracketing root finders, staged output folders, atomic writes, charts, checkpoints, interruption, progress bars; no domain types |
+//! | 0 infrastructure | [`error`], `numerics`, `io`, `checkpoint`, [`interrupt`], `progress` | the error type and exit codes, bracketing root finders, staged output folders, atomic writes, charts, checkpoints, interruption, progress bars; no domain types |
 //! | 1 physics | [`fluid`], [`contact`], [`dynamics`], [`sample`], [`instruments`] | pure functions with their equations: no I/O, no Rapier |
-//! | 2 engine | [`engine`] | the Rapier worlds |
-//! | 3 scenario | [`scenario`] | schema, loading, validation, input files, the typed scenario and the registry of kinds |
-//! | 4 scenes | [`scenes`] | one folder per kind (its scene and its cost), and the scene API ([`scenes::Prepared`], [`scenes::RunContext`], [`scenes::SceneReport`]) |
-//! | 5 application | [`api`], [`run`](mod@run), [`sweep`], [`bench`](mod@bench), [`reduce`], [`invert`], [`laws`], [`fit`], [`cli`] | the commands |
+//! | 2 engine | `engine` | the Rapier worlds |
+//! | 3 scenario | `scenario` | schema, loading, validation, input files, the typed scenario and the registry of kinds |
+//! | 4 scenes | `scenes` | one folder per kind (its scene and its cost), and the scene API (`scenes::Prepared`, `scenes::RunContext`, `scenes::SceneReport`) |
+//! | 5 application | [`api`], `run`, `sweep`, `bench`, [`reduce`], [`invert`], [`laws`], `fit`, `cli` | the commands |
 
 // Layer 0: infrastructure.
 pub(crate) mod checkpoint;
@@ -78,7 +78,7 @@ pub(crate) mod scenes;
 // Layer 5: application.
 pub mod api;
 pub(crate) mod bench;
-pub mod cli;
+pub(crate) mod cli;
 pub(crate) mod fit;
 pub mod invert;
 pub mod laws;
@@ -90,3 +90,10 @@ pub use api::{load, run, RunOptions, RunResult, Scenario, Status};
 pub use error::Error;
 pub use io::{Column, Table};
 pub use scenario::Kind;
+
+/// The command line `settle` (the binary's `main`): parses the arguments, runs the command,
+/// returns the exit code ([`error`] lists them).
+#[doc(hidden)]
+pub fn cli_main() -> i32 {
+    cli::main()
+}

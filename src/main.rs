@@ -1,5 +1,5 @@
 //! `settle`: see `settle --help`.
 
 fn main() {
-    std::process::exit(settle::cli::main());
+    std::process::exit(settle::cli_main());
 }

@@ -139,11 +139,12 @@ mod tests;
 pub use crate::dynamics::Unstable;
 pub use body_id::BodyId;
 pub(crate) use faults::unstable;
-pub use settings::{ContactDrag, EngineSettings, RapierIntegrationParameters};
+pub use settings::{ContactDrag, EngineSettings};
 
 use crate::dynamics::Integrator;
 use crate::fluid::SphereDrag;
 use nalgebra::SVector;
+// Re-exported for the unit tests only.
 
 /// Rotational drag coefficient of a sphere, N m s: torque = π η d³ ω (Stokes), with η the law's
 /// (plastic) viscosity.

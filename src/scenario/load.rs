@@ -52,16 +52,19 @@ impl Parsed {
 
 /// Reads, overrides, parses and validates a scenario file. `overrides` are `KEY=VALUE` strings
 /// (`fluid.viscosity_pa_s=0.002`, `spheres[0].diameter_m=1e-4`, `physics=ideal-stokes`).
+#[cfg(test)]
 pub fn load(path: &Path, overrides: &[String]) -> Result<Scenario, BadInput> {
     parse(path, overrides).map(|p| p.scenario)
 }
 
 /// As [`load`], from the text of a file; `path` names it in errors.
+#[cfg(test)]
 pub fn load_str(text: &str, path: &Path, overrides: &[String]) -> Result<Scenario, BadInput> {
     parse_str(text, path, overrides).map(|p| p.scenario)
 }
 
 /// As [`load`], with the typed parts of the scenario: the spec of its kind and its rheology.
+#[cfg(test)]
 pub fn parse(path: &Path, overrides: &[String]) -> Result<Parsed, BadInput> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| BadInput::new(path, None, format!("cannot read the file: {e}")))?;

@@ -28,10 +28,12 @@ mod tests;
 mod validate;
 
 pub use common::Common;
-pub use kinds::{info, sweepable_names, KindInfo, SceneSpec, KINDS};
-pub use load::{
-    apply_override, is_key_path, load, load_str, parse, parse_str, record_table, Overrides, Parsed,
-};
+pub use kinds::{info, sweepable_names, SceneSpec};
+pub use load::{is_key_path, parse_str, record_table, Overrides, Parsed};
 pub use schema::*;
 pub(crate) use validate::check_sphere;
-pub use validate::MAX_STEPS;
+// Re-exported for the unit tests only.
+#[cfg(test)]
+pub(crate) use kinds::{KindInfo, KINDS};
+#[cfg(test)]
+pub(crate) use load::{load, load_str, parse};

@@ -8,8 +8,6 @@ use super::schema::*;
 use crate::error::BadInput;
 use std::path::Path;
 
-pub use super::check::MAX_STEPS;
-
 /// Whether `key` is an optional top-level table: one a kind of [`KINDS`] lists among its
 /// tables (a table no kind lists is read by every kind, or is a plain key).
 fn optional_table(key: &str) -> bool {

@@ -336,31 +336,3 @@ pub fn grid_svg(path: &Path, title: &str, charts: &[Chart], columns: usize) -> s
 pub fn grid_svg_string(title: &str, charts: &[Chart], columns: usize) -> std::io::Result<String> {
     draw::grid_svg_string(title, charts, columns)
 }
-
-/// Draws a scatter/line chart as SVG at `path` (see [`Chart`]); a drawing failure is an
-/// [`std::io::Error`] of kind `Other` (the caller names the path).
-pub fn scatter_svg(
-    path: &Path,
-    title: &str,
-    x_label: &str,
-    y_label: &str,
-    x_scale: Scale,
-    y_scale: Scale,
-    series: &[Series],
-) -> std::io::Result<()> {
-    series
-        .iter()
-        .fold(
-            Chart::new(title).x(x_label, x_scale).y(y_label, y_scale),
-            |c, s| {
-                c.series(Series {
-                    label: s.label.clone(),
-                    points: s.points.clone(),
-                    colour: s.colour,
-                    filled: s.filled,
-                    line: s.line,
-                })
-            },
-        )
-        .svg(path)
-}

@@ -167,6 +167,7 @@ pub enum RheologyModel {
 }
 
 impl Fluid {
+    #[cfg_attr(not(test), allow(dead_code))] // read by the unit tests
     /// The rheology with its parameters, or `None` when one the rheology needs is missing
     /// (never for a validated scenario, whose rheology is [`crate::scenario::Parsed::rheology`]).
     pub fn model(&self) -> Option<RheologyModel> {
@@ -316,14 +317,6 @@ impl RheologyModel {
             RheologyModel::HerschelBulkley {
                 consistency_pa_sn, ..
             } => consistency_pa_sn,
-        }
-    }
-
-    /// The rheogram of a yield-stress fluid (Bingham: n = 1, K = η_B); None for a Newtonian one.
-    pub fn yield_fluid(&self) -> Option<crate::fluid::bingham::YieldFluid> {
-        match self {
-            RheologyModel::Newtonian { .. } => None,
-            _ => Some(self.rheogram()),
         }
     }
 

@@ -20,7 +20,7 @@ mod transient;
 
 pub use bodies::{Container, ReferenceSpec, Release, SphereSpec, SpheresCsv};
 pub use contacts::Contacts;
-pub use fluid::{Drag, DragLawName, Fluid, Rheology, RheologyModel, StaticCriterion, Submergence};
+pub use fluid::{Drag, Fluid, Rheology, RheologyModel, Submergence};
 pub(crate) use kinds::free_settling;
 pub use kinds::free_settling::{Entry, FreeSettlingSpec};
 pub(crate) use kinds::funnel_pour;
@@ -40,6 +40,7 @@ use super::check::{oc, Check, Range};
 use crate::dynamics::Integrator;
 use crate::error::BadInput;
 use serde::{Deserialize, Serialize};
+// Re-exported for the unit tests only.
 
 /// Standard gravity used when a scenario does not set `gravity_m_s2`, m/s².
 pub const DEFAULT_GRAVITY_M_S2: f64 = 9.81;
@@ -301,6 +302,7 @@ impl Scenario {
         }
     }
 
+    #[cfg_attr(not(test), allow(dead_code))] // read by the unit tests
     /// The dimension (the field `dimension`).
     pub fn dim(&self) -> Dim {
         self.dimension

@@ -62,14 +62,14 @@ mod transient;
 
 pub use scene::Scene;
 pub use setup::{release_depth_m, RunOptions};
-pub use simulate::{
-    run, run_interruptible, run_rapier, run_scene_cases, run_sphere, Halt, Sample, SphereResult,
-    StopReason,
-};
+pub use simulate::{run, run_interruptible, run_scene_cases, Halt, SphereResult};
 
 use crate::error::Error;
 use crate::scenario::FreeSettlingSpec;
 use crate::scenes::{Prepared, SceneReport};
+// Re-exported for the unit tests only.
+#[cfg(test)]
+pub(crate) use simulate::{run_rapier, run_sphere, StopReason};
 
 /// State variables per body of the history force (v, x and one per exponential of the kernel)
 /// of the first sphere of `cases` in `scenario`; None without a history force.

@@ -78,6 +78,7 @@ pub struct SphereResult {
     pub steady_in_section: Option<bool>,
     /// Force-balance terminal velocity, m/s.
     pub v_force_balance_m_s: f64,
+    #[cfg_attr(not(test), allow(dead_code))] // read by the unit tests
     /// The force balance sits on a jump of the drag law.
     pub force_balance_at_jump: bool,
     /// Stokes terminal velocity (eq. 21) when the law is Stokes, m/s.
@@ -153,6 +154,7 @@ pub fn run(
 /// Runs every sphere through its own Rapier world with the force hook (`engine = "rapier"`):
 /// the same scene as the free engine, through the contact pipeline. It must give the same answer
 /// (src/scenes/free_settling/tests/rapier.rs); it costs ~300× more per step.
+#[cfg(test)]
 pub fn run_rapier(
     scenario: &Scenario,
     rheology: RheologyModel,
@@ -229,6 +231,7 @@ fn run_cases(
 }
 
 /// Runs one sphere in `D` dimensions (vertical = last axis) on the free engine.
+#[cfg(test)]
 pub fn run_sphere<const D: usize>(
     scenario: &Scenario,
     rheology: RheologyModel,

@@ -67,19 +67,22 @@ pub mod simulate;
 #[cfg(test)]
 mod tests;
 
-pub use census::{z_range, Ball, Census, Place, RepeatResult, Sample};
-pub use placement::{place_balls, Unplaceable, PLACEMENT_GAP};
-pub use setup::{Geometry, DOMAIN_MARGIN_M};
-pub use simulate::{
-    run_repeat, run_repeat_with, simulate, simulate_with, RepeatOutcome, DEFAULT_RECORD_EVERY_S,
-    REST_WINDOW_S,
-};
+pub use census::{Census, Place, RepeatResult};
+pub use setup::Geometry;
+pub use simulate::{run_repeat, simulate_with};
 
 use crate::error::Error;
 use crate::io::Outputs;
 use crate::scenario::FunnelPourSpec;
 use crate::scenes::{Prepared, RunContext, SceneReport};
 use std::time::Instant;
+// Re-exported for the unit tests only.
+#[cfg(test)]
+pub(crate) use census::Ball;
+#[cfg(test)]
+pub(crate) use placement::place_balls;
+#[cfg(test)]
+pub(crate) use simulate::simulate;
 
 /// Funnel pour (kind `funnel_pour`): runs the repeats, adds `balls.csv`, `counts.csv`,
 /// `timeseries.csv`, `z_distribution.csv` + `.svg` and `presence.csv` + `.svg` to `out` (see

@@ -440,6 +440,7 @@ pub fn run_repeat_with(
 }
 
 /// Runs every repeat of a funnel pour in parallel (rayon); results in repeat order.
+#[cfg(test)]
 pub fn simulate(p: &Prepared, f: &FunnelPourSpec) -> Result<Vec<RepeatResult>, Error> {
     let (results, interrupted) = simulate_with(p, f, &RunContext::default())?;
     if interrupted {

@@ -5,16 +5,9 @@ use super::setup::Setup;
 use super::state::{concentration, profile, Profile, State};
 use crate::fluid::sphere_mass_kg;
 use crate::instruments::buoyancy::{BuoyancyReading, BuoyancySphere};
-use crate::instruments::hydrometer::{Hydrometer, HydrometerReading, HydrometerSpec};
+use crate::instruments::hydrometer::{Hydrometer, HydrometerReading};
 use crate::instruments::pipette::{GrainSample, Pipette, PipetteReading};
 use crate::instruments::{Analysis, LayeredField, Point};
-use crate::scenario::InstrumentsSpec;
-
-/// The hydrometer figures of an `[instruments]` table (kept for callers of the old path; see
-/// [`InstrumentsSpec::hydrometer`]).
-pub fn hydrometer_spec(ins: &InstrumentsSpec) -> HydrometerSpec {
-    ins.hydrometer()
-}
 
 /// The instruments of a run and their reading times (those within `time.end_s`).
 pub struct InstrumentSet {

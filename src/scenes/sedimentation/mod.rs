@@ -81,17 +81,11 @@ pub mod suspension;
 mod tests;
 pub mod voidage;
 
-pub use instruments::{
-    hydrometer_spec, initial_bulb_profile, layered_field, read_instruments, BulbRow,
-    InstrumentKind, InstrumentReading, InstrumentSet,
-};
-pub use observer::{Observer, OnRecord};
-pub use setup::{
-    default_record_times, limiting_diameter_m, setup, setup_of, setup_with, GrainContacts, Setup,
-    CONTACT_FILM_CHANGE_PER_STEP, CONTACT_TRAVEL_PER_SUBSTEP,
-};
+pub use instruments::{initial_bulb_profile, read_instruments, InstrumentSet};
+pub use observer::Observer;
+pub use setup::{setup, setup_of, Setup};
 pub use simulate::simulate;
-pub use state::{band_mass_fractions, ContactStats, Profile, State, PICTURE_BANDS};
+pub use state::{band_mass_fractions, State, PICTURE_BANDS};
 
 use crate::checkpoint::Timer;
 use crate::error::Error;
@@ -99,6 +93,15 @@ use crate::io::Outputs;
 use crate::scenario::SedimentationSpec;
 use crate::scenes::{Prepared, RunContext, SceneReport};
 use output::Recorded;
+// Re-exported for the unit tests only.
+#[cfg(test)]
+pub(crate) use observer::OnRecord;
+#[cfg(test)]
+pub(crate) use setup::{
+    limiting_diameter_m, GrainContacts, CONTACT_FILM_CHANGE_PER_STEP, CONTACT_TRAVEL_PER_SUBSTEP,
+};
+#[cfg(test)]
+pub(crate) use state::ContactStats;
 
 /// Runs a sedimentation scenario (its common part and its spec `spec`, nothing else of it) and
 /// adds its outputs to `out`: `profiles.csv`, `bed.csv`, `max_diameter.csv`, `snapshots/`,

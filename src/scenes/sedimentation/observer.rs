@@ -32,6 +32,7 @@ impl Observer for () {
 }
 
 /// Calls the closure at every record time, and does nothing else.
+#[cfg_attr(not(test), allow(dead_code))] // built by the unit tests only
 pub struct OnRecord<F: FnMut(&State)>(pub F);
 
 impl<F: FnMut(&State)> Observer for OnRecord<F> {

@@ -50,6 +50,7 @@ pub enum StepLoop {
     Chosen,
     /// Every grain of the state at every step, whatever the modes: the loop the others must
     /// agree with (runs with contacts take it anyway).
+    #[cfg_attr(not(test), allow(dead_code))] // chosen by the unit tests only
     PerGrain,
 }
 

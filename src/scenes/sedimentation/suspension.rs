@@ -143,6 +143,7 @@ impl Suspension {
     }
 
     /// True when no grain is suspended.
+    #[allow(dead_code)] // the pair of `len` (clippy's len_without_is_empty)
     pub fn is_empty(&self) -> bool {
         self.len() == 0
     }

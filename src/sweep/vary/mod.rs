@@ -19,11 +19,8 @@ mod grid;
 mod table;
 
 pub use chart::{charts, console_lines, unit_of};
-pub use grid::{
-    count, override_text, parse_vary, points, round12, Axis, Level, Spacing, MAX_CASES,
-    VARY_ALLOWED,
-};
-pub use table::{VaryRow, VaryTable};
+pub use grid::{count, parse_vary, points, Axis, Level, MAX_CASES};
+pub use table::VaryTable;
 
 use super::args::Args;
 use super::plan::Case;
@@ -34,6 +31,7 @@ use crate::io::StagedDir;
 use crate::run::prepare;
 use crate::scenes::Prepared;
 use std::path::{Path, PathBuf};
+// Re-exported for the unit tests only.
 
 /// Name prefix of the part files of a sharded parameter sweep.
 pub const PART_PREFIX: &str = "vary_part_";

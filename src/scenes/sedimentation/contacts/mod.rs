@@ -8,10 +8,8 @@ pub mod pairs;
 pub mod resolve;
 
 pub use clusters::clusters;
-pub use pairs::{may_meet, may_meet_within, PairFinder, Probe};
-pub use resolve::{
-    resolve, ClusterGrain, ContactScene, Resolved, Solve, RAPIER_STEPS_PER_INTERRUPT_CHECK,
-};
+pub use pairs::{PairFinder, Probe};
+pub use resolve::{resolve, ClusterGrain, ContactScene, Resolved, Solve};
 
 use super::setup::{Setup, CONTACT_FILM_CHANGE_PER_STEP, CONTACT_TRAVEL_PER_SUBSTEP};
 use super::state::State;
@@ -21,6 +19,7 @@ use crate::fluid::lubrication::Cutoffs;
 use crate::scenario::SampleSpec;
 use rayon::prelude::*;
 use std::collections::HashMap;
+// Re-exported for the unit tests only.
 
 /// The contact stage of a run: its pair finder (reused from step to step) and the constant part
 /// of its [`ContactScene`].
