@@ -263,7 +263,7 @@ fn the_yield_stress_that_holds_the_tutorial_ball() {
 }
 
 /// The README opens with the two commands a newcomer needs: the main job, and exactly the test
-/// command `.ci/run` runs last.
+/// command `.ci/run` runs last, which runs every test, Rust and Python.
 #[test]
 fn the_readme_opens_with_the_main_job_and_the_ci_test_command() {
     let blocks: Vec<&str> = README.split("```").skip(1).step_by(2).take(2).collect();
@@ -273,7 +273,15 @@ fn the_readme_opens_with_the_main_job_and_the_ci_test_command() {
     );
     let ci_last = CI.lines().rev().find(|l| !l.trim().is_empty()).unwrap();
     assert_eq!(blocks[1].trim(), ci_last.trim());
-    assert_eq!(ci_last, "cargo test --release");
+    assert_eq!(ci_last, "scripts/test.sh");
+    let script = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/scripts/test.sh"))
+        .expect("scripts/test.sh");
+    for step in ["cargo test --release", "scripts/test_python.sh"] {
+        assert!(
+            script.lines().any(|l| l.trim() == step),
+            "scripts/test.sh runs `{step}` (every test: Rust and Python)"
+        );
+    }
     assert!(
         README.find("```").unwrap() < README.find("<!-- tutorial -->").unwrap(),
         "the commands come before the tutorial"
