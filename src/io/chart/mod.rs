@@ -6,11 +6,11 @@
 //! hollow, simulated ones filled. Reference curves ([`Curve`]: analytic laws, parity lines) are
 //! lines without markers; shaded bands ([`Band`]) mark tolerances (e.g. ±10 % around parity).
 //!
-//! [`scatter_svg`] draws a chart of [`Series`]; [`Chart`] is the builder behind it, with the
-//! curves, bands, fixed ranges and marker shapes a chart may need:
+//! [`Chart`] is the builder of a chart of [`Series`], with the curves, bands, fixed ranges and
+//! marker shapes a chart may need (a crate-internal module, so the example is not a doctest):
 //!
-//! ```no_run
-//! use settle::io::chart::{Chart, Curve, Scale, Series};
+//! ```ignore
+//! use crate::io::chart::{Chart, Curve, Scale, Series};
 //! let pts = vec![(1.0, 2.0), (2.0, 4.1)];
 //! Chart::new("velocity against time")
 //!     .x("time (s)", Scale::Linear)
