@@ -5,7 +5,6 @@
 use crate::error::BadInput;
 use crate::error::Error;
 use crate::io::{self as output, StagedDir};
-use crate::scenario::inputs;
 use crate::scenario::{self, Kind, Scenario};
 use crate::scenes::free_settling::{self, output as out_fs};
 use serde::Serialize;
@@ -90,39 +89,7 @@ pub fn prepare_str(
     dt_s: Option<f64>,
     overrides: &[String],
 ) -> Result<Prepared, BadInput> {
-    let mut ov = overrides.to_vec();
-    if let Some(dt) = dt_s.filter(|d| !d.is_finite()) {
-        return Err(BadInput::new(
-            path,
-            Some("time.dt_s"),
-            format!("--dt {dt} is out of range: allowed 0 < dt_s ≤ time.end_s s"),
-        ));
-    }
-    if let Some(dt) = dt_s {
-        ov.push(format!("time.dt_s={dt:e}"));
-    }
-    let scenario::Parsed {
-        scenario,
-        common,
-        scene,
-        rheology,
-    } = scenario::parse_str(text, path, &ov)?;
-    check_name(&scenario, path)?;
-    let spheres = inputs::spheres(&scenario, path)?;
-    let reference = inputs::read_reference(&scenario, path)?;
-    Ok(Prepared {
-        path: path.to_path_buf(),
-        scenario,
-        common,
-        spheres,
-        scene,
-        rheology,
-        reference,
-        overrides: scenario::Overrides {
-            set: overrides.to_vec(),
-            dt_s,
-        },
-    })
+    Prepared::parse(text, path, dt_s, overrides, |s| check_name(s, path))
 }
 
 /// Result of one scenario file.

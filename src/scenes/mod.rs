@@ -10,8 +10,9 @@ mod tests;
 pub mod tilt_friction;
 pub mod validity;
 
+use crate::error::BadInput;
 use crate::scenario::{Kind, RheologyModel, Scenario, SceneSpec};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// A loaded scenario ready to run: the effective scenario and its input files, read and checked.
 #[derive(Clone, Debug)]
@@ -36,6 +37,54 @@ pub struct Prepared {
     /// The overrides as given on the command line (`--set`, `--dt`), recorded in `run.toml`;
     /// already applied to `scenario`.
     pub overrides: crate::scenario::Overrides,
+}
+
+impl Prepared {
+    /// Reads, overrides, validates and prepares the text `text` of the scenario file `path`
+    /// (its folder is where relative input files are found), as `settle run --dt DT_S --set
+    /// OVERRIDES` does: `--dt` is `time.dt_s`; `check` vets the validated scenario before its
+    /// input files (`spheres_csv`, `sample.csv`, `[reference]`) are read.
+    pub fn parse(
+        text: &str,
+        path: &Path,
+        dt_s: Option<f64>,
+        overrides: &[String],
+        check: impl FnOnce(&Scenario) -> Result<(), BadInput>,
+    ) -> Result<Prepared, BadInput> {
+        let mut ov = overrides.to_vec();
+        if let Some(dt) = dt_s.filter(|d| !d.is_finite()) {
+            return Err(BadInput::new(
+                path,
+                Some("time.dt_s"),
+                format!("--dt {dt} is out of range: allowed 0 < dt_s ≤ time.end_s s"),
+            ));
+        }
+        if let Some(dt) = dt_s {
+            ov.push(format!("time.dt_s={dt:e}"));
+        }
+        let crate::scenario::Parsed {
+            scenario,
+            common,
+            scene,
+            rheology,
+        } = crate::scenario::parse_str(text, path, &ov)?;
+        check(&scenario)?;
+        let spheres = crate::scenario::inputs::spheres(&scenario, path)?;
+        let reference = crate::scenario::inputs::read_reference(&scenario, path)?;
+        Ok(Prepared {
+            path: path.to_path_buf(),
+            scenario,
+            common,
+            spheres,
+            scene,
+            rheology,
+            reference,
+            overrides: crate::scenario::Overrides {
+                set: overrides.to_vec(),
+                dt_s,
+            },
+        })
+    }
 }
 
 /// How a run is carried out beyond its scenario: checkpoints, resumption, progress display.
