@@ -26,3 +26,9 @@ pub fn requested() -> bool {
 pub fn request() {
     STOP.store(true, Ordering::SeqCst);
 }
+
+/// Withdraws a stop request, so that later runs run (the Python package calls it once every
+/// run a Ctrl-C stopped has returned; the command line never does: it exits).
+pub fn clear() {
+    STOP.store(false, Ordering::SeqCst);
+}

@@ -88,7 +88,8 @@ pub(crate) mod sweep;
 
 pub use api::{load, run, RunOptions, RunResult, Scenario, Status};
 pub use error::Error;
-pub use io::{Column, Table};
+pub use io::{Column, Outputs, Table};
+pub use progress::{Shown, Watch};
 pub use scenario::Kind;
 
 /// The command line `settle` (the binary's `main`): parses the arguments, runs the command,

@@ -12,7 +12,9 @@
 //! that a rate that changes is followed instead of averaged with its start.
 
 use indicatif::{ProgressBar, ProgressState, ProgressStyle};
+use std::cell::RefCell;
 use std::collections::VecDeque;
+use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
 /// Wall time before any time left is shown, s.
@@ -99,11 +101,92 @@ impl indicatif::style::ProgressTracker for Eta {
     }
 }
 
+/// A window on the progress of a computation, for a caller that draws its own bar (the Python
+/// package draws one in a terminal or a Jupyter notebook). Inside [`Watch::scope`], every
+/// progress bar the computation makes on this thread is not drawn on stderr but tracked here;
+/// [`Watch::shown`] reads the latest one from any thread.
+#[derive(Clone, Debug, Default)]
+pub struct Watch(Arc<Mutex<Option<(ProgressBar, String)>>>);
+
+/// What a watched progress bar shows.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Shown {
+    /// What is counted: the scenario's name.
+    pub name: String,
+    /// Units done.
+    pub pos: u64,
+    /// Units in all (None while unknown).
+    pub len: Option<u64>,
+    /// The unit: `s simulated`, `cases`, `repeats`.
+    pub unit: String,
+    /// Live figures: steps so far, steps per second.
+    pub message: String,
+}
+
+thread_local! {
+    static WATCHING: RefCell<Option<Watch>> = const { RefCell::new(None) };
+}
+
+impl Watch {
+    /// A watch with nothing to show yet.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Runs `f` with this watch on the current thread (nested scopes restore the outer one).
+    pub fn scope<T>(&self, f: impl FnOnce() -> T) -> T {
+        let outer = WATCHING.with(|w| w.replace(Some(self.clone())));
+        struct Restore(Option<Watch>);
+        impl Drop for Restore {
+            fn drop(&mut self) {
+                WATCHING.with(|w| *w.borrow_mut() = self.0.take());
+            }
+        }
+        let _restore = Restore(outer);
+        f()
+    }
+
+    /// The latest bar's state, if a bar was made.
+    pub fn shown(&self) -> Option<Shown> {
+        let guard = self.0.lock().ok()?;
+        let (bar, unit) = guard.as_ref()?;
+        Some(Shown {
+            name: bar.prefix(),
+            pos: bar.position(),
+            len: bar.length(),
+            unit: unit.clone(),
+            message: bar.message().trim_end_matches(',').to_string(),
+        })
+    }
+}
+
+/// The watched bar of `len` units, if the current thread is inside a [`Watch::scope`].
+fn watched(len: u64, name: &str, unit: &str) -> Option<ProgressBar> {
+    let watch = WATCHING.with(|w| w.borrow().clone())?;
+    let bar = ProgressBar::hidden();
+    bar.set_length(len);
+    bar.set_prefix(name.to_string());
+    let unit = unit
+        .split(['{', ','])
+        .next()
+        .unwrap_or("")
+        .trim()
+        .to_string();
+    if let Ok(mut g) = watch.0.lock() {
+        *g = Some((bar.clone(), unit));
+    }
+    Some(bar)
+}
+
 /// A bar of `len` units, prefixed by `name`, with a template whose `{pos}`/`{len}` are followed
 /// by `unit` (e.g. "cases", "s simulated"); `{msg}` carries live figures (steps, step rate), then
-/// the time left ([`Eta`]). Hidden when `quiet` or when stderr is not a terminal.
+/// the time left ([`Eta`]). Hidden when `quiet` or when stderr is not a terminal; inside a
+/// [`Watch::scope`], tracked by the watch and not drawn (whatever `quiet` says).
 pub fn bar(len: u64, name: &str, unit: &str, quiet: bool) -> ProgressBar {
     use std::io::IsTerminal;
+    if let Some(bar) = watched(len, name, unit) {
+        return bar;
+    }
     if quiet || !std::io::stderr().is_terminal() {
         return ProgressBar::hidden();
     }
@@ -138,6 +221,27 @@ mod tests {
             eta.observe(t, pos(t));
             k += 1;
         }
+    }
+
+    #[test]
+    fn a_watch_tracks_the_bars_made_in_its_scope_only() {
+        let watch = Watch::new();
+        let outside = bar(10, "before", "cases,", false);
+        outside.inc(1);
+        assert_eq!(watch.shown(), None);
+        watch.scope(|| {
+            let b = bar(40, "sedimentation", "s simulated {msg}", true);
+            b.inc(3);
+            b.set_message("12 steps, 100 steps/s,");
+        });
+        let shown = watch.shown().expect("a bar was made in the scope");
+        assert_eq!(shown.name, "sedimentation");
+        assert_eq!((shown.pos, shown.len), (3, Some(40)));
+        assert_eq!(shown.unit, "s simulated");
+        assert_eq!(shown.message, "12 steps, 100 steps/s");
+        let after = bar(5, "after", "cases", true);
+        after.inc(5);
+        assert_eq!(watch.shown().unwrap().name, "sedimentation");
     }
 
     #[test]

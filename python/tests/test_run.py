@@ -191,7 +191,7 @@ def test_run_with_out_writes_the_folder(tmp_path: Path) -> None:
     for stem, path in csv_files(cli_dir).items():
         assert (py_dir / f"{stem}.csv").read_bytes() == path.read_bytes()
     # record: what run.toml holds, as a dict (the written file's, but for its wall time)
-    written = settle._toml_loads((py_dir / "run.toml").read_text())
+    written = settle._core._toml_loads((py_dir / "run.toml").read_text())
     for rec in (written, r.record):
         rec["run"].pop("wall_time_s")
     assert written == r.record

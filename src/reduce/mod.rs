@@ -62,7 +62,7 @@ use crate::instruments::reduction::{
 };
 use crate::io::chart::{Chart, Scale, Series};
 use crate::io::fmt::{clean, sig_plain};
-use crate::io::{self, Outputs, StagedDir, Table};
+use crate::io::{Outputs, Table};
 use std::path::{Path, PathBuf};
 
 /// What a reduction produced, in memory: the tables and files `settle reduce` writes
@@ -93,20 +93,7 @@ impl ReduceResult {
     /// moved into place; refused when that folder exists and was not made by settle); returns
     /// the folder.
     pub fn write(&self, out_dir: impl AsRef<Path>) -> Result<PathBuf, Error> {
-        let out_dir = out_dir.as_ref();
-        let dest = out_dir.join(&self.name);
-        if io::check_destination(&dest).is_err() {
-            return Err(Error::bad_argument(
-                "--out",
-                &dest,
-                "exists and was not created by settle (no .settle-run marker), so settle will \
-                 not replace it: choose another --out",
-            ));
-        }
-        let ioe = |e: std::io::Error| Error::Io(dest.clone(), e);
-        let stage = StagedDir::new(out_dir, &self.name).map_err(ioe)?;
-        self.outputs.write_into(&stage.path("")).map_err(ioe)?;
-        stage.commit().map_err(ioe)
+        self.outputs.write_folder(out_dir.as_ref(), &self.name)
     }
 
     /// The console summary of `settle reduce`, the results written to `out`.
