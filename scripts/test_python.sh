@@ -13,6 +13,6 @@ cargo build --release
 if [ ! -x "$VENV/bin/python" ]; then
     "$PY" -m venv "$VENV"
 fi
-"$VENV/bin/python" -m pip install -q --disable-pip-version-check "maturin>=1.5,<2" pandas pytest mypy pandas-stubs
+"$VENV/bin/python" -m pip install -q --disable-pip-version-check "maturin>=1.5,<2" pandas pytest mypy pandas-stubs matplotlib nbformat nbclient ipykernel
 (cd python && VIRTUAL_ENV="$VENV" PATH="$VENV/bin:$PATH" maturin develop --release -q)
 SETTLE_BIN="$ROOT/target/release/settle" "$VENV/bin/python" -m pytest -q python/tests "$@"

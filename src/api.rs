@@ -156,7 +156,23 @@ impl Scenario {
             quiet: !opts.progress,
             ..RunContext::default()
         };
-        let done = runner::execute(p, &ctx)?;
+        let watch = crate::progress::Watch::current();
+        let done = match opts.threads {
+            None => runner::execute(p, &ctx)?,
+            Some(n) => rayon::ThreadPoolBuilder::new()
+                .num_threads(n.max(1))
+                .build()
+                .map_err(|e| {
+                    Error::bad_argument("threads", Path::new(&n.to_string()), e.to_string())
+                })?
+                .install(|| {
+                    // the run goes on in the pool's thread: the caller's progress watch with it
+                    match &watch {
+                        Some(w) => w.scope(|| runner::execute(p, &ctx)),
+                        None => runner::execute(p, &ctx),
+                    }
+                })?,
+        };
         Ok(RunResult {
             record: runner::run_toml(p, &done)?,
             scenario: self.clone(),
@@ -183,6 +199,11 @@ pub struct RunOptions {
     /// Run even when the cost estimate exceeds the time, memory or disk limits (`--force`;
     /// default false).
     pub force: bool,
+    /// Threads of the run's own parallel loops (the spheres of a free-settling scenario, the
+    /// grains of a cylinder); default None: every core (rayon's global pool). `Some(1)` runs on
+    /// the calling thread's pool of one, for callers that run many small scenarios in parallel
+    /// threads of their own (the Python package's `threads=1`).
+    pub threads: Option<usize>,
 }
 
 /// How a run ended.
@@ -232,6 +253,12 @@ impl RunResult {
     /// The tables and the other files (charts) of the run.
     pub fn outputs(&self) -> &Outputs {
         &self.done.outputs
+    }
+
+    /// The file name of the main chart of the scenario's kind (`velocity.svg`,
+    /// `granulometry.svg`, …); its data is in [`Outputs::figures`].
+    pub fn main_chart(&self) -> &'static str {
+        crate::scenario::info(self.scenario.kind()).main_chart
     }
 
     /// The validity warnings of the run (a law used outside its range, …).

@@ -88,6 +88,7 @@ pub(crate) mod sweep;
 
 pub use api::{load, run, RunOptions, RunResult, Scenario, Status};
 pub use error::Error;
+pub use io::chart::data::{Drawn, Figure, Panel};
 pub use io::{Column, Outputs, Table};
 pub use progress::{Shown, Watch};
 pub use scenario::Kind;

@@ -146,6 +146,12 @@ impl Watch {
         f()
     }
 
+    /// The watch of the current thread's [`Watch::scope`], if any (to carry it into a thread
+    /// pool's worker).
+    pub fn current() -> Option<Watch> {
+        WATCHING.with(|w| w.borrow().clone())
+    }
+
     /// The latest bar's state, if a bar was made.
     pub fn shown(&self) -> Option<Shown> {
         let guard = self.0.lock().ok()?;

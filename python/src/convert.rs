@@ -5,7 +5,7 @@ use pyo3::create_exception;
 use pyo3::exceptions::{PyKeyboardInterrupt, PyOSError, PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyBytes, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
-use settle::{Column, Error, Table};
+use settle::{Column, Drawn, Error, Figure, Table};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Duration;
 
@@ -229,4 +229,111 @@ pub fn blocking<T: Send>(
         return Err(e);
     }
     result.map_err(to_py)
+}
+
+/// Numbers as the bytes of native f64 values (read with numpy.frombuffer).
+fn f64_bytes<'py>(
+    py: Python<'py>,
+    v: impl ExactSizeIterator<Item = f64>,
+) -> PyResult<Bound<'py, PyBytes>> {
+    let n = v.len();
+    PyBytes::new_with(py, n * 8, |buf| {
+        for (cell, x) in buf.chunks_exact_mut(8).zip(v) {
+            cell.copy_from_slice(&x.to_ne_bytes());
+        }
+        Ok(())
+    })
+}
+
+/// A chart's data as a dict: `title`, `columns`, `panels` (each `title`, `x_label`, `y_label`,
+/// `x_log`, `y_log`, `x_range`, `y_range`, `x_categories`, `items`); an item is a dict with
+/// `type` (`series`, `curve`, `band`), `label`, `x`, `y` (f64 bytes; a band has `lower` and
+/// `upper` instead of `y`) and its style (`colour`, `filled`, `line`, `dashed`, `shade`).
+pub fn figure_dict<'py>(py: Python<'py>, f: &Figure) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("title", &f.title)?;
+    d.set_item("columns", f.columns)?;
+    let panels = PyList::empty(py);
+    for p in &f.panels {
+        let pd = PyDict::new(py);
+        pd.set_item("title", &p.title)?;
+        pd.set_item("x_label", &p.x_label)?;
+        pd.set_item("y_label", &p.y_label)?;
+        pd.set_item("x_log", p.x_log)?;
+        pd.set_item("y_log", p.y_log)?;
+        pd.set_item("x_range", p.x_range)?;
+        pd.set_item("y_range", p.y_range)?;
+        pd.set_item("x_categories", p.x_categories.clone())?;
+        let items = PyList::empty(py);
+        for it in &p.items {
+            let id = PyDict::new(py);
+            match it {
+                Drawn::Series {
+                    label,
+                    points,
+                    colour,
+                    filled,
+                    line,
+                    max_markers,
+                } => {
+                    id.set_item("type", "series")?;
+                    id.set_item("label", label)?;
+                    id.set_item("x", f64_bytes(py, points.iter().map(|p| p.0))?)?;
+                    id.set_item("y", f64_bytes(py, points.iter().map(|p| p.1))?)?;
+                    id.set_item("colour", *colour)?;
+                    id.set_item("filled", *filled)?;
+                    id.set_item("line", *line)?;
+                    id.set_item("max_markers", *max_markers)?;
+                }
+                Drawn::Curve {
+                    label,
+                    points,
+                    colour,
+                    dashed,
+                } => {
+                    id.set_item("type", "curve")?;
+                    id.set_item("label", label)?;
+                    id.set_item("x", f64_bytes(py, points.iter().map(|p| p.0))?)?;
+                    id.set_item("y", f64_bytes(py, points.iter().map(|p| p.1))?)?;
+                    id.set_item("colour", *colour)?;
+                    id.set_item("dashed", *dashed)?;
+                }
+                Drawn::Band {
+                    label,
+                    points,
+                    shade,
+                } => {
+                    id.set_item("type", "band")?;
+                    id.set_item("label", label)?;
+                    id.set_item("x", f64_bytes(py, points.iter().map(|p| p.0))?)?;
+                    id.set_item("lower", f64_bytes(py, points.iter().map(|p| p.1))?)?;
+                    id.set_item("upper", f64_bytes(py, points.iter().map(|p| p.2))?)?;
+                    id.set_item("shade", *shade)?;
+                }
+            }
+            items.append(id)?;
+        }
+        pd.set_item("items", items)?;
+        panels.append(pd)?;
+    }
+    d.set_item("panels", panels)?;
+    Ok(d)
+}
+
+/// The names of the charts of `outputs` that have data, in the order they were made.
+pub fn figure_names(outputs: &settle::Outputs) -> Vec<String> {
+    outputs.figures().iter().map(|(n, _)| n.clone()).collect()
+}
+
+/// The data of the chart `name` (file name, or stem) of `outputs`, or None.
+pub fn figure<'py>(
+    py: Python<'py>,
+    outputs: &settle::Outputs,
+    name: &str,
+) -> PyResult<Option<Bound<'py, PyDict>>> {
+    let found = outputs
+        .figures()
+        .iter()
+        .find(|(n, _)| n == name || n.strip_suffix(".svg") == Some(name));
+    found.map(|(_, f)| figure_dict(py, f)).transpose()
 }

@@ -2,10 +2,10 @@
 //! and files), with its warnings and console lines; `write` writes its folder as the command
 //! line does.
 
-use crate::convert::{raw_tables, to_py};
+use crate::convert::{figure, figure_names, raw_tables, to_py};
 use pyo3::exceptions::PyOSError;
 use pyo3::prelude::*;
-use pyo3::types::{PyBytes, PyTuple};
+use pyo3::types::{PyBytes, PyDict, PyTuple};
 use std::path::PathBuf;
 
 /// The tables and files of a command (`settle sweep`, `vary`, `reduce`, `invert`, `laws`,
@@ -74,6 +74,16 @@ impl Output {
     #[getter]
     fn name(&self) -> &str {
         &self.name
+    }
+
+    /// The names of the charts that have data (`velocity.svg`, ...), in the order made.
+    fn figure_names(&self) -> Vec<String> {
+        figure_names(&self.outputs)
+    }
+
+    /// The data of the chart `name` (file name or stem) as a dict, or None.
+    fn figure<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Option<Bound<'py, PyDict>>> {
+        figure(py, &self.outputs, name)
     }
 
     #[getter]

@@ -1,6 +1,6 @@
 //! `Scenario` and `RunResult`: `settle::Scenario` and `settle::RunResult` for Python.
 
-use crate::convert::{blocking, raw_tables, to_py, toml_table};
+use crate::convert::{blocking, figure, figure_names, raw_tables, to_py, toml_table};
 use pyo3::exceptions::PyOSError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyTuple};
@@ -81,16 +81,18 @@ impl Scenario {
 
     /// Runs in memory through [`blocking`] (GIL released, Ctrl-C polled); `progress`, a
     /// callable, is called with `(name, pos, len, unit, message)` as the run moves.
-    #[pyo3(signature = (progress=None, force=false))]
+    #[pyo3(signature = (progress=None, force=false, threads=None))]
     fn run(
         &self,
         py: Python<'_>,
         progress: Option<&Bound<'_, PyAny>>,
         force: bool,
+        threads: Option<usize>,
     ) -> PyResult<RunResult> {
         let opts = RunOptions {
             progress: false,
             force,
+            threads,
         };
         blocking(py, progress, || self.0.run_with(&opts)).map(RunResult)
     }
@@ -121,6 +123,22 @@ impl RunResult {
             }
             None => Ok(None),
         }
+    }
+
+    /// The file name of the kind's main chart.
+    #[getter]
+    fn main_chart(&self) -> &'static str {
+        self.0.main_chart()
+    }
+
+    /// The names of the charts that have data (`velocity.svg`, ...), in the order made.
+    fn figure_names(&self) -> Vec<String> {
+        figure_names(self.0.outputs())
+    }
+
+    /// The data of the chart `name` (file name or stem) as a dict, or None.
+    fn figure<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Option<Bound<'py, PyDict>>> {
+        figure(py, self.0.outputs(), name)
     }
 
     #[getter]

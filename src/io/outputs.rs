@@ -3,6 +3,7 @@
 //! line writes it into a staging folder ([`Outputs::write_into`], then
 //! [`super::StagedDir::commit`]), and the library API hands it to the caller as it is.
 
+use super::chart::data::Figure;
 use super::chart::Chart;
 use super::table::Table;
 use std::io;
@@ -15,6 +16,7 @@ use std::path::Path;
 pub struct Outputs {
     tables: Vec<Table>,
     files: Vec<(String, Vec<u8>)>,
+    figures: Vec<(String, Figure)>,
 }
 
 impl Outputs {
@@ -38,7 +40,9 @@ impl Outputs {
 
     /// Adds the chart `c` as the SVG file `name`.
     pub fn chart(&mut self, name: impl Into<String>, c: &Chart) -> io::Result<()> {
+        let name = name.into();
         let svg = c.svg_string()?;
+        self.figure(name.clone(), Figure::single(c));
         self.file(name, svg);
         Ok(())
     }
@@ -51,9 +55,31 @@ impl Outputs {
         charts: &[Chart],
         columns: usize,
     ) -> io::Result<()> {
+        let name = name.into();
         let svg = super::chart::grid_svg_string(title, charts, columns)?;
+        self.figure(name.clone(), Figure::grid(title, charts, columns));
         self.file(name, svg);
         Ok(())
+    }
+
+    /// Records the data of a chart file `name` drawn otherwise than by [`Outputs::chart`] (a
+    /// scene's own plotters drawing), so that callers can draw it too.
+    pub fn add_figure(&mut self, name: impl Into<String>, f: Figure) {
+        self.figure(name.into(), f);
+    }
+
+    /// Records the data of the chart file `name` (replacing one of the same name).
+    fn figure(&mut self, name: String, f: Figure) {
+        self.figures.retain(|(n, _)| *n != name);
+        self.figures.push((name, f));
+    }
+
+    /// The data of every chart made with [`Outputs::chart`] or [`Outputs::grid_chart`], by file
+    /// name (`charts/velocity.svg`), in the order they were made: what the SVG file draws, for
+    /// a caller that draws it itself. (Charts drawn otherwise, e.g. pictures of the cylinder,
+    /// are files only.)
+    pub fn figures(&self) -> &[(String, Figure)] {
+        &self.figures
     }
 
     /// Moves every table and file of `other` in (replacing those of the same names).
@@ -63,6 +89,9 @@ impl Outputs {
         }
         for (n, b) in other.files {
             self.file(n, b);
+        }
+        for (n, f) in other.figures {
+            self.figure(n, f);
         }
     }
 

@@ -61,6 +61,9 @@ pub struct KindInfo {
     /// Files every run of the kind writes (besides `run.toml` and `report.html`), each named on
     /// its reference page.
     pub outputs: &'static [&'static str],
+    /// Its main chart, a chart file every run writes (the Python package's `Result.plot()`
+    /// draws it by default).
+    pub main_chart: &'static str,
     /// Builds the kind's spec from a scenario whose common tables were checked.
     pub(crate) spec: fn(&Check, &Scenario) -> Result<SceneSpec, BadInput>,
 }
@@ -87,6 +90,7 @@ pub const KINDS: &[KindInfo] = &[
         sweepable: true,
         example: "stokes_single.toml",
         outputs: &["summary.csv", "timeseries.csv", "velocity.svg"],
+        main_chart: "velocity.svg",
         spec: |c, s| Ok(SceneSpec::FreeSettling(free_settling::free_settling(c, s)?)),
     },
     KindInfo {
@@ -108,6 +112,7 @@ pub const KINDS: &[KindInfo] = &[
         sweepable: true,
         example: "paste_single_ball.toml",
         outputs: &["summary.csv", "timeseries.csv", "settling_distance.svg"],
+        main_chart: "settling_distance.svg",
         spec: |c, s| Ok(SceneSpec::FreeSettling(free_settling::drop(c, s)?)),
     },
     KindInfo {
@@ -126,6 +131,7 @@ pub const KINDS: &[KindInfo] = &[
         sweepable: false,
         example: "restitution_drop.toml",
         outputs: &["summary.csv", "fit.csv", "rebound_height.svg"],
+        main_chart: "rebound_height.svg",
         spec: |c, s| Ok(SceneSpec::RestitutionDrop(restitution_drop::spec(c, s)?)),
     },
     KindInfo {
@@ -138,6 +144,7 @@ pub const KINDS: &[KindInfo] = &[
         sweepable: false,
         example: "tilt_friction.toml",
         outputs: &["summary.csv", "threshold.csv", "tilt_displacement.svg"],
+        main_chart: "tilt_displacement.svg",
         spec: |c, s| Ok(SceneSpec::TiltFriction(tilt_friction::spec(c, s)?)),
     },
     KindInfo {
@@ -165,6 +172,7 @@ pub const KINDS: &[KindInfo] = &[
             "presence.csv",
             "z_distribution.csv",
         ],
+        main_chart: "z_distribution.svg",
         spec: |c, s| Ok(SceneSpec::FunnelPour(funnel_pour::spec(c, s)?)),
     },
     KindInfo {
@@ -183,6 +191,7 @@ pub const KINDS: &[KindInfo] = &[
             "cylinder.csv",
             "instruments.csv",
         ],
+        main_chart: "granulometry.svg",
         spec: |c, s| Ok(SceneSpec::Sedimentation(sedimentation::spec(c, s)?)),
     },
 ];

@@ -76,7 +76,31 @@ fn assert_same_outputs(file: &str, set: &[&str], kind: Kind) {
             "{file}: chart {name}"
         );
     }
+    // The kind's main chart is a file of the run and has its data (for `Result.plot`): the
+    // texts of its panels are the texts of the SVG file.
+    let main = r.main_chart();
+    assert!(
+        files.iter().any(|p| p.to_string_lossy() == main),
+        "{file}: {main} is written"
+    );
+    let (_, fig) = r
+        .outputs()
+        .figures()
+        .iter()
+        .find(|(n, _)| n == main)
+        .unwrap_or_else(|| panic!("{file}: {main} has no figure data"));
+    let texts = crate::common::chart::svg_texts(&run_dir.join(main)).join(" ");
+    for p in &fig.panels {
+        for t in [&p.x_label, &p.y_label] {
+            assert!(
+                texts.contains(t.as_str()),
+                "{file}: {main}: {t} not in the SVG"
+            );
+        }
+        assert!(!p.items.is_empty(), "{file}: {main} draws nothing");
+    }
 }
+
 
 #[test]
 fn free_settling_tables_equal_the_files_of_settle_run() {

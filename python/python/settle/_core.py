@@ -226,6 +226,23 @@ class Result:
         """Total steps over all worlds."""
         return self._inner.steps
 
+    @property
+    def charts(self) -> List[str]:
+        """The charts :meth:`plot` can draw (file names: ``velocity.svg``, ...), in the order
+        the run made them; the first of the kind is :attr:`main_chart`."""
+        return self._inner.figure_names()
+
+    @property
+    def main_chart(self) -> str:
+        """The file name of the kind's main chart (``velocity.svg``, ``granulometry.svg``, ...)."""
+        return self._inner.main_chart
+
+    def plot(self, name: Optional[str] = None) -> Any:
+        """The chart ``name`` (a file name or stem of :attr:`charts`; default the kind's main
+        chart) as a ``matplotlib.figure.Figure``: the data of the SVG file ``settle run``
+        writes, drawn with matplotlib (an optional dependency)."""
+        return _plot_of(self._inner, name or self.main_chart)
+
     def write(self, folder: PathLike) -> str:
         """Writes the run's files to ``folder/<name>/`` as ``settle run --out folder`` does
         (byte for byte except wall times); returns that folder. Refused (ScenarioError) when
@@ -234,6 +251,15 @@ class Result:
 
     def __repr__(self) -> str:
         return f"<settle.Result {self._inner.scenario.name!r} {self.status}>"
+
+
+def _plot_of(inner: Union[_settle.RunResult, _settle.Output], name: str) -> Any:
+    data = inner.figure(name)
+    if data is None:
+        raise KeyError(f"no chart {name!r}: the charts with data are {inner.figure_names()}")
+    from ._plot import figure
+
+    return figure(data)
 
 
 def load(path: PathLike) -> Scenario:
@@ -250,8 +276,9 @@ def run(
     dt: Optional[float] = None,
     overrides: Overrides = None,
     out: Optional[PathLike] = None,
-    progress: Optional[bool] = None,
+    progress: _progress.Progress = None,
     force: bool = False,
+    threads: Optional[int] = None,
 ) -> Result:
     """Runs a scenario (a :class:`Scenario` or the path of a scenario file) in memory, with the
     GIL released.
@@ -261,6 +288,12 @@ def run(
     ``out/<name>/`` (``--out``). ``progress``: a progress bar (True, False, or a callable
     ``f(name, pos, len, unit, message)``; default: in a terminal or a Jupyter notebook, shown
     after half a second). ``force``: run even when the cost estimate exceeds the limits.
+    ``threads``: threads of the run's own parallel loops (default: every core); ``threads=1``
+    when running many small scenarios in parallel Python threads, so that they do not compete
+    for the same cores.
+
+    Ctrl-C (``KeyboardInterrupt``) stops the run within about 0.1 s plus one step, and
+    nothing is written to ``out``. A run that goes unstable raises :class:`UnstableError`.
     """
     s = scenario if isinstance(scenario, Scenario) else load(scenario)
     if overrides:
@@ -276,7 +309,7 @@ def run(
     if dt is not None:
         s = s.with_dt(dt)
     with _progress.bar(progress) as cb:
-        r = Result(s._inner.run(progress=cb, force=bool(force)))
+        r = Result(s._inner.run(progress=cb, force=bool(force), threads=threads))
     if out is not None:
         r.write(out)
     return r
@@ -335,6 +368,21 @@ class Output:
     def lines(self) -> List[str]:
         """The lines the command line prints."""
         return self._inner.lines
+
+    @property
+    def charts(self) -> List[str]:
+        """The charts :meth:`plot` can draw (file names), in the order they were made."""
+        return self._inner.figure_names()
+
+    def plot(self, name: Optional[str] = None) -> Any:
+        """The chart ``name`` (a file name or stem of :attr:`charts`; default the first) as a
+        ``matplotlib.figure.Figure``, drawn from the data of the SVG file the command writes."""
+        names = self.charts
+        if name is None:
+            if not names:
+                raise KeyError(f"{self.name} has no chart")
+            name = names[0]
+        return _plot_of(self._inner, name)
 
     def write(self, folder: PathLike) -> str:
         """Writes ``folder/<name>/`` as the command line does with ``--out folder``; returns

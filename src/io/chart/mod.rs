@@ -21,6 +21,7 @@
 //!     .unwrap();
 //! ```
 
+pub mod data;
 mod draw;
 pub mod read;
 pub mod ticks;

@@ -18,6 +18,7 @@
 
 use super::{Geometry, Place, RepeatResult};
 use crate::error::Error;
+use crate::io::chart::data::{Drawn, Figure, Panel};
 use crate::io::fmt::num;
 use crate::io::{Outputs, Table};
 use crate::scenario::FunnelPourSpec;
@@ -374,6 +375,54 @@ fn draw_z_chart(
     Ok(())
 }
 
+/// The data of `z_distribution.svg` for a caller that draws it itself: the bars as a line
+/// through each bin's (mean count per repeat, mid-height in cm), f-EDEM's range and the paste
+/// surface as reference lines.
+fn z_figure(title: &str, bins: &[ZBin], repeats: usize, height_m: f64) -> Figure {
+    let reps = repeats.max(1) as f64;
+    let x_max = bins
+        .iter()
+        .map(|b| b.count as f64 / reps)
+        .fold(1.0, f64::max)
+        * 1.1;
+    let level = |label: &str, z_cm: f64, colour: Option<usize>| Drawn::Curve {
+        label: label.to_string(),
+        points: vec![(0.0, z_cm), (x_max, z_cm)],
+        colour,
+        dashed: false,
+    };
+    let mut items = vec![Drawn::Series {
+        label: "simulation".into(),
+        points: bins
+            .iter()
+            .map(|b| (b.count as f64 / reps, 50.0 * (b.z_lo_m + b.z_hi_m)))
+            .collect(),
+        colour: 0,
+        filled: true,
+        line: true,
+        max_markers: 0,
+    }];
+    items.push(level("f-EDEM range 8.5–13.5 cm", 8.5, Some(3)));
+    items.push(level("", 13.5, Some(3)));
+    items.push(level("paste surface", height_m * 100.0, None));
+    let panel = Panel {
+        title: title.to_string(),
+        x_label: "ball centres in the bin, mean per repeat (balls)".into(),
+        y_label: "Z above the cylinder bottom (cm)".into(),
+        x_log: false,
+        y_log: false,
+        x_range: Some((0.0, x_max)),
+        y_range: None,
+        x_categories: None,
+        items,
+    };
+    Figure {
+        title: title.to_string(),
+        columns: 1,
+        panels: vec![panel],
+    }
+}
+
 /// Colour of a probability: white (0) to dark red (1).
 fn heat(p: f64) -> RGBColor {
     let p = p.clamp(0.0, 1.0);
@@ -525,6 +574,10 @@ pub fn fill(
     );
     let svg = z_chart(&title, &bins, reps, geo.paste_height_m).map_err(io)?;
     out.file("z_distribution.svg", svg);
+    out.add_figure(
+        "z_distribution.svg",
+        z_figure(&title, &bins, reps, geo.paste_height_m),
+    );
     if !f.planes_z_m.is_empty() {
         let cells = presence(results, &f.planes_z_m, geo.cylinder_radius_m, f.grid_cell_m);
         out.table(presence_table(&cells));
