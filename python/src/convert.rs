@@ -4,7 +4,7 @@
 use pyo3::create_exception;
 use pyo3::exceptions::{PyKeyboardInterrupt, PyOSError, PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyBytes, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
+use pyo3::types::{PyBool, PyByteArray, PyBytes, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use settle::{Column, Drawn, Error, Figure, Table};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Duration;
@@ -106,7 +106,7 @@ pub fn toml_text(value: &Bound<'_, PyAny>) -> PyResult<String> {
     Ok(toml_value(value, "value")?.to_string())
 }
 
-/// Every table as `(stem, header, columns, preamble)`: a numeric column is the bytes of its
+/// Every table as `(stem, header, columns, preamble)`: a numeric column is a bytearray of its
 /// native f64 values (empty cells NaN; read with numpy.frombuffer), a text column a list of
 /// str with None for an empty cell; the preamble the comment lines before the header.
 pub fn raw_tables<'py>(py: Python<'py>, tables: &[Table]) -> PyResult<Vec<Bound<'py, PyTuple>>> {
@@ -118,8 +118,9 @@ pub fn raw_tables<'py>(py: Python<'py>, tables: &[Table]) -> PyResult<Vec<Bound<
                 .iter()
                 .map(|h| match t.column(h) {
                     Some(Column::Numbers(v)) => {
-                        // written straight into the Python bytes object
-                        let b = PyBytes::new_with(py, v.len() * 8, |buf| {
+                        // written straight into a Python bytearray, which numpy then views
+                        // (writable, no copy) and pandas keeps as the column (copy=False)
+                        let b = PyByteArray::new_with(py, v.len() * 8, |buf| {
                             for (cell, x) in buf.chunks_exact_mut(8).zip(&v) {
                                 cell.copy_from_slice(&x.unwrap_or(f64::NAN).to_ne_bytes());
                             }

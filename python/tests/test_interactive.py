@@ -228,3 +228,41 @@ def test_the_example_notebook_runs(tmp_path: Path) -> None:
     # Suspension 1 at its own yield stress moves every sphere (Valentik & Whitmore measured a
     # velocity for each); at 60 Pa the yield stress holds some.
     assert held[30.5] == 0 and held[60.0] > 0, last
+
+
+def test_the_jupyter_bar_updates_one_html_element(monkeypatch: pytest.MonkeyPatch) -> None:
+    """In a notebook without tqdm the bar is one HTML <progress> element, updated in place."""
+    import types
+
+    from settle import _progress
+
+    shown: List[str] = []
+
+    class Handle:
+        def update(self, html: Any) -> None:
+            shown.append(html.data)
+
+    def display(html: Any, display_id: bool = False) -> Handle:
+        assert display_id
+        shown.append(html.data)
+        return Handle()
+
+    class HTML:
+        def __init__(self, data: str) -> None:
+            self.data = data
+
+    fake = types.ModuleType("IPython.display")
+    fake.HTML = HTML  # type: ignore[attr-defined]
+    fake.display = display  # type: ignore[attr-defined]
+    monkeypatch.setitem(sys.modules, "IPython.display", fake)
+    monkeypatch.setitem(sys.modules, "tqdm.auto", None)  # tqdm not installed
+    monkeypatch.setattr(_progress, "in_jupyter", lambda: True)
+    monkeypatch.setattr(_progress, "DELAY_S", 0.0)
+    with _progress.bar(None) as cb:
+        assert cb is not None
+        cb("sedimentation_sample5", 30, 120, "s simulated", "400 steps")
+        cb("sedimentation_sample5", 120, 120, "s simulated", "1600 steps")
+    assert len(shown) == 3  # displayed once, updated once, cleared at the end
+    assert "<progress value='30' max='120'" in shown[0]
+    assert "120/120 s simulated" in shown[1]
+    assert shown[2] == ""

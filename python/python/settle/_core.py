@@ -136,7 +136,8 @@ def _frame(header: List[str], columns: List[Any], preamble: List[str]) -> "panda
 
     data: Dict[str, Any] = {}
     for name, col in zip(header, columns):
-        if isinstance(col, bytes):
+        if isinstance(col, (bytes, bytearray)):
+            # a writable view of the bytearray the extension filled: no copy
             data[name] = np.frombuffer(col, dtype=np.float64)
         elif col and _BOOLS.keys() >= set(col) and not all(c is None for c in col):
             # true/false cells: bool, as read_csv reads them (object with NaN when some are empty)
@@ -148,7 +149,8 @@ def _frame(header: List[str], columns: List[Any], preamble: List[str]) -> "panda
             data[name] = [np.nan if c is None else c for c in col]
         else:
             data[name] = col
-    df = pd.DataFrame(data, columns=header)
+    # copy=False: the numeric columns stay the arrays above (one copy of the numbers in Python)
+    df = pd.DataFrame(data, columns=header, copy=False)
     if preamble:
         df.attrs["preamble"] = list(preamble)
     return df

@@ -3,7 +3,7 @@
 from typing import Any, Callable, Dict, List, Optional, Tuple, Union
 
 ProgressCallback = Callable[[str, int, Optional[int], str, str], None]
-RawTable = Tuple[str, List[str], List[Union[bytes, List[Optional[str]]]], List[str]]
+RawTable = Tuple[str, List[str], List[Union[bytearray, List[Optional[str]]]], List[str]]
 
 TEXT_ORIGIN: str
 
