@@ -4,6 +4,14 @@
 //! `OUT/<stem>_inverted/`: `inverted.csv`, `misfit.csv`, `standard.csv`, `inverted.svg` and
 //! `invert.toml` (see `docs/commands/invert.md`).
 //!
+//! # From Rust
+//!
+//! [`invert`] runs the command in memory: the readings as files or tables
+//! ([`crate::reduce::Readings`], the format of `settle reduce`), the options of the command line
+//! ([`InvertOptions`], its defaults those of `settle invert`); it returns an [`InvertResult`]
+//! with every table, the chart as SVG text, the record and the typed figures, and
+//! [`InvertResult::write`] writes the folder the command writes.
+//!
 //! # Method
 //!
 //! 1. Each file gives a [`problem::Test`]: the column (c₀ = dry mass / suspension volume, G_s,
@@ -38,6 +46,8 @@ pub use setup::{
 use crate::error::Error;
 use crate::instruments::forward::{unit_fields, Bins, Settling};
 use crate::instruments::reduction::Reduced;
+use crate::io::{Outputs, Table};
+use crate::reduce::Readings;
 use nalgebra::{DMatrix, DVector};
 use problem::Test;
 use rand::{Rng, SeedableRng};
@@ -82,7 +92,47 @@ impl Model {
     }
 }
 
-/// What `settle invert` is asked to do (the options as given; [`run`] checks them).
+/// The options of `settle invert` (its defaults those of the command line), as given: [`invert`]
+/// checks them and refuses a bad one as [`Error::BadInput`] naming the option (`--model`,
+/// `--lambda`, ...) with the command line's message.
+#[derive(Clone, Debug, PartialEq)]
+pub struct InvertOptions {
+    /// `--model`: `ideal-stokes` (default) or `full`.
+    pub model: String,
+    /// `--bins`: resolved diameter bins, 2–200 (None: twice the readings, 8–30).
+    pub bins: Option<usize>,
+    /// `--diameters-um LO:HI`: the resolved range, µm (None: from the readings).
+    pub diameters_um: Option<String>,
+    /// `--lambda`: a number ≥ 0, `discrepancy` (default) or `gcv`.
+    pub lambda: String,
+    /// `--resolution`: the readings' resolution in their unit, one for every file or one per
+    /// file in order (empty: each instrument's default).
+    pub resolution: Vec<f64>,
+    /// `--repeats`: Monte Carlo repeats of the band (0: no band; default 100).
+    pub repeats: usize,
+    /// `--seed` of the Monte Carlo (ChaCha8; default 1).
+    pub seed: u64,
+    /// `--bounds`: also the strict bounds of the curve at each edge ([`Linear::strict_bounds`]).
+    pub bounds: bool,
+}
+
+impl Default for InvertOptions {
+    fn default() -> Self {
+        Self {
+            model: "ideal-stokes".into(),
+            bins: None,
+            diameters_um: None,
+            lambda: "discrepancy".into(),
+            resolution: Vec::new(),
+            repeats: 100,
+            seed: 1,
+            bounds: false,
+        }
+    }
+}
+
+/// What `settle invert` is asked to do on the command line: the files, the options and the
+/// output folder ([`run`]).
 #[derive(Clone, Debug)]
 pub struct Request {
     /// The readings files (one test of one soil each, any instrument).
@@ -110,17 +160,38 @@ pub struct Request {
 
 impl Default for Request {
     fn default() -> Self {
+        Self::with_options(Vec::new(), InvertOptions::default(), PathBuf::from("out"))
+    }
+}
+
+impl Request {
+    /// The request of `files` with `opts`, written to `out_dir`.
+    pub fn with_options(files: Vec<PathBuf>, opts: InvertOptions, out_dir: PathBuf) -> Self {
         Self {
-            files: Vec::new(),
-            model: "ideal-stokes".into(),
-            bins: None,
-            diameters_um: None,
-            lambda: "discrepancy".into(),
-            resolution: Vec::new(),
-            repeats: 100,
-            seed: 1,
-            bounds: false,
-            out_dir: PathBuf::from("out"),
+            files,
+            model: opts.model,
+            bins: opts.bins,
+            diameters_um: opts.diameters_um,
+            lambda: opts.lambda,
+            resolution: opts.resolution,
+            repeats: opts.repeats,
+            seed: opts.seed,
+            bounds: opts.bounds,
+            out_dir,
+        }
+    }
+
+    /// The options of the request.
+    pub fn options(&self) -> InvertOptions {
+        InvertOptions {
+            model: self.model.clone(),
+            bins: self.bins,
+            diameters_um: self.diameters_um.clone(),
+            lambda: self.lambda.clone(),
+            resolution: self.resolution.clone(),
+            repeats: self.repeats,
+            seed: self.seed,
+            bounds: self.bounds,
         }
     }
 }
@@ -157,11 +228,21 @@ pub struct Misfit {
     pub sigma: f64,
 }
 
-/// What an inversion produced.
+/// What an inversion produced, in memory: the tables and files `settle invert` writes
+/// (`inverted.csv`, `misfit.csv`, `standard.csv`, `inverted.svg`, `invert.toml`) and the typed
+/// figures.
 #[derive(Clone, Debug)]
-pub struct Report {
-    /// The results folder.
-    pub out: PathBuf,
+pub struct InvertResult {
+    /// The results folder's name, `<stem of the first readings>_inverted`.
+    pub name: String,
+    /// The readings (files, or the names of the tables in memory), in order.
+    pub inputs: Vec<PathBuf>,
+    /// The options, as given.
+    pub options: InvertOptions,
+    /// The forward model.
+    pub model: Model,
+    /// How λ was chosen.
+    pub lambda_rule: LambdaRule,
     /// The files' tests.
     pub tests: Vec<Test>,
     /// The bins (finest and coarsest are the "finer than" and "coarser than" bins).
@@ -184,25 +265,58 @@ pub struct Report {
     pub converged: bool,
     /// Wall time of the inversion, s.
     pub wall_time_s: f64,
+    /// Warnings (misfit larger than the readings' uncertainty, no convergence).
+    pub warnings: Vec<String>,
+    /// The tables and files of `OUT/<stem>_inverted/`.
+    pub outputs: Outputs,
+}
+
+impl InvertResult {
+    /// The table of the file `name` (`inverted`, `misfit`, `standard`, or with `.csv`).
+    pub fn table(&self, name: &str) -> Option<&Table> {
+        self.outputs.get(name)
+    }
+
+    /// Writes `out_dir/<stem>_inverted/` as `settle invert --out OUT_DIR` does (staged, then
+    /// moved into place; refused when that folder exists and was not made by settle); returns
+    /// the folder.
+    pub fn write(&self, out_dir: impl AsRef<Path>) -> Result<PathBuf, Error> {
+        self.outputs.write_folder(out_dir.as_ref(), &self.name)
+    }
+
+    /// The console summary of `settle invert`, the results written to `out`.
+    pub fn lines(&self, out: &Path) -> Vec<String> {
+        output::summary(self, out)
+    }
+}
+
+/// What `settle invert` did on the command line ([`run`]).
+#[derive(Clone, Debug)]
+pub struct Report {
+    /// The results folder.
+    pub out: PathBuf,
     /// Console summary.
     pub lines: Vec<String>,
     /// Warnings (misfit larger than the readings' uncertainty, no convergence).
     pub warnings: Vec<String>,
+    /// The inversion.
+    pub result: InvertResult,
 }
 
 /// The options, checked: (model, λ rule, resolved range in m).
 type Options = (Model, LambdaRule, Option<(f64, f64)>);
 
-fn options(req: &Request) -> Result<Options, Error> {
-    let here = Path::new(&req.model);
-    let model = Model::parse(&req.model).ok_or_else(|| {
+/// Checks `opts` for `files` readings.
+fn options(opts: &InvertOptions, files: usize) -> Result<Options, Error> {
+    let here = Path::new(&opts.model);
+    let model = Model::parse(&opts.model).ok_or_else(|| {
         Error::bad_argument(
             "--model",
             here,
             "unknown model; allowed: ideal-stokes, full",
         )
     })?;
-    let lambda = match req.lambda.trim().to_ascii_lowercase().as_str() {
+    let lambda = match opts.lambda.trim().to_ascii_lowercase().as_str() {
         "discrepancy" => LambdaRule::Discrepancy,
         "gcv" => LambdaRule::Gcv,
         s => match s.parse::<f64>() {
@@ -210,13 +324,13 @@ fn options(req: &Request) -> Result<Options, Error> {
             _ => {
                 return Err(Error::bad_argument(
                     "--lambda",
-                    Path::new(&req.lambda),
+                    Path::new(&opts.lambda),
                     "allowed: discrepancy, gcv or a number ≥ 0",
                 ))
             }
         },
     };
-    let range = match &req.diameters_um {
+    let range = match &opts.diameters_um {
         None => None,
         Some(s) => {
             let bad = |m: &str| Error::bad_argument("--diameters-um", Path::new(s), m.to_string());
@@ -236,24 +350,21 @@ fn options(req: &Request) -> Result<Options, Error> {
             Some((a * 1e-6, b * 1e-6))
         }
     };
-    if let Some(n) = req.bins.filter(|&n| !(2..=200).contains(&n)) {
+    if let Some(n) = opts.bins.filter(|&n| !(2..=200).contains(&n)) {
         return Err(Error::bad_argument(
             "--bins",
             Path::new(&n.to_string()),
             "allowed: 2–200",
         ));
     }
-    if !(req.resolution.len() <= 1 || req.resolution.len() == req.files.len()) {
+    if !(opts.resolution.len() <= 1 || opts.resolution.len() == files) {
         return Err(Error::bad_argument(
             "--resolution",
-            Path::new(&format!("{:?}", req.resolution)),
-            format!(
-                "give one resolution for every file or one per file ({} files)",
-                req.files.len()
-            ),
+            Path::new(&format!("{:?}", opts.resolution)),
+            format!("give one resolution for every file or one per file ({files} files)"),
         ));
     }
-    if let Some(r) = req
+    if let Some(r) = opts
         .resolution
         .iter()
         .find(|r| !(r.is_finite() && **r > 0.0))
@@ -264,7 +375,7 @@ fn options(req: &Request) -> Result<Options, Error> {
             "allowed: > 0 (in the readings' unit)",
         ));
     }
-    if req.files.is_empty() {
+    if files == 0 {
         return Err(Error::bad_argument(
             "READINGS.csv",
             Path::new(""),
@@ -335,23 +446,36 @@ fn linearise(
     Ok((Linear { j, b, sigma }, pred))
 }
 
-/// Runs `settle invert`: reads the files, inverts, writes `OUT/<stem>_inverted/`.
-pub fn run(req: &Request) -> Result<Report, Error> {
+/// `settle invert` in memory: reads and checks the readings (files or tables in memory, one
+/// test of one soil each, any instrument), inverts them together and makes the outputs. A bad
+/// option is [`Error::BadInput`] naming it (`--model`, `--bins`, ...), bad readings name the
+/// file (or table), the key or the row and column, as on the command line.
+///
+/// ```no_run
+/// use settle::invert::{invert, InvertOptions};
+/// use settle::reduce::Readings;
+/// let opts = InvertOptions { model: "full".into(), ..InvertOptions::default() };
+/// let r = invert(&[Readings::from("lab/soil_a.csv")], &opts)?;
+/// let finer = r.table("inverted").unwrap().f64s("percent_finer");
+/// r.write("out")?; // out/soil_a_inverted/
+/// # Ok::<(), settle::Error>(())
+/// ```
+pub fn invert(readings: &[Readings], opts: &InvertOptions) -> Result<InvertResult, Error> {
     let clock = std::time::Instant::now();
-    let (model, rule, range) = options(req)?;
+    let (model, rule, range) = options(opts, readings.len())?;
     let mut tests = Vec::new();
     let mut standard = Vec::new();
-    for (k, file) in req.files.iter().enumerate() {
-        let res = req.resolution.get(k).or(req.resolution.first()).copied();
-        let (test, reduced) = read_test(file, res)?;
+    for (k, r) in readings.iter().enumerate() {
+        let res = opts.resolution.get(k).or(opts.resolution.first()).copied();
+        let (test, reduced) = setup::read_test_of(r, res)?;
         tests.push(test);
         standard.extend(reduced.into_iter().map(|r| (k, r)));
     }
     let m: usize = tests.iter().map(|t| t.readings.len()).sum();
-    let n = req.bins.unwrap_or((2 * m).clamp(8, 30));
+    let n = opts.bins.unwrap_or((2 * m).clamp(8, 30));
     if m < 3 {
         return Err(Error::bad_input(
-            &req.files[0],
+            &readings[0].path(),
             None,
             format!("{m} readings in all: an inversion needs at least 3"),
         ));
@@ -366,29 +490,15 @@ pub fn run(req: &Request) -> Result<Report, Error> {
             ),
         ));
     }
-    let stem = req.files[0]
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "readings".into());
-    let name = format!("{stem}_inverted");
-    let dest = req.out_dir.join(&name);
-    if crate::io::check_destination(&dest).is_err() {
-        return Err(Error::bad_argument(
-            "--out",
-            &dest,
-            "exists and was not created by settle (no .settle-run marker), so settle will not \
-             replace it: choose another --out",
-        ));
-    }
     let bins = bins_for(&tests, n, range);
     let fit = fit(
         &tests,
         &bins,
         model,
         rule,
-        req.repeats,
-        req.seed,
-        req.bounds,
+        opts.repeats,
+        opts.seed,
+        opts.bounds,
     )?;
     let mut misfit = Vec::new();
     let mut row = 0;
@@ -404,8 +514,12 @@ pub fn run(req: &Request) -> Result<Report, Error> {
             row += 1;
         }
     }
-    let mut report = Report {
-        out: dest,
+    let mut r = InvertResult {
+        name: inverted_name(&readings[0]),
+        inputs: readings.iter().map(Readings::path).collect(),
+        options: opts.clone(),
+        model,
+        lambda_rule: rule,
         tests,
         bins,
         w: fit.w,
@@ -417,14 +531,43 @@ pub fn run(req: &Request) -> Result<Report, Error> {
         iterations: fit.iterations,
         converged: fit.converged,
         wall_time_s: 0.0,
-        lines: Vec::new(),
         warnings: Vec::new(),
+        outputs: Outputs::new(),
     };
-    report.warnings = output::warnings(&report, rule);
-    report.wall_time_s = clock.elapsed().as_secs_f64();
-    report.out = output::write(req, &name, model, rule, &report)?;
-    report.lines = output::summary(req, model, &report);
-    Ok(report)
+    r.warnings = output::warnings(&r);
+    r.wall_time_s = clock.elapsed().as_secs_f64();
+    r.outputs = output::outputs(&r)?;
+    Ok(r)
+}
+
+/// The results folder's name of readings whose first is `first`: `<stem>_inverted`.
+fn inverted_name(first: &Readings) -> String {
+    format!("{}_inverted", first.stem())
+}
+
+/// Runs `settle invert`: [`invert`] of the files, then [`InvertResult::write`] into
+/// `OUT/<stem>_inverted/`. The options and the output folder are checked before the inversion.
+pub fn run(req: &Request) -> Result<Report, Error> {
+    let opts = req.options();
+    options(&opts, req.files.len())?;
+    let readings: Vec<Readings> = req.files.iter().map(|f| Readings::from(f.as_path())).collect();
+    let dest = req.out_dir.join(inverted_name(&readings[0]));
+    if crate::io::check_destination(&dest).is_err() {
+        return Err(Error::bad_argument(
+            "--out",
+            &dest,
+            "exists and was not created by settle (no .settle-run marker), so settle will not \
+             replace it: choose another --out",
+        ));
+    }
+    let result = invert(&readings, &opts)?;
+    let out = result.write(&req.out_dir)?;
+    Ok(Report {
+        lines: result.lines(&out),
+        warnings: result.warnings.clone(),
+        out,
+        result,
+    })
 }
 
 /// What an inversion of some tests found.
@@ -461,7 +604,7 @@ pub fn fit(
     seed: u64,
     bounds: bool,
 ) -> Result<Fit, Error> {
-    let inv = invert(tests, bins, model, rule)?;
+    let inv = iterate(tests, bins, model, rule)?;
     let mut curve = band(&inv, tests, bins, rule, repeats, seed);
     if bounds {
         let m = inv.predicted.len() as f64;
@@ -508,7 +651,12 @@ fn curve_change(bins: &Bins, a: &[f64], b: &[f64]) -> f64 {
 
 /// Gauss–Newton (and, for the full model, fixed point on the unit fields) until the curve
 /// moves < 0.01 points (at most 40 iterations).
-fn invert(tests: &[Test], bins: &Bins, model: Model, rule: LambdaRule) -> Result<Inversion, Error> {
+fn iterate(
+    tests: &[Test],
+    bins: &Bins,
+    model: Model,
+    rule: LambdaRule,
+) -> Result<Inversion, Error> {
     let n = bins.len();
     let mut w = vec![1.0 / n as f64; n];
     let fields = |w: &[f64]| -> Vec<Vec<Vec<Vec<f64>>>> {
