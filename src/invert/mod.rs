@@ -550,7 +550,11 @@ fn inverted_name(first: &Readings) -> String {
 pub fn run(req: &Request) -> Result<Report, Error> {
     let opts = req.options();
     options(&opts, req.files.len())?;
-    let readings: Vec<Readings> = req.files.iter().map(|f| Readings::from(f.as_path())).collect();
+    let readings: Vec<Readings> = req
+        .files
+        .iter()
+        .map(|f| Readings::from(f.as_path()))
+        .collect();
     let dest = req.out_dir.join(inverted_name(&readings[0]));
     if crate::io::check_destination(&dest).is_err() {
         return Err(Error::bad_argument(

@@ -139,7 +139,8 @@ pub fn laws(opts: &LawsOptions) -> Result<LawsResult, Error> {
         .filter_map(|s| loso::point(&data, s))
         .collect();
     let refit_all = loso::fit_eq19(&pts);
-    let ioe = |file: &'static str| move |e: std::io::Error| Error::Io(Path::new("laws").join(file), e);
+    let ioe =
+        |file: &'static str| move |e: std::io::Error| Error::Io(Path::new("laws").join(file), e);
     let mut outputs = Outputs::new();
     outputs.table(laws_table(&data, &results));
     outputs.table(predictions_table(&data, &results));
