@@ -36,7 +36,7 @@
 //! | run | [`Scenario::run`], [`Scenario::run_with`] ([`RunOptions`]) |
 //! | read | [`RunResult::tables`], [`RunResult::table`] ([`Table`], [`Column`]), [`RunResult::warnings`], [`RunResult::status`], [`RunResult::record`] |
 //! | write | [`RunResult::write`] |
-//! | other commands | [`reduce`] (in memory, as `run`); [`invert`] and [`laws`] (their computations); `sweep` and `fit` from the command line so far |
+//! | other commands | [`reduce`], [`invert`] and [`laws`] (in memory, as `run`); `sweep` and `fit` from the command line so far |
 //! | physics | [`fluid`] (drag laws, buoyancy, Bingham drag), [`dynamics`] (integrators), [`contact`], [`instruments`] (hydrometer, pipette, buoyancy sphere, reductions), [`sample`] |
 //!
 //! Ctrl-C: [`interrupt::request`] stops a run at its next check; the run returns what it did

@@ -26,3 +26,32 @@ def error_key(text: str) -> str | None:
     except settle.ScenarioError as e:
         return e.key
     return None
+
+
+# --- lab (settle.reduce, settle.invert, settle.laws) ---
+
+
+def lab_tables(readings_file: Path, frame: pd.DataFrame, out: Path) -> list[str]:
+    r: settle.Output = settle.reduce(readings_file, standard="d422", hydrometer="152H", out=out)
+    finer: pd.DataFrame = r.tables["percent_finer"]
+    f: settle.Output = settle.reduce(frame, name="soil_a", dry_mass_g=50, specific_gravity=2.65)
+    i: settle.Output = settle.invert(
+        [readings_file, frame],
+        model="full",
+        bins=12,
+        diameters_um=(2.0, 75.0),
+        lambda_=0.5,
+        resolution=[0.5, 0.001],
+        repeats=20,
+        seed=3,
+        bounds=True,
+    )
+    one: settle.Output = settle.invert(readings_file, lambda_="gcv", resolution=0.5)
+    laws: settle.Output = settle.laws()
+    mine: settle.Output = settle.laws(Path("spheres.csv"), "fluids.csv", out=out)
+    csv: bytes = i.csv("inverted")
+    written: str = laws.write(out)
+    return [str(len(finer)), f.name, one.name, mine.name, str(len(csv)), written, *r.warnings]
+
+
+# --- end of lab ---

@@ -4,6 +4,14 @@
 //! `OUT/<stem>_inverted/`: `inverted.csv`, `misfit.csv`, `standard.csv`, `inverted.svg` and
 //! `invert.toml` (see `docs/commands/invert.md`).
 //!
+//! # From Rust
+//!
+//! [`invert`] runs the command in memory: the readings as files or tables
+//! ([`crate::reduce::Readings`], the format of `settle reduce`), the options of the command line
+//! ([`InvertOptions`], its defaults those of `settle invert`); it returns an [`InvertResult`]
+//! with every table, the chart as SVG text, the record and the typed figures, and
+//! [`InvertResult::write`] writes the folder the command writes.
+//!
 //! # Method
 //!
 //! 1. Each file gives a [`problem::Test`]: the column (c₀ = dry mass / suspension volume, G_s,
@@ -25,105 +33,29 @@
 //!    prior, and chooses λ again), re-solving the last linear problem; the 5th and 95th
 //!    percentiles of the cumulative curve at each diameter.
 
+mod options;
 mod output;
 pub mod problem;
 mod setup;
 pub mod solve;
 
+use options::options;
+pub use options::{InvertOptions, Model, Request};
 pub use setup::{
     read_test, DEFAULT_CYLINDER_AREA_M2, HYDROMETER_RESOLUTION, PIPETTE_RESOLUTION_G,
     SPHERE_RESOLUTION_G,
 };
 
 use crate::error::Error;
-use crate::instruments::forward::{unit_fields, Bins, Settling};
+use crate::instruments::forward::{unit_fields, Bins};
 use crate::instruments::reduction::Reduced;
+use crate::io::{Outputs, Table};
+use crate::reduce::Readings;
 use nalgebra::{DMatrix, DVector};
 use problem::Test;
 use rand::{Rng, SeedableRng};
 use solve::{LambdaRule, Linear};
 use std::path::{Path, PathBuf};
-
-/// The forward model of an inversion.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Model {
-    /// Stokes settling from t = 0 (what the standard reductions assume).
-    IdealStokes,
-    /// Dallavalle drag with the Di Felice voidage factor at the test's concentration
-    /// (hindered settling; no contacts).
-    Full,
-}
-
-impl Model {
-    /// Parses `ideal-stokes` / `full`.
-    pub fn parse(s: &str) -> Option<Self> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "ideal-stokes" | "ideal_stokes" | "stokes" => Some(Self::IdealStokes),
-            "full" => Some(Self::Full),
-            _ => None,
-        }
-    }
-
-    /// Its name.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::IdealStokes => "ideal-stokes",
-            Self::Full => "full",
-        }
-    }
-
-    fn settling(self) -> Settling {
-        match self {
-            Self::IdealStokes => Settling::IdealStokes,
-            Self::Full => Settling::Hindered {
-                voidage_cell_m: 0.002,
-            },
-        }
-    }
-}
-
-/// What `settle invert` is asked to do (the options as given; [`run`] checks them).
-#[derive(Clone, Debug)]
-pub struct Request {
-    /// The readings files (one test of one soil each, any instrument).
-    pub files: Vec<PathBuf>,
-    /// `--model`: `ideal-stokes` or `full`.
-    pub model: String,
-    /// `--bins`: resolved diameter bins (None: twice the readings, 8–30).
-    pub bins: Option<usize>,
-    /// `--diameters-um LO:HI`: the resolved range, µm (None: from the readings).
-    pub diameters_um: Option<String>,
-    /// `--lambda`: a number, `discrepancy` or `gcv`.
-    pub lambda: String,
-    /// `--resolution`: the readings' resolution in their unit, one for every file or one per
-    /// file in order (empty: each instrument's default).
-    pub resolution: Vec<f64>,
-    /// `--repeats`: Monte Carlo repeats of the band (0: no band).
-    pub repeats: usize,
-    /// `--seed` of the Monte Carlo (ChaCha8).
-    pub seed: u64,
-    /// `--bounds`: also the strict bounds of the curve at each edge ([`Linear::strict_bounds`]).
-    pub bounds: bool,
-    /// Output folder; results go to `out_dir/<stem of the first file>_inverted/`.
-    pub out_dir: PathBuf,
-}
-
-impl Default for Request {
-    fn default() -> Self {
-        Self {
-            files: Vec::new(),
-            model: "ideal-stokes".into(),
-            bins: None,
-            diameters_um: None,
-            lambda: "discrepancy".into(),
-            resolution: Vec::new(),
-            repeats: 100,
-            seed: 1,
-            bounds: false,
-            out_dir: PathBuf::from("out"),
-        }
-    }
-}
 
 /// The recovered curve at one diameter.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -157,11 +89,21 @@ pub struct Misfit {
     pub sigma: f64,
 }
 
-/// What an inversion produced.
+/// What an inversion produced, in memory: the tables and files `settle invert` writes
+/// (`inverted.csv`, `misfit.csv`, `standard.csv`, `inverted.svg`, `invert.toml`) and the typed
+/// figures.
 #[derive(Clone, Debug)]
-pub struct Report {
-    /// The results folder.
-    pub out: PathBuf,
+pub struct InvertResult {
+    /// The results folder's name, `<stem of the first readings>_inverted`.
+    pub name: String,
+    /// The readings (files, or the names of the tables in memory), in order.
+    pub inputs: Vec<PathBuf>,
+    /// The options, as given.
+    pub options: InvertOptions,
+    /// The forward model.
+    pub model: Model,
+    /// How λ was chosen.
+    pub lambda_rule: LambdaRule,
     /// The files' tests.
     pub tests: Vec<Test>,
     /// The bins (finest and coarsest are the "finer than" and "coarser than" bins).
@@ -184,94 +126,42 @@ pub struct Report {
     pub converged: bool,
     /// Wall time of the inversion, s.
     pub wall_time_s: f64,
+    /// Warnings (misfit larger than the readings' uncertainty, no convergence).
+    pub warnings: Vec<String>,
+    /// The tables and files of `OUT/<stem>_inverted/`.
+    pub outputs: Outputs,
+}
+
+impl InvertResult {
+    /// The table of the file `name` (`inverted`, `misfit`, `standard`, or with `.csv`).
+    pub fn table(&self, name: &str) -> Option<&Table> {
+        self.outputs.get(name)
+    }
+
+    /// Writes `out_dir/<stem>_inverted/` as `settle invert --out OUT_DIR` does (staged, then
+    /// moved into place; refused when that folder exists and was not made by settle); returns
+    /// the folder.
+    pub fn write(&self, out_dir: impl AsRef<Path>) -> Result<PathBuf, Error> {
+        self.outputs.write_folder(out_dir.as_ref(), &self.name)
+    }
+
+    /// The console summary of `settle invert`, the results written to `out`.
+    pub fn lines(&self, out: &Path) -> Vec<String> {
+        output::summary(self, out)
+    }
+}
+
+/// What `settle invert` did on the command line ([`run`]).
+#[derive(Clone, Debug)]
+pub struct Report {
+    /// The results folder.
+    pub out: PathBuf,
     /// Console summary.
     pub lines: Vec<String>,
     /// Warnings (misfit larger than the readings' uncertainty, no convergence).
     pub warnings: Vec<String>,
-}
-
-/// The options, checked: (model, λ rule, resolved range in m).
-type Options = (Model, LambdaRule, Option<(f64, f64)>);
-
-fn options(req: &Request) -> Result<Options, Error> {
-    let here = Path::new(&req.model);
-    let model = Model::parse(&req.model).ok_or_else(|| {
-        Error::bad_argument(
-            "--model",
-            here,
-            "unknown model; allowed: ideal-stokes, full",
-        )
-    })?;
-    let lambda = match req.lambda.trim().to_ascii_lowercase().as_str() {
-        "discrepancy" => LambdaRule::Discrepancy,
-        "gcv" => LambdaRule::Gcv,
-        s => match s.parse::<f64>() {
-            Ok(x) if x.is_finite() && x >= 0.0 => LambdaRule::Fixed(x),
-            _ => {
-                return Err(Error::bad_argument(
-                    "--lambda",
-                    Path::new(&req.lambda),
-                    "allowed: discrepancy, gcv or a number ≥ 0",
-                ))
-            }
-        },
-    };
-    let range = match &req.diameters_um {
-        None => None,
-        Some(s) => {
-            let bad = |m: &str| Error::bad_argument("--diameters-um", Path::new(s), m.to_string());
-            let (a, b) = s
-                .split_once(':')
-                .ok_or_else(|| bad("expected LO:HI in µm, e.g. 2:75"))?;
-            let (a, b): (f64, f64) = match (a.trim().parse(), b.trim().parse()) {
-                (Ok(a), Ok(b)) => (a, b),
-                _ => return Err(bad("LO and HI must be numbers (µm), e.g. 2:75")),
-            };
-            if !(a.is_finite() && b.is_finite() && a > 0.0) {
-                return Err(bad("allowed: 0 < LO < HI (µm)"));
-            }
-            if a >= b {
-                return Err(bad("reversed or empty range: LO must be below HI (µm)"));
-            }
-            Some((a * 1e-6, b * 1e-6))
-        }
-    };
-    if let Some(n) = req.bins.filter(|&n| !(2..=200).contains(&n)) {
-        return Err(Error::bad_argument(
-            "--bins",
-            Path::new(&n.to_string()),
-            "allowed: 2–200",
-        ));
-    }
-    if !(req.resolution.len() <= 1 || req.resolution.len() == req.files.len()) {
-        return Err(Error::bad_argument(
-            "--resolution",
-            Path::new(&format!("{:?}", req.resolution)),
-            format!(
-                "give one resolution for every file or one per file ({} files)",
-                req.files.len()
-            ),
-        ));
-    }
-    if let Some(r) = req
-        .resolution
-        .iter()
-        .find(|r| !(r.is_finite() && **r > 0.0))
-    {
-        return Err(Error::bad_argument(
-            "--resolution",
-            Path::new(&r.to_string()),
-            "allowed: > 0 (in the readings' unit)",
-        ));
-    }
-    if req.files.is_empty() {
-        return Err(Error::bad_argument(
-            "READINGS.csv",
-            Path::new(""),
-            "no readings file given",
-        ));
-    }
-    Ok((model, lambda, range))
+    /// The inversion.
+    pub result: InvertResult,
 }
 
 /// The bins: `n` even in ln d over the resolved range [lo, hi], a bin [lo/4, lo] finer and a
@@ -335,23 +225,36 @@ fn linearise(
     Ok((Linear { j, b, sigma }, pred))
 }
 
-/// Runs `settle invert`: reads the files, inverts, writes `OUT/<stem>_inverted/`.
-pub fn run(req: &Request) -> Result<Report, Error> {
+/// `settle invert` in memory: reads and checks the readings (files or tables in memory, one
+/// test of one soil each, any instrument), inverts them together and makes the outputs. A bad
+/// option is [`Error::BadInput`] naming it (`--model`, `--bins`, ...), bad readings name the
+/// file (or table), the key or the row and column, as on the command line.
+///
+/// ```no_run
+/// use settle::invert::{invert, InvertOptions};
+/// use settle::reduce::Readings;
+/// let opts = InvertOptions { model: "full".into(), ..InvertOptions::default() };
+/// let r = invert(&[Readings::from("lab/soil_a.csv")], &opts)?;
+/// let finer = r.table("inverted").unwrap().f64s("percent_finer");
+/// r.write("out")?; // out/soil_a_inverted/
+/// # Ok::<(), settle::Error>(())
+/// ```
+pub fn invert(readings: &[Readings], opts: &InvertOptions) -> Result<InvertResult, Error> {
     let clock = std::time::Instant::now();
-    let (model, rule, range) = options(req)?;
+    let (model, rule, range) = options(opts, readings.len())?;
     let mut tests = Vec::new();
     let mut standard = Vec::new();
-    for (k, file) in req.files.iter().enumerate() {
-        let res = req.resolution.get(k).or(req.resolution.first()).copied();
-        let (test, reduced) = read_test(file, res)?;
+    for (k, r) in readings.iter().enumerate() {
+        let res = opts.resolution.get(k).or(opts.resolution.first()).copied();
+        let (test, reduced) = setup::read_test_of(r, res)?;
         tests.push(test);
         standard.extend(reduced.into_iter().map(|r| (k, r)));
     }
     let m: usize = tests.iter().map(|t| t.readings.len()).sum();
-    let n = req.bins.unwrap_or((2 * m).clamp(8, 30));
+    let n = opts.bins.unwrap_or((2 * m).clamp(8, 30));
     if m < 3 {
         return Err(Error::bad_input(
-            &req.files[0],
+            &readings[0].path(),
             None,
             format!("{m} readings in all: an inversion needs at least 3"),
         ));
@@ -366,29 +269,15 @@ pub fn run(req: &Request) -> Result<Report, Error> {
             ),
         ));
     }
-    let stem = req.files[0]
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "readings".into());
-    let name = format!("{stem}_inverted");
-    let dest = req.out_dir.join(&name);
-    if crate::io::check_destination(&dest).is_err() {
-        return Err(Error::bad_argument(
-            "--out",
-            &dest,
-            "exists and was not created by settle (no .settle-run marker), so settle will not \
-             replace it: choose another --out",
-        ));
-    }
     let bins = bins_for(&tests, n, range);
     let fit = fit(
         &tests,
         &bins,
         model,
         rule,
-        req.repeats,
-        req.seed,
-        req.bounds,
+        opts.repeats,
+        opts.seed,
+        opts.bounds,
     )?;
     let mut misfit = Vec::new();
     let mut row = 0;
@@ -404,8 +293,12 @@ pub fn run(req: &Request) -> Result<Report, Error> {
             row += 1;
         }
     }
-    let mut report = Report {
-        out: dest,
+    let mut r = InvertResult {
+        name: inverted_name(&readings[0]),
+        inputs: readings.iter().map(Readings::path).collect(),
+        options: opts.clone(),
+        model,
+        lambda_rule: rule,
         tests,
         bins,
         w: fit.w,
@@ -417,14 +310,47 @@ pub fn run(req: &Request) -> Result<Report, Error> {
         iterations: fit.iterations,
         converged: fit.converged,
         wall_time_s: 0.0,
-        lines: Vec::new(),
         warnings: Vec::new(),
+        outputs: Outputs::new(),
     };
-    report.warnings = output::warnings(&report, rule);
-    report.wall_time_s = clock.elapsed().as_secs_f64();
-    report.out = output::write(req, &name, model, rule, &report)?;
-    report.lines = output::summary(req, model, &report);
-    Ok(report)
+    r.warnings = output::warnings(&r);
+    r.wall_time_s = clock.elapsed().as_secs_f64();
+    r.outputs = output::outputs(&r)?;
+    Ok(r)
+}
+
+/// The results folder's name of readings whose first is `first`: `<stem>_inverted`.
+fn inverted_name(first: &Readings) -> String {
+    format!("{}_inverted", first.stem())
+}
+
+/// Runs `settle invert`: [`invert`] of the files, then [`InvertResult::write`] into
+/// `OUT/<stem>_inverted/`. The options and the output folder are checked before the inversion.
+pub fn run(req: &Request) -> Result<Report, Error> {
+    let opts = req.options();
+    options(&opts, req.files.len())?;
+    let readings: Vec<Readings> = req
+        .files
+        .iter()
+        .map(|f| Readings::from(f.as_path()))
+        .collect();
+    let dest = req.out_dir.join(inverted_name(&readings[0]));
+    if crate::io::check_destination(&dest).is_err() {
+        return Err(Error::bad_argument(
+            "--out",
+            &dest,
+            "exists and was not created by settle (no .settle-run marker), so settle will not \
+             replace it: choose another --out",
+        ));
+    }
+    let result = invert(&readings, &opts)?;
+    let out = result.write(&req.out_dir)?;
+    Ok(Report {
+        lines: result.lines(&out),
+        warnings: result.warnings.clone(),
+        out,
+        result,
+    })
 }
 
 /// What an inversion of some tests found.
@@ -461,7 +387,7 @@ pub fn fit(
     seed: u64,
     bounds: bool,
 ) -> Result<Fit, Error> {
-    let inv = invert(tests, bins, model, rule)?;
+    let inv = iterate(tests, bins, model, rule)?;
     let mut curve = band(&inv, tests, bins, rule, repeats, seed);
     if bounds {
         let m = inv.predicted.len() as f64;
@@ -508,7 +434,12 @@ fn curve_change(bins: &Bins, a: &[f64], b: &[f64]) -> f64 {
 
 /// Gauss–Newton (and, for the full model, fixed point on the unit fields) until the curve
 /// moves < 0.01 points (at most 40 iterations).
-fn invert(tests: &[Test], bins: &Bins, model: Model, rule: LambdaRule) -> Result<Inversion, Error> {
+fn iterate(
+    tests: &[Test],
+    bins: &Bins,
+    model: Model,
+    rule: LambdaRule,
+) -> Result<Inversion, Error> {
     let n = bins.len();
     let mut w = vec![1.0 / n as f64; n];
     let fields = |w: &[f64]| -> Vec<Vec<Vec<Vec<f64>>>> {

@@ -1,25 +1,18 @@
-//! The files and the console summary of `settle invert`.
+//! The tables, files and console summary of `settle invert`, in memory.
 
 use super::solve::LambdaRule;
-use super::{Model, Report, Request};
+use super::InvertResult;
 use crate::error::Error;
 use crate::io::chart::{Band, Chart, Curve, Scale, Series};
 use crate::io::fmt::clean;
 use crate::io::fmt::g;
-use crate::io::{self, StagedDir};
+use crate::io::{Outputs, Table};
 use std::path::{Path, PathBuf};
 
-/// Writes the staged folder `OUT/<name>/` and commits it.
-pub fn write(
-    req: &Request,
-    name: &str,
-    model: Model,
-    rule: LambdaRule,
-    r: &Report,
-) -> Result<PathBuf, Error> {
-    let dest = req.out_dir.join(name);
-    let ioe = |e: std::io::Error| Error::Io(dest.clone(), e);
-    let stage = StagedDir::new(&req.out_dir, name).map_err(ioe)?;
+/// The tables and files of `OUT/<name>/`: `inverted.csv`, `misfit.csv`, `standard.csv`,
+/// `inverted.svg` and `invert.toml`.
+pub fn outputs(r: &InvertResult) -> Result<Outputs, Error> {
+    let bounds = r.options.bounds;
     let rows: Vec<Vec<String>> = r
         .curve
         .iter()
@@ -30,7 +23,7 @@ pub fn write(
                 clean(c.p5),
                 clean(c.p95),
             ];
-            if req.bounds {
+            if bounds {
                 let (lo, hi) = c.bounds.map_or((String::new(), String::new()), |(lo, hi)| {
                     (clean(lo), clean(hi))
                 });
@@ -45,10 +38,11 @@ pub fn write(
         "percent_finer_p5",
         "percent_finer_p95",
     ];
-    if req.bounds {
+    if bounds {
         header.extend(["percent_finer_min", "percent_finer_max"]);
     }
-    io::write_csv(&stage.path("inverted.csv"), &header, &rows).map_err(ioe)?;
+    let mut out = Outputs::new();
+    out.table(Table::with_rows("inverted.csv", header, rows));
     let rows: Vec<Vec<String>> = r
         .misfit
         .iter()
@@ -65,9 +59,9 @@ pub fn write(
             ]
         })
         .collect();
-    io::write_csv(
-        &stage.path("misfit.csv"),
-        &[
+    out.table(Table::with_rows(
+        "misfit.csv",
+        [
             "file",
             "instrument",
             "time_s",
@@ -76,9 +70,8 @@ pub fn write(
             "residual",
             "sigma",
         ],
-        &rows,
-    )
-    .map_err(ioe)?;
+        rows,
+    ));
     let rows: Vec<Vec<String>> = r
         .standard
         .iter()
@@ -95,9 +88,9 @@ pub fn write(
             ]
         })
         .collect();
-    io::write_csv(
-        &stage.path("standard.csv"),
-        &[
+    out.table(Table::with_rows(
+        "standard.csv",
+        [
             "file",
             "instrument",
             "time_s",
@@ -106,24 +99,20 @@ pub fn write(
             "diameter_m",
             "percent_finer",
         ],
-        &rows,
-    )
-    .map_err(ioe)?;
-    chart(&stage.path("inverted.svg"), name, model, r).map_err(ioe)?;
-    io::write_atomic(
-        &stage.path("invert.toml"),
-        record(req, model, rule, r).as_bytes(),
-    )
-    .map_err(ioe)?;
-    stage.commit().map_err(ioe)
+        rows,
+    ));
+    out.chart("inverted.svg", &chart(r))
+        .map_err(|e| Error::Io(PathBuf::from(&r.name).join("inverted.svg"), e))?;
+    out.file("invert.toml", record(r));
+    Ok(out)
 }
 
-fn chart(path: &Path, name: &str, model: Model, r: &Report) -> std::io::Result<()> {
+fn chart(r: &InvertResult) -> Chart {
     let um = |d: f64| d * 1e6;
     let mut c = Chart::new(format!(
         "{}: recovered grain-size curve ({} model)",
-        name.trim_end_matches("_inverted"),
-        model.name()
+        r.name.trim_end_matches("_inverted"),
+        r.model.name()
     ))
     .x("particle diameter [µm]", Scale::Log)
     .y("percent finer [%]", Scale::Linear)
@@ -179,16 +168,16 @@ fn chart(path: &Path, name: &str, model: Model, r: &Report) -> std::io::Result<(
             line: false,
         });
     }
-    c.svg(path)
+    c
 }
 
-fn record(req: &Request, model: Model, rule: LambdaRule, r: &Report) -> String {
-    let files: Vec<String> = req
-        .files
+fn record(r: &InvertResult) -> String {
+    let files: Vec<String> = r
+        .inputs
         .iter()
         .map(|f| format!("{:?}", f.display().to_string()))
         .collect();
-    let rule_name = match rule {
+    let rule_name = match r.lambda_rule {
         LambdaRule::Fixed(_) => "fixed",
         LambdaRule::Discrepancy => "discrepancy",
         LambdaRule::Gcv => "gcv",
@@ -201,7 +190,7 @@ fn record(req: &Request, model: Model, rule: LambdaRule, r: &Report) -> String {
          converged = {}\nrepeats = {}\nseed = {}\nbounds = {}\nwall_time_s = {}\n",
         env!("CARGO_PKG_VERSION"),
         files.join(", "),
-        model.name(),
+        r.model.name(),
         edges.len() - 1,
         clean(edges[0]),
         clean(edges[edges.len() - 1]),
@@ -211,9 +200,9 @@ fn record(req: &Request, model: Model, rule: LambdaRule, r: &Report) -> String {
         r.misfit.len(),
         r.iterations,
         r.converged,
-        req.repeats,
-        req.seed,
-        req.bounds,
+        r.options.repeats,
+        r.options.seed,
+        r.options.bounds,
         clean(r.wall_time_s),
     );
     t.push_str(&format!(
@@ -246,10 +235,10 @@ fn record(req: &Request, model: Model, rule: LambdaRule, r: &Report) -> String {
 
 /// Warnings: χ² well above the number of readings (the model does not explain them within
 /// their uncertainty), iterations that did not converge.
-pub fn warnings(r: &Report, rule: LambdaRule) -> Vec<String> {
+pub fn warnings(r: &InvertResult) -> Vec<String> {
     let m = r.misfit.len() as f64;
     let mut w = Vec::new();
-    if r.chi2 > 2.0 * m && rule != LambdaRule::Gcv {
+    if r.chi2 > 2.0 * m && r.lambda_rule != LambdaRule::Gcv {
         w.push(format!(
             "χ² = {} for {} readings: the model does not explain the readings within their \
              uncertainty (check the figures, the model or --resolution)",
@@ -266,29 +255,31 @@ pub fn warnings(r: &Report, rule: LambdaRule) -> Vec<String> {
     w
 }
 
-/// The console summary: a title line, then diameter, percent finer and band.
-pub fn summary(req: &Request, model: Model, r: &Report) -> Vec<String> {
+/// The console summary: a title line (the results written to `out`), then diameter, percent
+/// finer and band.
+pub fn summary(r: &InvertResult, out: &Path) -> Vec<String> {
+    let bounds = r.options.bounds;
     let mut lines = vec![format!(
         "{} ({} model, {} readings, {} bins, λ = {}, χ² = {}, {} iterations, {} s) -> {}",
-        req.files
+        r.inputs
             .iter()
             .map(|f| f.display().to_string())
             .collect::<Vec<_>>()
             .join(" + "),
-        model.name(),
+        r.model.name(),
         r.misfit.len(),
         r.curve.len().saturating_sub(1),
         g(r.lambda),
         g(r.chi2),
         r.iterations,
         g(r.wall_time_s),
-        r.out.display()
+        out.display()
     )];
     let mut head = format!(
         "  {:>8} {:>8} {:>8} {:>8}",
         "d_um", "finer_%", "p5_%", "p95_%"
     );
-    if req.bounds {
+    if bounds {
         head += &format!(" {:>8} {:>8}", "min_%", "max_%");
     }
     lines.push(head);
@@ -300,7 +291,7 @@ pub fn summary(req: &Request, model: Model, r: &Report) -> Vec<String> {
             g(c.p5),
             g(c.p95)
         );
-        if req.bounds {
+        if bounds {
             let (lo, hi) = c
                 .bounds
                 .map_or(("—".into(), "—".into()), |(lo, hi)| (g(lo), g(hi)));

@@ -47,7 +47,7 @@ impl Outputs {
         Ok(())
     }
 
-    /// Adds `charts` as panels of the one SVG file `name` ([`super::chart::grid_svg`]).
+    /// Adds `charts` as panels of the one SVG file `name` ([`super::chart::grid_svg_string`]).
     pub fn grid_chart(
         &mut self,
         name: impl Into<String>,

@@ -5,13 +5,12 @@ use super::data::DataSet;
 use super::eval::{yield_number, Law, LawResult, State};
 use crate::fluid::bingham::beris::BERIS_CRITICAL_YIELD_NUMBER;
 use crate::fluid::bingham::cd_fedem;
-use crate::io::chart::{grid_svg, Band, Chart, Curve, Scale, Series};
+use crate::io::chart::{Band, Chart, Curve, Scale, Series};
 use crate::io::fmt::sig;
-use std::path::Path;
 
 /// C_d against Re′ (log–log): the measured points (Table 3's, where given), f-EDEM's eq. 19 and
 /// the (Re′, C_d) each other law predicts for the spheres it lets move (f-EDEM Fig. 1).
-pub fn cd_vs_re(path: &Path, data: &DataSet, results: &[LawResult]) -> std::io::Result<()> {
+pub fn cd_vs_re(data: &DataSet, results: &[LawResult]) -> Chart {
     let measured: Vec<(f64, f64)> = data
         .spheres
         .iter()
@@ -58,12 +57,16 @@ pub fn cd_vs_re(path: &Path, data: &DataSet, results: &[LawResult]) -> std::io::
             line: false,
         });
     }
-    chart.svg(path)
+    chart
 }
 
-/// Predicted against measured terminal velocity, one panel per law, with the parity line and
-/// the ±25 % band; spheres a law holds at rest sit on the x axis.
-pub fn parity(path: &Path, data: &DataSet, results: &[LawResult]) -> std::io::Result<()> {
+/// The title of `parity.svg` above its panels ([`parity`]).
+pub const PARITY_TITLE: &str = "Predicted against measured terminal velocity, per law";
+
+/// Predicted against measured terminal velocity, one panel per law (drawn as a grid of three
+/// columns under [`PARITY_TITLE`]), with the parity line and the ±25 % band; spheres a law
+/// holds at rest sit on the x axis.
+pub fn parity(data: &DataSet, results: &[LawResult]) -> Vec<Chart> {
     let vmax = data
         .spheres
         .iter()
@@ -75,7 +78,7 @@ pub fn parity(path: &Path, data: &DataSet, results: &[LawResult]) -> std::io::Re
         .filter(|v| v.is_finite())
         .fold(vmax, f64::max)
         * 1.05;
-    let charts: Vec<Chart> = results
+    results
         .iter()
         .enumerate()
         .map(|(c, r)| {
@@ -109,22 +112,12 @@ pub fn parity(path: &Path, data: &DataSet, results: &[LawResult]) -> std::io::Re
                 line: false,
             })
         })
-        .collect();
-    grid_svg(
-        path,
-        "Predicted against measured terminal velocity, per law",
-        &charts,
-        3,
-    )
+        .collect()
 }
 
 /// Velocity error (%) against the yield number τ_y/(Δρ g d) (log), one series per law (without
 /// the `+beris` variants), with Beris et al.'s critical yield number.
-pub fn error_vs_yield_number(
-    path: &Path,
-    data: &DataSet,
-    results: &[LawResult],
-) -> std::io::Result<()> {
+pub fn error_vs_yield_number(data: &DataSet, results: &[LawResult]) -> Chart {
     let mut chart = Chart::new("Velocity error against yield number")
         .x("yield number τ_y/(Δρ g d) (-)", Scale::Log)
         .y("velocity error (%)", Scale::Linear)
@@ -176,5 +169,5 @@ pub fn error_vs_yield_number(
                 .dashed(),
             );
     }
-    chart.svg(path)
+    chart
 }

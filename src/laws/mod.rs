@@ -10,6 +10,13 @@
 //! figures. Writes `OUT/laws/`: `laws.csv` (one row per law), `predictions.csv` (one row per law
 //! and sphere), `cd_vs_re.svg` (f-EDEM Fig. 1 with every law), `parity.svg` (one panel per law)
 //! and `error_vs_yield_number.svg`.
+//!
+//! # From Rust
+//!
+//! [`laws`] runs the command in memory ([`LawsOptions`]: the built-in spheres by default, or a
+//! spheres file and its fluids file); it returns a [`LawsResult`] with both tables, the charts
+//! as SVG text and the typed figures, and [`LawsResult::write`] writes the folder the command
+//! writes.
 
 pub mod charts;
 pub mod data;
@@ -19,15 +26,25 @@ pub mod loso;
 use crate::error::Error;
 use crate::io::fmt::{g, num, opt, pct, sig};
 use crate::io::metrics::ErrorStats;
-use crate::io::{self, StagedDir};
+use crate::io::{self, Outputs, Table};
 use data::DataSet;
 use eval::{Law, LawResult, State};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// The sphere issue 15 follows: measured at 0.22 m/s, held static by f-EDEM's law.
 pub const WATCHED_SPHERE: &str = "S3-04";
 
-/// What `settle laws` is asked to do.
+/// The options of `settle laws`: the spheres and their fluids (both files, or neither for the
+/// built-in Valentik–Whitmore spheres).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct LawsOptions {
+    /// `SPHERES`: a spheres CSV (needs `fluids`); None for the built-in spheres.
+    pub spheres: Option<PathBuf>,
+    /// `--fluids`: the fluids CSV of `spheres` (needs `spheres`).
+    pub fluids: Option<PathBuf>,
+}
+
+/// What `settle laws` is asked to do on the command line ([`run`]).
 #[derive(Clone, Debug, Default)]
 pub struct Request {
     /// A spheres CSV and its fluids CSV; None for the built-in Valentik–Whitmore spheres.
@@ -36,36 +53,85 @@ pub struct Request {
     pub out_dir: PathBuf,
 }
 
-/// What `settle laws` produced.
+/// What `settle laws` produced, in memory: the tables and files it writes (`laws.csv`,
+/// `predictions.csv`, `cd_vs_re.svg`, `parity.svg`, `error_vs_yield_number.svg`) and the
+/// typed figures.
 #[derive(Clone, Debug)]
-pub struct Report {
-    /// The results folder.
-    pub out: PathBuf,
+pub struct LawsResult {
+    /// The results folder's name, `laws`.
+    pub name: String,
     /// The data set evaluated.
     pub data: DataSet,
     /// One result per law, in [`Law::ALL`] order.
     pub results: Vec<LawResult>,
     /// Refitted eq. 19 constants (a, b) on all spheres, if any Bingham fluid has points in range.
     pub refit_all: Option<(f64, f64)>,
-    /// Console lines.
-    pub lines: Vec<String>,
+    /// Validity warnings (none so far: the command prints none).
+    pub warnings: Vec<String>,
+    /// The tables and files of `OUT/laws/`.
+    pub outputs: Outputs,
 }
 
-/// Runs `settle laws`: reads (or takes the built-in spheres), evaluates, writes `OUT/laws/`.
-pub fn run(req: &Request) -> Result<Report, Error> {
-    let data = match &req.files {
-        Some((s, f)) => DataSet::read(s, f)?,
-        None => DataSet::valentik(),
-    };
-    let dest = req.out_dir.join("laws");
-    if io::check_destination(&dest).is_err() {
-        return Err(Error::bad_argument(
-            "--out",
-            &dest,
-            "exists and was not created by settle (no .settle-run marker), so settle will not \
-             replace it: choose another --out",
-        ));
+impl LawsResult {
+    /// The table of the file `name` (`laws`, `predictions`, or with `.csv`).
+    pub fn table(&self, name: &str) -> Option<&Table> {
+        self.outputs.get(name)
     }
+
+    /// Writes `out_dir/laws/` as `settle laws --out OUT_DIR` does (staged, then moved into
+    /// place; refused when that folder exists and was not made by settle); returns the folder.
+    pub fn write(&self, out_dir: impl AsRef<Path>) -> Result<PathBuf, Error> {
+        self.outputs.write_folder(out_dir.as_ref(), &self.name)
+    }
+
+    /// The console table of `settle laws`, the results written to `out`.
+    pub fn lines(&self, out: &Path) -> Vec<String> {
+        console(&self.data, &self.results, self.refit_all, out)
+    }
+}
+
+/// What `settle laws` did on the command line ([`run`]).
+#[derive(Clone, Debug)]
+pub struct Report {
+    /// The results folder.
+    pub out: PathBuf,
+    /// Console lines.
+    pub lines: Vec<String>,
+    /// The evaluation.
+    pub result: LawsResult,
+}
+
+/// `settle laws` in memory: reads the spheres and fluids (or takes the built-in ones),
+/// evaluates every law and makes the outputs. A spheres file without its fluids file (or the
+/// reverse) is [`Error::BadInput`] naming the missing option; a bad file names the file, row
+/// and column, as on the command line.
+///
+/// ```no_run
+/// use settle::laws::{laws, LawsOptions};
+/// let r = laws(&LawsOptions::default())?;
+/// let mean = r.table("laws").unwrap().f64s("mean_abs_rel_error");
+/// r.write("out")?; // out/laws/
+/// # Ok::<(), settle::Error>(())
+/// ```
+pub fn laws(opts: &LawsOptions) -> Result<LawsResult, Error> {
+    let data = match (&opts.spheres, &opts.fluids) {
+        (Some(s), Some(f)) => DataSet::read(s, f)?,
+        (None, None) => DataSet::valentik(),
+        (Some(s), None) => {
+            return Err(Error::bad_argument(
+                "--fluids",
+                s,
+                "missing: a spheres file needs the fluids file of its suspensions (--fluids)",
+            ))
+        }
+        (None, Some(f)) => {
+            return Err(Error::bad_argument(
+                "SPHERES",
+                f,
+                "missing: a fluids file needs the spheres file it describes (SPHERES)",
+            ))
+        }
+    };
     let results = evaluate(&data);
     let pts: Vec<(f64, f64)> = data
         .spheres
@@ -73,22 +139,56 @@ pub fn run(req: &Request) -> Result<Report, Error> {
         .filter_map(|s| loso::point(&data, s))
         .collect();
     let refit_all = loso::fit_eq19(&pts);
-    let ioe = |e: std::io::Error| Error::Io(dest.clone(), e);
-    let stage = StagedDir::new(&req.out_dir, "laws").map_err(ioe)?;
-    write_laws_csv(&stage.path("laws.csv"), &data, &results).map_err(ioe)?;
-    write_predictions_csv(&stage.path("predictions.csv"), &data, &results).map_err(ioe)?;
-    charts::cd_vs_re(&stage.path("cd_vs_re.svg"), &data, &results).map_err(ioe)?;
-    charts::parity(&stage.path("parity.svg"), &data, &results).map_err(ioe)?;
-    charts::error_vs_yield_number(&stage.path("error_vs_yield_number.svg"), &data, &results)
-        .map_err(ioe)?;
-    let out = stage.commit().map_err(ioe)?;
-    let lines = console(&data, &results, refit_all, &out);
-    Ok(Report {
-        out,
+    let ioe =
+        |file: &'static str| move |e: std::io::Error| Error::Io(Path::new("laws").join(file), e);
+    let mut outputs = Outputs::new();
+    outputs.table(laws_table(&data, &results));
+    outputs.table(predictions_table(&data, &results));
+    outputs
+        .chart("cd_vs_re.svg", &charts::cd_vs_re(&data, &results))
+        .map_err(ioe("cd_vs_re.svg"))?;
+    outputs
+        .grid_chart(
+            "parity.svg",
+            charts::PARITY_TITLE,
+            &charts::parity(&data, &results),
+            3,
+        )
+        .map_err(ioe("parity.svg"))?;
+    outputs
+        .chart(
+            "error_vs_yield_number.svg",
+            &charts::error_vs_yield_number(&data, &results),
+        )
+        .map_err(ioe("error_vs_yield_number.svg"))?;
+    Ok(LawsResult {
+        name: "laws".into(),
         data,
         results,
         refit_all,
-        lines,
+        warnings: Vec::new(),
+        outputs,
+    })
+}
+
+/// Runs `settle laws`: [`laws`], then [`LawsResult::write`] into `OUT/laws/` (the output folder
+/// checked first).
+pub fn run(req: &Request) -> Result<Report, Error> {
+    let dest = req.out_dir.join("laws");
+    if io::check_destination(&dest).is_err() {
+        return Err(Error::bad_argument(
+            "--out",
+            &dest,
+            "exists and was not created by settle (no .settle-run marker), so settle will not              replace it: choose another --out",
+        ));
+    }
+    let (spheres, fluids) = req.files.clone().unzip();
+    let result = laws(&LawsOptions { spheres, fluids })?;
+    let out = result.write(&req.out_dir)?;
+    Ok(Report {
+        lines: result.lines(&out),
+        out,
+        result,
     })
 }
 
@@ -138,11 +238,8 @@ pub const LAWS_HEADER: [&str; 20] = [
     "watched_sphere_state",
 ];
 
-fn write_laws_csv(
-    path: &std::path::Path,
-    data: &DataSet,
-    results: &[LawResult],
-) -> std::io::Result<()> {
+/// `laws.csv`: one row per law.
+fn laws_table(data: &DataSet, results: &[LawResult]) -> Table {
     let rows: Vec<Vec<String>> = results
         .iter()
         .map(|r| {
@@ -171,7 +268,7 @@ fn write_laws_csv(
             ]
         })
         .collect();
-    io::write_csv(path, &LAWS_HEADER, &rows)
+    Table::with_rows("laws.csv", LAWS_HEADER, rows)
 }
 
 /// Columns of `predictions.csv`.
@@ -188,11 +285,8 @@ pub const PREDICTIONS_HEADER: [&str; 10] = [
     "force_rel_error",
 ];
 
-fn write_predictions_csv(
-    path: &std::path::Path,
-    data: &DataSet,
-    results: &[LawResult],
-) -> std::io::Result<()> {
+/// `predictions.csv`: one row per law and sphere.
+fn predictions_table(data: &DataSet, results: &[LawResult]) -> Table {
     let mut rows = Vec::new();
     for r in results {
         for p in &r.predictions {
@@ -211,7 +305,7 @@ fn write_predictions_csv(
             ]);
         }
     }
-    io::write_csv(path, &PREDICTIONS_HEADER, &rows)
+    Table::with_rows("predictions.csv", PREDICTIONS_HEADER, rows)
 }
 
 /// The console table and the closing verdict.

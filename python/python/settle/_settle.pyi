@@ -81,6 +81,33 @@ class Output:
 
 # --- lab.rs: reduce, invert, laws ---
 
+# Readings: a file's path, or (name, header, rows of text cells, [(key, value)] figures).
+LabReadings = Union[str, Tuple[str, List[str], List[List[str]], List[Tuple[str, str]]]]
+
+def reduce(
+    readings: LabReadings,
+    standard: Optional[str] = None,
+    hydrometer: Optional[str] = None,
+    out: Optional[str] = None,
+) -> Output: ...
+def invert(
+    readings: List[LabReadings],
+    model: str = "ideal-stokes",
+    bins: Optional[int] = None,
+    diameters_um: Optional[str] = None,
+    lambda_: str = "discrepancy",
+    resolution: List[float] = ...,
+    repeats: int = 100,
+    seed: int = 1,
+    bounds: bool = False,
+    out: Optional[str] = None,
+) -> Output: ...
+def laws(
+    spheres: Optional[str] = None,
+    fluids: Optional[str] = None,
+    out: Optional[str] = None,
+) -> Output: ...
+
 # --- end of lab.rs ---
 
 # --- fit.rs: fit ---

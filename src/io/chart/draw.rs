@@ -315,13 +315,8 @@ pub fn svg_string(c: &Chart) -> io::Result<String> {
     Ok(text)
 }
 
-/// Draws `charts` as panels of one SVG at `path`, `columns` per row, under `title`; every panel
-/// gets the size of the largest.
-pub fn grid_svg(path: &Path, title: &str, charts: &[Chart], columns: usize) -> io::Result<()> {
-    std::fs::write(path, grid_svg_string(title, charts, columns)?)
-}
-
-/// [`grid_svg`] as the text of an SVG file.
+/// Draws `charts` as panels of one SVG file's text, `columns` per row, under `title`; every
+/// panel gets the size of the largest.
 pub fn grid_svg_string(title: &str, charts: &[Chart], columns: usize) -> io::Result<String> {
     let frames: Vec<Frame> = charts.iter().map(frame).collect();
     let cols = columns.clamp(1, charts.len().max(1));

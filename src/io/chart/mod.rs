@@ -326,14 +326,9 @@ impl Chart {
     }
 }
 
-/// Draws `charts` as panels of one SVG at `path` (small multiples, like the six panels of f-EDEM
-/// Fig. 11), `columns` per row under the common `title`, each panel with its own title, axes and
-/// legend; a drawing failure is an [`std::io::Error`] of kind `Other`.
-pub fn grid_svg(path: &Path, title: &str, charts: &[Chart], columns: usize) -> std::io::Result<()> {
-    draw::grid_svg(path, title, charts, columns)
-}
-
-/// [`grid_svg`] as the text of an SVG file.
+/// Draws `charts` as panels of one SVG file's text (small multiples, like the six panels of
+/// f-EDEM Fig. 11), `columns` per row under the common `title`, each panel with its own title,
+/// axes and legend; a drawing failure is an [`std::io::Error`] of kind `Other`.
 pub fn grid_svg_string(title: &str, charts: &[Chart], columns: usize) -> std::io::Result<String> {
     draw::grid_svg_string(title, charts, columns)
 }

@@ -1,0 +1,232 @@
+//! The options of `settle invert`: the forward model, [`InvertOptions`] (as given, its defaults
+//! the command line's), the command line's [`Request`], and their check ([`options`]), which
+//! refuses a bad option naming it with the command line's message.
+
+use super::solve::LambdaRule;
+use crate::error::Error;
+use crate::instruments::forward::Settling;
+use std::path::{Path, PathBuf};
+
+/// The forward model of an inversion.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Model {
+    /// Stokes settling from t = 0 (what the standard reductions assume).
+    IdealStokes,
+    /// Dallavalle drag with the Di Felice voidage factor at the test's concentration
+    /// (hindered settling; no contacts).
+    Full,
+}
+
+impl Model {
+    /// Parses `ideal-stokes` / `full`.
+    pub fn parse(s: &str) -> Option<Self> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "ideal-stokes" | "ideal_stokes" | "stokes" => Some(Self::IdealStokes),
+            "full" => Some(Self::Full),
+            _ => None,
+        }
+    }
+
+    /// Its name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::IdealStokes => "ideal-stokes",
+            Self::Full => "full",
+        }
+    }
+
+    pub(super) fn settling(self) -> Settling {
+        match self {
+            Self::IdealStokes => Settling::IdealStokes,
+            Self::Full => Settling::Hindered {
+                voidage_cell_m: 0.002,
+            },
+        }
+    }
+}
+
+/// The options of `settle invert` (its defaults those of the command line), as given: `invert`
+/// checks them and refuses a bad one as [`Error::BadInput`] naming the option (`--model`,
+/// `--lambda`, ...) with the command line's message.
+#[derive(Clone, Debug, PartialEq)]
+pub struct InvertOptions {
+    /// `--model`: `ideal-stokes` (default) or `full`.
+    pub model: String,
+    /// `--bins`: resolved diameter bins, 2–200 (None: twice the readings, 8–30).
+    pub bins: Option<usize>,
+    /// `--diameters-um LO:HI`: the resolved range, µm (None: from the readings).
+    pub diameters_um: Option<String>,
+    /// `--lambda`: a number ≥ 0, `discrepancy` (default) or `gcv`.
+    pub lambda: String,
+    /// `--resolution`: the readings' resolution in their unit, one for every file or one per
+    /// file in order (empty: each instrument's default).
+    pub resolution: Vec<f64>,
+    /// `--repeats`: Monte Carlo repeats of the band (0: no band; default 100).
+    pub repeats: usize,
+    /// `--seed` of the Monte Carlo (ChaCha8; default 1).
+    pub seed: u64,
+    /// `--bounds`: also the strict bounds of the curve at each edge ([`super::solve::Linear::strict_bounds`]).
+    pub bounds: bool,
+}
+
+impl Default for InvertOptions {
+    fn default() -> Self {
+        Self {
+            model: "ideal-stokes".into(),
+            bins: None,
+            diameters_um: None,
+            lambda: "discrepancy".into(),
+            resolution: Vec::new(),
+            repeats: 100,
+            seed: 1,
+            bounds: false,
+        }
+    }
+}
+
+/// What `settle invert` is asked to do on the command line: the files, the options and the
+/// output folder (`run`).
+#[derive(Clone, Debug)]
+pub struct Request {
+    /// The readings files (one test of one soil each, any instrument).
+    pub files: Vec<PathBuf>,
+    /// `--model`: `ideal-stokes` or `full`.
+    pub model: String,
+    /// `--bins`: resolved diameter bins (None: twice the readings, 8–30).
+    pub bins: Option<usize>,
+    /// `--diameters-um LO:HI`: the resolved range, µm (None: from the readings).
+    pub diameters_um: Option<String>,
+    /// `--lambda`: a number, `discrepancy` or `gcv`.
+    pub lambda: String,
+    /// `--resolution`: the readings' resolution in their unit, one for every file or one per
+    /// file in order (empty: each instrument's default).
+    pub resolution: Vec<f64>,
+    /// `--repeats`: Monte Carlo repeats of the band (0: no band).
+    pub repeats: usize,
+    /// `--seed` of the Monte Carlo (ChaCha8).
+    pub seed: u64,
+    /// `--bounds`: also the strict bounds of the curve at each edge ([`super::solve::Linear::strict_bounds`]).
+    pub bounds: bool,
+    /// Output folder; results go to `out_dir/<stem of the first file>_inverted/`.
+    pub out_dir: PathBuf,
+}
+
+impl Default for Request {
+    fn default() -> Self {
+        Self::with_options(Vec::new(), InvertOptions::default(), PathBuf::from("out"))
+    }
+}
+
+impl Request {
+    /// The request of `files` with `opts`, written to `out_dir`.
+    pub fn with_options(files: Vec<PathBuf>, opts: InvertOptions, out_dir: PathBuf) -> Self {
+        Self {
+            files,
+            model: opts.model,
+            bins: opts.bins,
+            diameters_um: opts.diameters_um,
+            lambda: opts.lambda,
+            resolution: opts.resolution,
+            repeats: opts.repeats,
+            seed: opts.seed,
+            bounds: opts.bounds,
+            out_dir,
+        }
+    }
+
+    /// The options of the request.
+    pub fn options(&self) -> InvertOptions {
+        InvertOptions {
+            model: self.model.clone(),
+            bins: self.bins,
+            diameters_um: self.diameters_um.clone(),
+            lambda: self.lambda.clone(),
+            resolution: self.resolution.clone(),
+            repeats: self.repeats,
+            seed: self.seed,
+            bounds: self.bounds,
+        }
+    }
+}
+
+/// The options, checked: (model, λ rule, resolved range in m).
+pub(super) type Options = (Model, LambdaRule, Option<(f64, f64)>);
+
+/// Checks `opts` for `files` readings.
+pub(super) fn options(opts: &InvertOptions, files: usize) -> Result<Options, Error> {
+    let here = Path::new(&opts.model);
+    let model = Model::parse(&opts.model).ok_or_else(|| {
+        Error::bad_argument(
+            "--model",
+            here,
+            "unknown model; allowed: ideal-stokes, full",
+        )
+    })?;
+    let lambda = match opts.lambda.trim().to_ascii_lowercase().as_str() {
+        "discrepancy" => LambdaRule::Discrepancy,
+        "gcv" => LambdaRule::Gcv,
+        s => match s.parse::<f64>() {
+            Ok(x) if x.is_finite() && x >= 0.0 => LambdaRule::Fixed(x),
+            _ => {
+                return Err(Error::bad_argument(
+                    "--lambda",
+                    Path::new(&opts.lambda),
+                    "allowed: discrepancy, gcv or a number ≥ 0",
+                ))
+            }
+        },
+    };
+    let range = match &opts.diameters_um {
+        None => None,
+        Some(s) => {
+            let bad = |m: &str| Error::bad_argument("--diameters-um", Path::new(s), m.to_string());
+            let (a, b) = s
+                .split_once(':')
+                .ok_or_else(|| bad("expected LO:HI in µm, e.g. 2:75"))?;
+            let (a, b): (f64, f64) = match (a.trim().parse(), b.trim().parse()) {
+                (Ok(a), Ok(b)) => (a, b),
+                _ => return Err(bad("LO and HI must be numbers (µm), e.g. 2:75")),
+            };
+            if !(a.is_finite() && b.is_finite() && a > 0.0) {
+                return Err(bad("allowed: 0 < LO < HI (µm)"));
+            }
+            if a >= b {
+                return Err(bad("reversed or empty range: LO must be below HI (µm)"));
+            }
+            Some((a * 1e-6, b * 1e-6))
+        }
+    };
+    if let Some(n) = opts.bins.filter(|&n| !(2..=200).contains(&n)) {
+        return Err(Error::bad_argument(
+            "--bins",
+            Path::new(&n.to_string()),
+            "allowed: 2–200",
+        ));
+    }
+    if !(opts.resolution.len() <= 1 || opts.resolution.len() == files) {
+        return Err(Error::bad_argument(
+            "--resolution",
+            Path::new(&format!("{:?}", opts.resolution)),
+            format!("give one resolution for every file or one per file ({files} files)"),
+        ));
+    }
+    if let Some(r) = opts
+        .resolution
+        .iter()
+        .find(|r| !(r.is_finite() && **r > 0.0))
+    {
+        return Err(Error::bad_argument(
+            "--resolution",
+            Path::new(&r.to_string()),
+            "allowed: > 0 (in the readings' unit)",
+        ));
+    }
+    if files == 0 {
+        return Err(Error::bad_argument(
+            "READINGS.csv",
+            Path::new(""),
+            "no readings file given",
+        ));
+    }
+    Ok((model, lambda, range))
+}
