@@ -221,3 +221,31 @@ pub fn write_csv(path: &Path, header: &[&str], rows: &[Vec<String>]) -> io::Resu
 
 #[cfg(test)]
 mod tests;
+
+// Here, not in outputs.rs: writing a folder needs the staging of this file, and outputs.rs
+// stays a leaf (no import loop between the two).
+impl Outputs {
+    /// Writes the folder `out_dir/name/` as a command does (staged, then moved into place):
+    /// refused as bad input on `--out` when that folder exists and was not made by settle (no
+    /// `.settle-run` marker) or is not a folder. Returns the folder.
+    pub fn write_folder(
+        &self,
+        out_dir: &Path,
+        name: &str,
+    ) -> Result<std::path::PathBuf, crate::error::Error> {
+        use crate::error::Error;
+        let dest = out_dir.join(name);
+        if check_destination(&dest).is_err() {
+            return Err(Error::bad_argument(
+                "--out",
+                &dest,
+                "exists and was not created by settle (no .settle-run marker), so settle will \
+                 not replace it: choose another --out",
+            ));
+        }
+        let ioe = |e: io::Error| Error::Io(dest.clone(), e);
+        let stage = StagedDir::new(out_dir, name).map_err(ioe)?;
+        self.write_into(&stage.path("")).map_err(ioe)?;
+        stage.commit().map_err(ioe)
+    }
+}

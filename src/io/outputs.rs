@@ -140,30 +140,6 @@ impl Outputs {
         Ok(())
     }
 
-    /// Writes the folder `out_dir/name/` as a command does (staged, then moved into place):
-    /// refused as bad input on `--out` when that folder exists and was not made by settle (no
-    /// `.settle-run` marker) or is not a folder. Returns the folder.
-    pub fn write_folder(
-        &self,
-        out_dir: &Path,
-        name: &str,
-    ) -> Result<std::path::PathBuf, crate::error::Error> {
-        use crate::error::Error;
-        let dest = out_dir.join(name);
-        if super::check_destination(&dest).is_err() {
-            return Err(Error::bad_argument(
-                "--out",
-                &dest,
-                "exists and was not created by settle (no .settle-run marker), so settle will \
-                 not replace it: choose another --out",
-            ));
-        }
-        let ioe = |e: io::Error| Error::Io(dest.clone(), e);
-        let stage = super::StagedDir::new(out_dir, name).map_err(ioe)?;
-        self.write_into(&stage.path("")).map_err(ioe)?;
-        stage.commit().map_err(ioe)
-    }
-
     /// Reads the files of a folder (recursively): `.csv` files as tables, the others as bytes.
     /// Names are relative to `dir` with `/` between folders; settle's marker is skipped.
     pub fn read_dir(dir: &Path) -> io::Result<Self> {
