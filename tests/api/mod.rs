@@ -1,4 +1,5 @@
-//! `src/api.rs`: the library API (load, override, run in memory, tables, write), against the
-//! command line it stands for.
+//! The library API against the command line it stands for: `src/api.rs` (load, override, run
+//! in memory, tables, write) and `settle::fit` (calibration in memory).
 
+mod fit;
 mod run;
