@@ -87,6 +87,35 @@ impl Scenario {
         })
     }
 
+    /// The scenario file `path` with the overrides `set` (`KEY=VALUE`, as `--set` gives them)
+    /// applied in one step, as a command line loads it; and the prepared scenario with `extra`
+    /// overrides on top of this one's, not kept (the runs of `settle fit`).
+    pub(crate) fn load_with(path: &Path, set: &[String]) -> Result<Self, Error> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| Error::bad_input(path, None, format!("cannot read the file: {e}")))?;
+        Self::make(text, path.to_path_buf(), set.to_vec(), None)
+    }
+
+    /// The time step given by [`Scenario::with_dt`] (`--dt`), if any.
+    pub(crate) fn dt_override(&self) -> Option<f64> {
+        self.dt_s
+    }
+
+    /// See [`Scenario::load_with`]; with no `extra`, the prepared scenario itself.
+    pub(crate) fn prepared_with(&self, extra: &[String]) -> Result<Prepared, Error> {
+        if extra.is_empty() {
+            return Ok(self.prepared.clone());
+        }
+        let mut ov = self.overrides.clone();
+        ov.extend_from_slice(extra);
+        Ok(runner::prepare_str(
+            &self.text,
+            &self.origin,
+            self.dt_s,
+            &ov,
+        )?)
+    }
+
     /// A new scenario with the override `key = value` applied on top of this one's, exactly as
     /// `settle run --set KEY=VALUE` applies it (same keys, same validation): `value` is a TOML
     /// value (`0.002`, `"ideal-stokes"`, `[1, 2]`) or a bare word read as a string.

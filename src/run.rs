@@ -150,20 +150,8 @@ struct RunToml<'a> {
     scenario: toml::Table,
 }
 
-/// Runs one prepared scenario and writes its outputs under `out_dir` (no checkpoints, no
-/// progress bar).
-pub fn run_one(p: &Prepared, out_dir: &Path) -> Result<FileReport, Error> {
-    run_one_with(
-        p,
-        out_dir,
-        &RunContext {
-            quiet: true,
-            ..RunContext::default()
-        },
-    )
-}
-
-/// [`run_one`] with checkpoints, resumption and progress as `ctx` says.
+/// Runs one prepared scenario and writes its outputs under `out_dir`, with checkpoints,
+/// resumption and progress as `ctx` says.
 pub fn run_one_with(p: &Prepared, out_dir: &Path, ctx: &RunContext) -> Result<FileReport, Error> {
     let done = execute(p, ctx)?;
     let out = write(p, &done, out_dir)?;

@@ -55,3 +55,20 @@ def lab_tables(readings_file: Path, frame: pd.DataFrame, out: Path) -> list[str]
 
 
 # --- end of lab ---
+
+
+# --- w-fit: settle.fit, settle.slump ---
+def fitted_eta_b(scenario_file: Path, measured: pd.DataFrame) -> tuple[float, float]:
+    o: settle.Output = settle.fit(
+        scenario_file,
+        fit={"fluid.plastic_viscosity_pa_s": (0.1, 3.0)},
+        measured=measured,
+        overrides={"release.fall_heights_m": [0.255]},
+        progress=False,
+    )
+    fitted: pd.DataFrame = o.tables["fitted"]
+    chart: bytes = o.files["objective_vs_plastic_viscosity_pa_s.svg"]
+    assert chart.startswith(b"<svg")
+    s: settle.Slump = settle.slump(152.0, [102.0, 103.0], density=1843.0)
+    return float(fitted["value"].iloc[0]), s.mean_yield_stress_pa
+# --- end of w-fit ---

@@ -8,7 +8,8 @@
 //! unweighted).
 
 use crate::error::Error;
-use std::path::Path;
+use crate::io::Table;
+use std::path::{Path, PathBuf};
 
 /// One measured quantity.
 #[derive(Clone, Debug, PartialEq)]
@@ -37,18 +38,72 @@ impl Measurement {
     }
 }
 
-/// Reads M.csv; a missing column, an empty file, a value that is not a finite number or a
-/// sigma that is not > 0 is bad input naming the file, the row and the column.
-pub fn read(path: &Path) -> Result<Vec<Measurement>, Error> {
+/// The measurements of a fit: an M.csv file, or the same table in memory.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Measured {
+    /// A measurements file (CSV: `file, column, row, value [, sigma]`; `#` lines are comments).
+    File(PathBuf),
+    /// The file's table in memory; its name stands for the file in errors and in `fit.toml`.
+    Table(Table),
+}
+
+impl Measured {
+    /// The path errors and `fit.toml` name: the file, or the table's name.
+    pub fn path(&self) -> PathBuf {
+        match self {
+            Measured::File(p) => p.clone(),
+            Measured::Table(t) => PathBuf::from(t.name()),
+        }
+    }
+}
+
+impl From<PathBuf> for Measured {
+    fn from(p: PathBuf) -> Self {
+        Measured::File(p)
+    }
+}
+
+impl From<&Path> for Measured {
+    fn from(p: &Path) -> Self {
+        Measured::File(p.to_path_buf())
+    }
+}
+
+impl From<&PathBuf> for Measured {
+    fn from(p: &PathBuf) -> Self {
+        Measured::File(p.clone())
+    }
+}
+
+impl From<&str> for Measured {
+    fn from(p: &str) -> Self {
+        Measured::File(PathBuf::from(p))
+    }
+}
+
+impl From<Table> for Measured {
+    fn from(t: Table) -> Self {
+        Measured::Table(t)
+    }
+}
+
+/// Reads the measurements (M.csv, or its table in memory); a missing column, an empty file, a
+/// value that is not a finite number or a sigma that is not > 0 is bad input naming the file,
+/// the row and the column.
+pub fn read(measured: &Measured) -> Result<Vec<Measurement>, Error> {
+    let path = &measured.path();
+    let bytes = match measured {
+        Measured::File(p) => std::fs::read(p)
+            .map_err(|e| Error::bad_input(path, None, format!("cannot read: {e}")))?,
+        Measured::Table(t) => t
+            .to_csv()
+            .map_err(|e| Error::bad_input(path, None, e.to_string()))?,
+    };
     let bad = |key: String, msg: String| Error::bad_input(path, Some(&key), msg);
     let mut rd = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
         .comment(Some(b'#'))
-        .from_path(path)
-        .map_err(|e| match e.kind() {
-            csv::ErrorKind::Io(_) => Error::bad_input(path, None, format!("cannot read: {e}")),
-            _ => Error::bad_input(path, None, e.to_string()),
-        })?;
+        .from_reader(bytes.as_slice());
     let header: Vec<String> = rd
         .headers()
         .map_err(|e| Error::bad_input(path, None, e.to_string()))?
@@ -122,31 +177,11 @@ pub fn read(path: &Path) -> Result<Vec<Measurement>, Error> {
     Ok(out)
 }
 
-/// A parsed output CSV: header and rows.
-pub type Table = (Vec<String>, Vec<Vec<String>>);
-
-/// Reads an output CSV of a run.
-pub fn read_table(path: &Path) -> Result<Table, String> {
-    let mut rd = csv::Reader::from_path(path).map_err(|e| e.to_string())?;
-    let header = rd
-        .headers()
-        .map_err(|e| e.to_string())?
-        .iter()
-        .map(String::from)
-        .collect();
-    let rows = rd
-        .records()
-        .map(|r| r.map(|r| r.iter().map(String::from).collect()))
-        .collect::<Result<_, _>>()
-        .map_err(|e| e.to_string())?;
-    Ok((header, rows))
-}
-
 /// The value of `m` in `table` (the file `m.file` of a run), or why it cannot be read: the
 /// column is missing (listing those there are), no row or several rows match, or the cell is
 /// not a finite number.
 pub fn extract(m: &Measurement, table: &Table) -> Result<f64, String> {
-    let (header, rows) = table;
+    let (header, rows) = (table.header(), table.rows());
     let col = header.iter().position(|h| *h == m.column).ok_or_else(|| {
         format!(
             "{} has no column `{}`: it has {}",
@@ -217,8 +252,9 @@ mod tests {
     use super::*;
 
     fn table() -> Table {
-        (
-            vec!["sphere_id".into(), "settling_distance_m".into()],
+        Table::with_rows(
+            "summary.csv",
+            ["sphere_id", "settling_distance_m"],
             vec![
                 vec!["a".into(), "0.01".into()],
                 vec!["b".into(), "0.02".into()],

@@ -1,4 +1,5 @@
-//! The outputs of a fit, staged in `OUT/<name>_fit/` and committed only when all are written:
+//! The outputs of a fit, in memory ([`Outputs`]); the command line writes them into
+//! `OUT/<name>_fit/`, staged and committed only when all are written:
 //!
 //! | file | content |
 //! |---|---|
@@ -7,12 +8,12 @@
 //! | `objective.csv`, `objective_vs_<key>.svg` | one key: χ² at every value run |
 //! | `fit.toml` | the request, the method, runs, χ², the fitted values |
 
-use super::Fit;
+use super::problem::Fit;
 use crate::error::Error;
 use crate::io::chart::{Chart, Curve, Scale, Series};
 use crate::io::fmt::{g, g_opt, short};
 use crate::io::fmt::{num, opt};
-use crate::io::{write_atomic, write_csv, StagedDir};
+use crate::io::{Outputs, Table};
 use serde::Serialize;
 use std::path::Path;
 
@@ -29,6 +30,9 @@ struct Meta<'a> {
     measured_file: String,
     /// The `--set` list applied to every run.
     set: &'a [String],
+    /// The time step given apart from the `--set` list (the library's `Scenario::with_dt`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    dt_s: Option<f64>,
     method: &'a str,
     runs: usize,
     measurements: usize,
@@ -57,18 +61,20 @@ fn short_key(key: &str) -> &str {
     key.rsplit('.').next().unwrap_or(key)
 }
 
-/// Writes the outputs of `fit` into `OUT/<folder>/` and returns it with the console lines.
-pub fn write(
-    out: &Path,
-    folder: &str,
-    scenario: &Path,
-    measured: &Path,
-    set: &[String],
-    mut fit: Fit,
-) -> Result<Fit, Error> {
-    let dest = out.join(folder);
-    let io = |e: std::io::Error| Error::Io(dest.clone(), e);
-    let stage = StagedDir::new(out, folder).map_err(io)?;
+/// What the fit was asked: the scenario file, the measurements file (or table), the overrides
+/// applied to every run and the time step given apart from them.
+pub struct Request<'a> {
+    pub scenario: &'a Path,
+    pub measured: &'a Path,
+    pub set: &'a [String],
+    pub dt_s: Option<f64>,
+}
+
+/// The outputs of `fit`: `fitted.csv`, `residuals.csv`, for one key `objective.csv` and its
+/// chart, and `fit.toml`.
+pub fn outputs(req: &Request<'_>, fit: &Fit) -> Result<Outputs, Error> {
+    let io = |e: std::io::Error| Error::Io(req.measured.to_path_buf(), e);
+    let mut out = Outputs::new();
     let keys: Vec<&str> = fit.bounds.iter().map(|b| b.key.as_str()).collect();
     // fitted.csv
     let (plo, phi) = fit.profile.unwrap_or((None, None));
@@ -97,8 +103,8 @@ pub fn write(
         "profile_low",
         "profile_high",
     ];
-    write_csv(&stage.path("fitted.csv"), &header, &rows).map_err(io)?;
-    write_residuals(&stage.path("residuals.csv"), &fit, &keys).map_err(io)?;
+    out.table(Table::with_rows("fitted.csv", header, rows));
+    out.table(residuals(fit, &keys));
     // objective.csv and its chart (one key)
     if fit.bounds.len() == 1 {
         let key = keys[0];
@@ -107,10 +113,10 @@ pub fn write(
             .iter()
             .map(|(x, c)| vec![num(*x), num(*c)])
             .collect();
-        write_csv(&stage.path("objective.csv"), &[key, "chi2"], &rows).map_err(io)?;
-        objective_chart(
-            &stage.path(&format!("objective_vs_{}.svg", short_key(key))),
-            &fit,
+        out.table(Table::with_rows("objective.csv", [key, "chi2"], rows));
+        out.chart(
+            format!("objective_vs_{}.svg", short_key(key)),
+            &objective_chart(fit),
         )
         .map_err(io)?;
     }
@@ -118,9 +124,10 @@ pub fn write(
     let toml_doc = FitToml {
         fit: Meta {
             settle_version: env!("CARGO_PKG_VERSION"),
-            scenario_file: scenario.display().to_string(),
-            measured_file: measured.display().to_string(),
-            set,
+            scenario_file: req.scenario.display().to_string(),
+            measured_file: req.measured.display().to_string(),
+            set: req.set,
+            dt_s: req.dt_s,
             method: fit.method,
             runs: fit.runs,
             measurements: fit.measured.len(),
@@ -143,14 +150,12 @@ pub fn write(
             .collect(),
     };
     let text = toml::to_string(&toml_doc).map_err(|e| io(std::io::Error::other(e)))?;
-    write_atomic(&stage.path("fit.toml"), text.as_bytes()).map_err(io)?;
-    fit.out = stage.commit().map_err(io)?;
-    fit.lines = lines(&fit);
-    Ok(fit)
+    out.file("fit.toml", text);
+    Ok(out)
 }
 
 /// residuals.csv: each measurement against the model, with its sensitivity to each key.
-fn write_residuals(path: &Path, fit: &Fit, keys: &[&str]) -> std::io::Result<()> {
+fn residuals(fit: &Fit, keys: &[&str]) -> Table {
     let mut header: Vec<String> = [
         "file",
         "column",
@@ -184,12 +189,11 @@ fn write_residuals(path: &Path, fit: &Fit, keys: &[&str]) -> std::io::Result<()>
             row
         })
         .collect();
-    let header: Vec<&str> = header.iter().map(String::as_str).collect();
-    write_csv(path, &header, &rows)
+    Table::with_rows("residuals.csv", header, rows)
 }
 
 /// χ² against the key: every run (markers) and the fitted value (a dashed vertical line).
-fn objective_chart(path: &Path, fit: &Fit) -> std::io::Result<()> {
+fn objective_chart(fit: &Fit) -> Chart {
     let key = &fit.bounds[0].key;
     let unit = crate::sweep::vary::unit_of(key);
     let x = fit.values[0];
@@ -200,19 +204,22 @@ fn objective_chart(path: &Path, fit: &Fit) -> std::io::Result<()> {
         .y_from_zero(true)
         .series(Series::sorted_line("runs".into(), fit.objective.clone(), 0))
         .curve(Curve::new(format!("fitted {}", short(x)), vec![(x, 0.0), (x, top)]).dashed())
-        .svg(path)
 }
 
 /// The console lines: the fitted values with their uncertainty, χ², and per measurement the
-/// model, the residual and the sensitivity.
-fn lines(fit: &Fit) -> Vec<String> {
-    let mut out = vec![format!(
-        "fit ({}, {} runs, chi2 = {}) -> {}",
+/// model, the residual and the sensitivity; the first ends `-> FOLDER` when `dest` is where
+/// the outputs went.
+pub fn lines(fit: &Fit, dest: Option<&Path>) -> Vec<String> {
+    let mut head = format!(
+        "fit ({}, {} runs, chi2 = {})",
         fit.method,
         fit.runs,
-        g(fit.chi2),
-        fit.out.display()
-    )];
+        g(fit.chi2)
+    );
+    if let Some(d) = dest {
+        head.push_str(&format!(" -> {}", d.display()));
+    }
+    let mut out = vec![head];
     for (j, b) in fit.bounds.iter().enumerate() {
         let unit = match crate::sweep::vary::unit_of(&b.key) {
             "-" => String::new(),

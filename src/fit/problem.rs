@@ -1,26 +1,17 @@
-//! The objective of a fit: each evaluation runs the scenario with the fitted keys set, into a
-//! scratch folder outside `--out` (removed afterwards), and reads the measured quantities back.
+//! The objective of a fit: each evaluation runs the scenario in memory with the fitted keys
+//! set (nothing is written), and reads the measured quantities from the run's tables.
 
+use super::bound::Bound;
 use super::measure::{self, Measurement};
 use super::optim::{self, Minimum};
+use crate::api::Scenario;
 use crate::error::{BadInput, Error};
-use crate::run::{prepare, run_one};
-use crate::scenes::Prepared;
-use std::collections::HashMap;
+use crate::scenes::{Prepared, RunContext};
+use indicatif::ProgressBar;
 use std::path::{Path, PathBuf};
 
-/// One `--fit KEY=LO:HI`: a real-valued scenario key and its bounds.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Bound {
-    /// The key, as `--set` takes it.
-    pub key: String,
-    /// Lower bound, in the key's unit.
-    pub lo: f64,
-    /// Upper bound, in the key's unit (> lo).
-    pub hi: f64,
-}
-
-/// The outcome of a calibration.
+/// The outcome of a calibration: the typed figures of `fitted.csv`, `residuals.csv` and
+/// `objective.csv`.
 #[derive(Clone, Debug)]
 pub struct Fit {
     /// The fitted keys, in the order given.
@@ -48,32 +39,35 @@ pub struct Fit {
     pub runs: usize,
     /// The method: `brent` or `nelder-mead`.
     pub method: &'static str,
-    /// Where the outputs went.
-    pub out: PathBuf,
-    /// The console lines.
-    pub lines: Vec<String>,
 }
 
-/// A scratch folder removed when dropped.
-struct Scratch(PathBuf);
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
+impl Fit {
+    /// The best value of `key`, if it was fitted.
+    pub fn value(&self, key: &str) -> Option<f64> {
+        let j = self.bounds.iter().position(|b| b.key == key)?;
+        Some(self.values[j])
     }
 }
 
+/// One evaluation: the point, its model values, χ² and the run's validity warnings.
+struct Eval {
+    x: Vec<f64>,
+    model: Vec<f64>,
+    chi2: f64,
+    warnings: Vec<String>,
+}
+
 /// The runs of a fit: the scenario, the keys, the measurements and every point evaluated.
-pub struct Problem {
-    file: PathBuf,
-    set: Vec<String>,
+pub(crate) struct Problem {
+    scenario: Scenario,
     bounds: Vec<Bound>,
     measured_file: PathBuf,
     measured: Vec<Measurement>,
     base: Prepared,
-    scratch: Scratch,
-    /// Every evaluation: the point, its model values and χ².
-    history: Vec<(Vec<f64>, Vec<f64>, f64)>,
+    /// Every evaluation, in order.
+    history: Vec<Eval>,
+    /// The fit's progress bar (runs made; hidden unless asked for or watched).
+    bar: ProgressBar,
 }
 
 /// A value as `--set` writes it for a real key: exponent notation (TOML reads `7e-1` as a
@@ -83,45 +77,41 @@ fn text(x: f64) -> String {
 }
 
 impl Problem {
-    /// Loads the scenario with `set`, and with each key at its lower and at its upper bound:
+    /// The scenario (its overrides applied) with each key at its lower and at its upper bound:
     /// a key that does not exist, that is not a real number, or a bound outside its allowed
     /// range is bad input naming the key, before anything runs.
     pub fn new(
-        file: &Path,
-        set: &[String],
+        scenario: &Scenario,
         bounds: &[Bound],
         measured_file: &Path,
         measured: Vec<Measurement>,
+        bar: ProgressBar,
     ) -> Result<Self, Error> {
-        let base = prepare(file, None, set)?;
+        let base = scenario.prepared_with(&[])?;
         for b in bounds {
             for v in [b.lo, b.hi] {
-                let mut ov = set.to_vec();
-                ov.push(format!("{}={}", b.key, text(v)));
-                prepare(file, None, &ov).map_err(|e| {
-                    Error::BadInput(BadInput {
+                let ov = [format!("{}={}", b.key, text(v))];
+                scenario.prepared_with(&ov).map_err(|e| match e {
+                    Error::BadInput(e) => Error::BadInput(BadInput {
                         message: format!(
                             "--fit {}={}:{} (the key must be a real number and both bounds \
                              allowed): {}",
                             b.key, b.lo, b.hi, e.message
                         ),
                         ..e
-                    })
+                    }),
+                    e => e,
                 })?;
             }
         }
-        static NEXT: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
-        let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        let dir = std::env::temp_dir().join(format!("settle-fit-{}-{n}", std::process::id()));
         Ok(Self {
-            file: file.to_path_buf(),
-            set: set.to_vec(),
+            scenario: scenario.clone(),
             bounds: bounds.to_vec(),
             measured_file: measured_file.to_path_buf(),
             measured,
             base,
-            scratch: Scratch(dir),
             history: Vec::new(),
+            bar,
         })
     }
 
@@ -139,24 +129,29 @@ impl Problem {
     /// does not write is bad input naming M.csv and its row; an unstable run is
     /// [`Error::Unstable`].
     pub fn model(&mut self, x: &[f64]) -> Result<Vec<f64>, Error> {
-        if let Some((_, m, _)) = self.history.iter().find(|(p, _, _)| p == x) {
-            return Ok(m.clone());
+        if let Some(e) = self.history.iter().find(|e| e.x == x) {
+            return Ok(e.model.clone());
         }
         if crate::interrupt::requested() {
-            return Err(Error::InterruptedUnwritten(self.file.clone()));
+            return Err(Error::InterruptedUnwritten(self.scenario.path().into()));
         }
-        let mut ov = self.set.clone();
-        ov.extend(
-            self.bounds
-                .iter()
-                .zip(x)
-                .map(|(b, v)| format!("{}={}", b.key, text(*v))),
-        );
-        let p = prepare(&self.file, None, &ov)?;
-        std::fs::create_dir_all(&self.scratch.0)
-            .map_err(|e| Error::Io(self.scratch.0.clone(), e))?;
-        let r = run_one(&p, &self.scratch.0)?;
-        let mut tables: HashMap<&str, measure::Table> = HashMap::new();
+        let ov: Vec<String> = self
+            .bounds
+            .iter()
+            .zip(x)
+            .map(|(b, v)| format!("{}={}", b.key, text(*v)))
+            .collect();
+        let p = self.scenario.prepared_with(&ov)?;
+        let ctx = RunContext {
+            quiet: true,
+            ..RunContext::default()
+        };
+        // The runs' own bars go to a watch of their own: the fit's bar is the one shown.
+        let done = crate::progress::Watch::new().scope(|| crate::run::execute(&p, &ctx))?;
+        if done.report.interrupted {
+            return Err(Error::InterruptedUnwritten(self.scenario.path().into()));
+        }
+        let tables = done.outputs.tables();
         let mut values = Vec::with_capacity(self.measured.len());
         for (i, m) in self.measured.iter().enumerate() {
             let bad = |msg: String| {
@@ -166,31 +161,61 @@ impl Problem {
                     format!("{}: {msg}", m.label()),
                 )
             };
-            if !tables.contains_key(m.file.as_str()) {
-                let path = r.out.join(&m.file);
-                let t = if m.file.ends_with(".csv") && path.is_file() {
-                    measure::read_table(&path).map_err(|e| bad(e.to_string()))?
-                } else {
-                    let mut have: Vec<String> = std::fs::read_dir(&r.out)
-                        .into_iter()
-                        .flatten()
-                        .filter_map(|e| e.ok()?.file_name().into_string().ok())
-                        .filter(|n| n.ends_with(".csv"))
-                        .collect();
-                    have.sort();
-                    return Err(bad(format!(
-                        "a {} run writes no such CSV: it writes {}",
-                        self.base.scenario.kind.name(),
-                        have.join(", ")
-                    )));
-                };
-                tables.insert(&m.file, t);
-            }
-            values.push(measure::extract(m, &tables[m.file.as_str()]).map_err(bad)?);
+            let Some(t) = tables.iter().find(|t| t.name() == m.file) else {
+                let mut have: Vec<&str> = tables
+                    .iter()
+                    .map(|t| t.name())
+                    .filter(|n| !n.contains('/'))
+                    .collect();
+                have.sort();
+                return Err(bad(format!(
+                    "a {} run writes no such CSV: it writes {}",
+                    self.base.scenario.kind.name(),
+                    have.join(", ")
+                )));
+            };
+            values.push(measure::extract(m, t).map_err(bad)?);
         }
         let chi2 = self.chi2_of(&values);
-        self.history.push((x.to_vec(), values.clone(), chi2));
+        self.history.push(Eval {
+            x: x.to_vec(),
+            model: values.clone(),
+            chi2,
+            warnings: done.report.warnings,
+        });
+        self.tick(chi2);
         Ok(values)
+    }
+
+    /// Moves the bar on by one run: the runs so far, the best χ² so far.
+    fn tick(&self, chi2: f64) {
+        let n = self.history.len() as u64;
+        if self.bar.length().is_some_and(|len| n >= len) {
+            self.bar.set_length(n + 1);
+        }
+        self.bar.set_position(n);
+        let best = self.history.iter().map(|e| e.chi2).fold(chi2, f64::min);
+        self.bar.set_message(format!(
+            "run {n}: chi2 = {}, best {}",
+            crate::io::fmt::g(chi2),
+            crate::io::fmt::g(best)
+        ));
+    }
+
+    /// Fills the bar: every run made.
+    pub fn finish_bar(&self) {
+        let n = self.history.len() as u64;
+        self.bar.set_length(n);
+        self.bar.set_position(n);
+    }
+
+    /// The validity warnings of the run at `x` (empty if it was not run).
+    pub fn warnings_at(&self, x: &[f64]) -> Vec<String> {
+        self.history
+            .iter()
+            .find(|e| e.x == x)
+            .map(|e| e.warnings.clone())
+            .unwrap_or_default()
     }
 
     /// χ² = Σ ((model_i − measured_i)/σ_i)² of model values.
@@ -291,7 +316,7 @@ impl Problem {
                 let v = b.lo + (b.hi - b.lo) * k as f64 / (grid - 1) as f64;
                 self.chi2(&[v])?;
             }
-            objective = self.history.iter().map(|(q, _, c)| (q[0], *c)).collect();
+            objective = self.history.iter().map(|e| (e.x[0], e.chi2)).collect();
             objective.sort_by(|a, b| a.0.total_cmp(&b.0));
             objective.dedup_by(|a, b| a.0 == b.0);
         }
@@ -307,8 +332,6 @@ impl Problem {
             objective,
             runs: self.runs(),
             method,
-            out: PathBuf::new(),
-            lines: Vec::new(),
         })
     }
 }

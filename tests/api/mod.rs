@@ -1,5 +1,6 @@
-//! `src/api.rs`: the library API (load, override, run in memory, tables, write), against the
-//! command line it stands for.
+//! The library API against the command line it stands for: `src/api.rs` (load, override, run
+//! in memory, tables, write) and the other commands in memory: `settle::fit`, `settle::invert`, `settle::laws`.
 
+mod fit;
 mod lab;
 mod run;

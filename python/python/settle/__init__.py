@@ -15,7 +15,7 @@ pandas and numpy are imported on the first use of ``Result.tables``, not by ``im
 from __future__ import annotations
 
 from ._core import Output, Result, Scenario, load, run
-from ._fit import fit
+from ._fit import Slump, fit, slump
 from ._lab import invert, laws, reduce
 from ._settle import ScenarioError, UnstableError
 from ._sweep import sweep, vary
@@ -25,6 +25,7 @@ __all__ = [
     "Result",
     "Scenario",
     "ScenarioError",
+    "Slump",
     "UnstableError",
     "fit",
     "invert",
@@ -32,6 +33,7 @@ __all__ = [
     "load",
     "reduce",
     "run",
+    "slump",
     "sweep",
     "vary",
 ]

@@ -112,4 +112,13 @@ def laws(
 
 # --- fit.rs: fit ---
 
+def fit(
+    scenario: Scenario,
+    bounds: List[Tuple[str, float, float]],
+    measured_path: Optional[str] = None,
+    measured_csv: Optional[Tuple[str, str]] = None,
+    progress: Optional[ProgressCallback] = None,
+) -> Output: ...
+def slump(height_mm: float, slump_mm: List[float], density: float, g: float) -> Dict[str, Any]: ...
+
 # --- end of fit.rs ---

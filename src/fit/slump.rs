@@ -1,0 +1,126 @@
+//! `settle fit slump`: the yield stress of a paste from cylinder slump tests (Pashias & Boger
+//! 1996; f-EDEM Appendix I, eqs. A1–A3), solved by [`crate::fluid::slump::yield_stress_pa`].
+
+use crate::error::Error;
+use crate::io::fmt::{g as fmt, short};
+use std::path::Path;
+
+/// One slump test: its slump and the yield stress it gives.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SlumpTest {
+    /// The slump S, mm.
+    pub slump_mm: f64,
+    /// The dimensionless slump S′ = S/H (eq. A2).
+    pub relative_slump: f64,
+    /// The yield stress τ_y, Pa (eqs. A1, A3).
+    pub yield_stress_pa: f64,
+}
+
+/// The yield stresses of slump tests of one paste, as `settle fit slump` prints them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Slump {
+    /// The mould's height H, mm.
+    pub height_mm: f64,
+    /// The paste's density ρ, kg/m³.
+    pub density_kg_m3: f64,
+    /// The gravitational acceleration, m/s².
+    pub g_m_s2: f64,
+    /// Each test, in the order given.
+    pub tests: Vec<SlumpTest>,
+    /// The mean yield stress of the tests, Pa.
+    pub mean_yield_stress_pa: f64,
+    /// The lines `settle fit slump` prints.
+    pub lines: Vec<String>,
+}
+
+/// `settle fit slump` in memory: τ_y of each slump (mm) of a mould `height_mm` high, for a
+/// paste of `density` kg/m³ under `g` m/s² (the command line's default:
+/// [`crate::fluid::slump::G_M_S2`]), and their mean. A slump outside 0 < S < H (or a height,
+/// density or g ≤ 0, or no slump) is bad input naming `--slump-mm` and the value, the command
+/// line's message.
+///
+/// ```
+/// let s = settle::fit::slump(152.0, &[102.0, 103.0, 100.0], 1843.0, 9.81)?;
+/// assert!((s.mean_yield_stress_pa - 138.0).abs() < 0.05); // f-EDEM Table A1, recomputed
+/// # Ok::<(), settle::Error>(())
+/// ```
+pub fn slump(height_mm: f64, slumps_mm: &[f64], density: f64, g: f64) -> Result<Slump, Error> {
+    if slumps_mm.is_empty() {
+        return Err(Error::bad_argument(
+            "--slump-mm",
+            Path::new(""),
+            "no slump given: allowed one or more slumps 0 < S < height, mm",
+        ));
+    }
+    let mut tests = Vec::new();
+    let mut lines = Vec::new();
+    for s in slumps_mm {
+        let t = crate::fluid::slump::yield_stress_pa(height_mm * 1e-3, s * 1e-3, density, g)
+            .ok_or_else(|| {
+                Error::bad_argument(
+                    "--slump-mm",
+                    Path::new(&short(*s)),
+                    format!(
+                        "out of range: allowed 0 < slump < height ({} mm), with height, \
+                         density and g > 0",
+                        short(height_mm)
+                    ),
+                )
+            })?;
+        lines.push(format!(
+            "H = {} mm, S = {} mm, rho = {} kg/m3: S' = {}, tau_y = {} Pa",
+            short(height_mm),
+            short(*s),
+            short(density),
+            fmt(s / height_mm),
+            fmt(t)
+        ));
+        tests.push(SlumpTest {
+            slump_mm: *s,
+            relative_slump: s / height_mm,
+            yield_stress_pa: t,
+        });
+    }
+    let mean = tests.iter().map(|t| t.yield_stress_pa).sum::<f64>() / tests.len() as f64;
+    lines.push(format!(
+        "mean tau_y = {} Pa over {} slumps (eqs. A1-A3, Pashias & Boger 1996)",
+        fmt(mean),
+        tests.len()
+    ));
+    Ok(Slump {
+        height_mm,
+        density_kg_m3: density,
+        g_m_s2: g,
+        tests,
+        mean_yield_stress_pa: mean,
+        lines,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// f-EDEM Table A1 recomputed (136.6, 132.7, 144.6 Pa; mean 138.0), as the command line
+    /// prints it; a slump of the mould's height is bad input naming it.
+    #[test]
+    fn table_a1() {
+        let s = slump(152.0, &[102.0, 103.0, 100.0], 1843.0, 9.81).unwrap();
+        let t: Vec<f64> = s.tests.iter().map(|t| t.yield_stress_pa).collect();
+        for (got, want) in t.iter().zip([136.6, 132.7, 144.6]) {
+            assert!((got - want).abs() < 0.05, "{got} vs {want}");
+        }
+        assert!((s.tests[0].relative_slump - 102.0 / 152.0).abs() < 1e-15);
+        assert_eq!(s.mean_yield_stress_pa, (t[0] + t[1] + t[2]) / 3.0);
+        assert!(
+            s.lines[0].ends_with("S' = 0.6711, tau_y = 136.6 Pa"),
+            "{:?}",
+            s.lines
+        );
+        assert!(s.lines[3].starts_with("mean tau_y = 138.0 Pa over 3 slumps"));
+        let e = slump(152.0, &[100.0, 152.0], 1843.0, 9.81).unwrap_err();
+        let m = e.to_string();
+        assert!(m.starts_with("152: key `--slump-mm`: out of range"), "{m}");
+        assert!(slump(152.0, &[], 1843.0, 9.81).is_err());
+    }
+}
