@@ -53,12 +53,13 @@ def _show_in_jupyter() -> None:
     if not in_jupyter():
         return
     try:
-        from IPython import get_ipython
-        from IPython.core.pylabtools import select_figure_formats
+        import importlib
 
-        shell = get_ipython()
+        ipython: Any = importlib.import_module("IPython")
+        pylabtools: Any = importlib.import_module("IPython.core.pylabtools")
+        shell = ipython.get_ipython()
         if shell is not None:
-            select_figure_formats(shell, {"png"})
+            pylabtools.select_figure_formats(shell, {"png"})
     except Exception:  # pragma: no cover - an IPython without pylabtools
         pass
 

@@ -79,14 +79,13 @@ class _Bar:
             self._line(name, pos, total, unit, message)
 
     def _html(self, name: str, pos: int, total: int, unit: str, message: str) -> None:
-        from IPython.display import HTML, display  # type: ignore[import-not-found,unused-ignore]
-
-        html = HTML(
+        ipd = _ipython_display()
+        html = ipd.HTML(
             f"<div><code>{name}</code> <progress value='{pos}' max='{max(total, 1)}' "
             f"style='width:40%'></progress> {pos}/{total} {unit} <small>{message}</small></div>"
         )
         if self.handle is None:
-            self.handle = display(html, display_id=True)
+            self.handle = ipd.display(html, display_id=True)
         else:
             self.handle.update(html)
 
@@ -107,12 +106,17 @@ class _Bar:
         if self.tqdm:
             self.tqdm.close()
         elif self.handle is not None:
-            from IPython.display import HTML  # type: ignore[import-not-found,unused-ignore]
-
-            self.handle.update(HTML(""))
+            self.handle.update(_ipython_display().HTML(""))
         elif self.drawn and self.tty:
             sys.stderr.write("\r\x1b[K")
             sys.stderr.flush()
+
+
+def _ipython_display() -> Any:
+    """IPython.display (untyped to mypy: its functions are called through Any)."""
+    import importlib
+
+    return importlib.import_module("IPython.display")
 
 
 @contextlib.contextmanager
