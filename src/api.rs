@@ -1,7 +1,8 @@
 //! The library API: load a scenario, apply overrides, run it in memory, read its tables, write
-//! its files; the same steps `settle run` takes, as functions. `settle reduce` has its own in
-//! [`crate::reduce`]; [`crate::invert`] and [`crate::laws`] expose their computations;
-//! `settle sweep` and `settle fit` are command-line only so far.
+//! its files; the same steps `settle run` takes, as functions. The other commands have theirs,
+//! in memory too, each with a result holding its [`Outputs`] and a `write`:
+//! [`crate::reduce::reduce`], [`crate::invert::invert`], [`crate::laws::laws`],
+//! [`crate::fit::fit`] (and [`crate::fit::slump`]), `crate::sweep`.
 //!
 //! ```no_run
 //! let scenario = settle::load("scenarios/stokes_single.toml")?
