@@ -140,6 +140,22 @@ impl Scenario {
         toml::to_string(&table).map_err(|e| io(e.to_string()))
     }
 
+    /// The prepared scenario, for the crate's other commands ([`crate::sweep`]).
+    pub(crate) fn prepared(&self) -> &Prepared {
+        &self.prepared
+    }
+
+    /// This scenario prepared again with the overrides `extra` after its own, in one
+    /// preparation (a point of a parameter sweep): the errors of `--set`.
+    pub(crate) fn prepared_with(
+        &self,
+        extra: &[String],
+    ) -> Result<Prepared, crate::error::BadInput> {
+        let mut overrides = self.overrides.clone();
+        overrides.extend_from_slice(extra);
+        runner::prepare_str(&self.text, &self.origin, self.dt_s, &overrides)
+    }
+
     /// Runs the scenario in memory with the default [`RunOptions`].
     pub fn run(&self) -> Result<RunResult, Error> {
         self.run_with(&RunOptions::default())

@@ -26,3 +26,29 @@ def error_key(text: str) -> str | None:
     except settle.ScenarioError as e:
         return e.key
     return None
+
+
+# --- sweep (helper w-sweep): settle.sweep, settle.vary ---
+
+
+def recommended_dts(scenario_file: Path) -> dict[str, float]:
+    r: settle.Output = settle.sweep(
+        scenario_file, dt=[1e-3, 1e-4], integrators=["exponential"], tol=0.01, progress=False
+    )
+    table: pd.DataFrame = r.tables["recommended_dt"]
+    lines: list[str] = r.lines
+    assert lines and r.name.endswith("_sweep")
+    return dict(zip(table["integrator"], table["recommended_dt_s"]))
+
+
+def terminal_velocities(scenario_file: Path) -> list[float]:
+    r: settle.Output = settle.vary(
+        settle.load(scenario_file),
+        {"fluid.viscosity_pa_s": [1e-3, 2e-3], "drag.law": "stokes,dallavalle"},
+        overrides={"time.end_s": 0.05},
+        progress=False,
+    )
+    return [float(v) for v in r.tables["vary"]["terminal_velocity_m_s"]]
+
+
+# --- end of sweep ---
