@@ -78,7 +78,7 @@ pub struct Recommended {
     /// Largest dt of the grid whose error against the finest stable dt is within the tolerance
     /// at every finer dt too, s (None: none in the grid).
     pub dt_s: Option<f64>,
-    /// A finer stable dt confirms it ([`verified`]); false when it is the finest stable dt tried.
+    /// A finer stable dt of the grid confirms it; false when it is the finest stable dt tried.
     pub verified: bool,
 }
 

@@ -56,7 +56,8 @@ impl Level {
         }
     }
 
-    /// The value as `--set KEY=VALUE` takes it ([`override_text`] for a number).
+    /// The value as `--set KEY=VALUE` takes it (for a number: an integer when whole, else
+    /// exponent notation).
     pub fn override_text(&self) -> String {
         match self {
             Level::Num(x) => override_text(*x),
@@ -75,8 +76,8 @@ impl Level {
     }
 }
 
-/// As written to `vary.csv` and the console: a number as [`crate::io::fmt::num`] writes it, a text
-/// as is.
+/// As written to `vary.csv` and the console: a number in its shortest form that reads back to
+/// the same value, a text as is.
 impl fmt::Display for Level {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
