@@ -89,8 +89,7 @@ impl Scenario {
     }
 
     /// The scenario file `path` with the overrides `set` (`KEY=VALUE`, as `--set` gives them)
-    /// applied in one step, as a command line loads it; and the prepared scenario with `extra`
-    /// overrides on top of this one's, not kept (the runs of `settle fit`).
+    /// applied in one step, as a command line loads it.
     pub(crate) fn load_with(path: &Path, set: &[String]) -> Result<Self, Error> {
         let text = std::fs::read_to_string(path)
             .map_err(|e| Error::bad_input(path, None, format!("cannot read the file: {e}")))?;
@@ -100,21 +99,6 @@ impl Scenario {
     /// The time step given by [`Scenario::with_dt`] (`--dt`), if any.
     pub(crate) fn dt_override(&self) -> Option<f64> {
         self.dt_s
-    }
-
-    /// See [`Scenario::load_with`]; with no `extra`, the prepared scenario itself.
-    pub(crate) fn prepared_with(&self, extra: &[String]) -> Result<Prepared, Error> {
-        if extra.is_empty() {
-            return Ok(self.prepared.clone());
-        }
-        let mut ov = self.overrides.clone();
-        ov.extend_from_slice(extra);
-        Ok(runner::prepare_str(
-            &self.text,
-            &self.origin,
-            self.dt_s,
-            &ov,
-        )?)
     }
 
     /// A new scenario with the override `key = value` applied on top of this one's, exactly as
@@ -168,6 +152,26 @@ impl Scenario {
         let table = crate::scenario::record_table(&self.prepared.scenario, &self.origin)
             .map_err(|e| io(e.to_string()))?;
         toml::to_string(&table).map_err(|e| io(e.to_string()))
+    }
+
+    /// The prepared scenario, for the crate's other commands ([`crate::sweep`]).
+    pub(crate) fn prepared(&self) -> &Prepared {
+        &self.prepared
+    }
+
+    /// This scenario prepared again with the overrides `extra` after its own, in one
+    /// preparation (a point of a parameter sweep, a run of `settle fit`): the errors of
+    /// `--set`. With no `extra`, the prepared scenario itself.
+    pub(crate) fn prepared_with(
+        &self,
+        extra: &[String],
+    ) -> Result<Prepared, crate::error::BadInput> {
+        if extra.is_empty() {
+            return Ok(self.prepared.clone());
+        }
+        let mut overrides = self.overrides.clone();
+        overrides.extend_from_slice(extra);
+        runner::prepare_str(&self.text, &self.origin, self.dt_s, &overrides)
     }
 
     /// Runs the scenario in memory with the default [`RunOptions`].

@@ -36,7 +36,7 @@
 //! | run | [`Scenario::run`], [`Scenario::run_with`] ([`RunOptions`]) |
 //! | read | [`RunResult::tables`], [`RunResult::table`] ([`Table`], [`Column`]), [`RunResult::warnings`], [`RunResult::status`], [`RunResult::record`] |
 //! | write | [`RunResult::write`] |
-//! | other commands | [`reduce`], [`invert`], [`laws`] and [`fit::fit`] (in memory, as `run`; [`fit::slump`] the slump calculator); `sweep` from the command line so far |
+//! | other commands | [`reduce`], [`invert`], [`laws`], [`fit::fit`] and [`sweep`] ([`sweep::sweep`], [`sweep::vary()`]) in memory, as `run` ([`fit::slump`] the slump calculator) |
 //! | physics | [`fluid`] (drag laws, buoyancy, Bingham drag), [`dynamics`] (integrators), [`contact`], [`instruments`] (hydrometer, pipette, buoyancy sphere, reductions), [`sample`] |
 //!
 //! Ctrl-C: [`interrupt::request`] stops a run at its next check; the run returns what it did
@@ -54,7 +54,7 @@
 //! | 2 engine | `engine` | the Rapier worlds |
 //! | 3 scenario | `scenario` | schema, loading, validation, input files, the typed scenario and the registry of kinds |
 //! | 4 scenes | `scenes` | one folder per kind (its scene and its cost), and the scene API (`scenes::Prepared`, `scenes::RunContext`, `scenes::SceneReport`) |
-//! | 5 application | [`api`], `run`, `sweep`, `bench`, [`reduce`], [`invert`], [`laws`], [`fit`], `cli` | the commands |
+//! | 5 application | [`api`], `run`, [`sweep`], `bench`, [`reduce`], [`invert`], [`laws`], [`fit`], `cli` | the commands |
 
 // Layer 0: infrastructure.
 pub(crate) mod checkpoint;
@@ -84,7 +84,7 @@ pub mod invert;
 pub mod laws;
 pub mod reduce;
 pub(crate) mod run;
-pub(crate) mod sweep;
+pub mod sweep;
 
 pub use api::{load, run, RunOptions, RunResult, Scenario, Status};
 pub use error::Error;

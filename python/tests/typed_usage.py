@@ -72,3 +72,29 @@ def fitted_eta_b(scenario_file: Path, measured: pd.DataFrame) -> tuple[float, fl
     s: settle.Slump = settle.slump(152.0, [102.0, 103.0], density=1843.0)
     return float(fitted["value"].iloc[0]), s.mean_yield_stress_pa
 # --- end of w-fit ---
+
+
+# --- sweep (helper w-sweep): settle.sweep, settle.vary ---
+
+
+def recommended_dts(scenario_file: Path) -> dict[str, float]:
+    r: settle.Output = settle.sweep(
+        scenario_file, dt=[1e-3, 1e-4], integrators=["exponential"], tol=0.01, progress=False
+    )
+    table: pd.DataFrame = r.tables["recommended_dt"]
+    lines: list[str] = r.lines
+    assert lines and r.name.endswith("_sweep")
+    return dict(zip(table["integrator"], table["recommended_dt_s"]))
+
+
+def terminal_velocities(scenario_file: Path) -> list[float]:
+    r: settle.Output = settle.vary(
+        settle.load(scenario_file),
+        {"fluid.viscosity_pa_s": [1e-3, 2e-3], "drag.law": "stokes,dallavalle"},
+        overrides={"time.end_s": 0.05},
+        progress=False,
+    )
+    return [float(v) for v in r.tables["vary"]["terminal_velocity_m_s"]]
+
+
+# --- end of sweep ---

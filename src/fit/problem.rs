@@ -91,16 +91,15 @@ impl Problem {
         for b in bounds {
             for v in [b.lo, b.hi] {
                 let ov = [format!("{}={}", b.key, text(v))];
-                scenario.prepared_with(&ov).map_err(|e| match e {
-                    Error::BadInput(e) => Error::BadInput(BadInput {
+                scenario.prepared_with(&ov).map_err(|e| {
+                    Error::BadInput(BadInput {
                         message: format!(
                             "--fit {}={}:{} (the key must be a real number and both bounds \
                              allowed): {}",
                             b.key, b.lo, b.hi, e.message
                         ),
                         ..e
-                    }),
-                    e => e,
+                    })
                 })?;
             }
         }

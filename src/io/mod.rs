@@ -208,17 +208,6 @@ impl Drop for StagedDir {
     }
 }
 
-/// Writes a CSV table (header, then rows) atomically ([`write_atomic`]).
-pub fn write_csv(path: &Path, header: &[&str], rows: &[Vec<String>]) -> io::Result<()> {
-    let mut w = csv::Writer::from_writer(Vec::new());
-    w.write_record(header).map_err(io::Error::other)?;
-    for r in rows {
-        w.write_record(r).map_err(io::Error::other)?;
-    }
-    let bytes = w.into_inner().map_err(io::Error::other)?;
-    write_atomic(path, &bytes)
-}
-
 #[cfg(test)]
 mod tests;
 

@@ -4,21 +4,47 @@
 //! parallel; `--shard I/N` runs a slice of the grid so a cluster job array can share it, and
 //! `--merge` joins the parts (see `docs/cluster.md`).
 //!
+//! # From Rust
+//!
+//! [`sweep`] runs a dt sweep of a [`crate::Scenario`] in memory with the options of the command
+//! line ([`SweepOptions`], its defaults those of `settle sweep`) and returns a [`SweepResult`]:
+//! every table and chart of `OUT/<name>_sweep/`, the typed rows and recommended time steps, the
+//! console lines; [`SweepResult::write`] writes the folder the command writes. [`vary()`] does the
+//! same for a parameter sweep (`settle sweep --vary`): [`VaryResult`], `OUT/<name>_vary/`.
+//! Shards and `--merge` are the command line's only.
+//!
+//! ```no_run
+//! use settle::sweep::{sweep, vary, Axis, SweepOptions, VaryOptions};
+//! let scenario = settle::load("scenarios/stokes_single.toml")?;
+//! let dt = sweep(&scenario, &SweepOptions { dts: vec![1e-3, 1e-4], ..Default::default() })?;
+//! println!("{}", dt.lines.join("\n"));
+//! let mu = Axis::parse("fluid.viscosity_pa_s=log:1e-3:1e-2:3")?; // viscosity, Pa·s
+//! let v = vary(&scenario, &[mu], &VaryOptions::default())?;
+//! println!("{:?}", v.table("vary").unwrap().f64s("terminal_velocity_m_s"));
+//! # Ok::<(), settle::Error>(())
+//! ```
+//!
 //! | file | job |
 //! |---|---|
+//! | `api.rs` | [`sweep`], [`SweepResult`]: a whole dt sweep in memory (the command line's too) |
 //! | `args.rs` | the command line (clap), value parsers for `I/N`, `LO:HI`, `--tol` |
-//! | `plan.rs` | [`Plan`]: integrators × dts (+ shard, tol) from the arguments and `[sweep]`; pure |
+//! | `plan.rs` | [`SweepOptions`], [`Plan`]: integrators × dts (+ shard, tol) from the options and `[sweep]`; pure |
+//! | `cases.rs` | runs the cases of a grid in parallel into rows |
 //! | `targets.rs` | which kinds can be swept and the quantities each case yields; refuses others |
-//! | `table.rs` | typed [`Row`]s, CSV read/write, [`finish`] (error against the finest dt) |
+//! | `table.rs` | typed [`Row`]s, CSV read/write, `finish` (error against the finest dt) |
 //! | `analysis.rs` | per-case summaries, recommended dt, Rayleigh time |
-//! | `report.rs` | charts, `recommended_dt.csv`, console table |
-//! | `vary/` | parameter sweeps on any key (`--vary KEY=GRID`): grid, table, charts |
+//! | `report.rs` | charts, `recommended_dt.csv`, console table, into an [`Outputs`](crate::Outputs) |
+//! | `page.rs` | the report page `report.html` of the outputs |
+//! | `vary/` | parameter sweeps on any key (`--vary KEY=GRID`): grid, table, charts, [`vary()`] |
 //!
 //! Every input is checked before any case runs: a scenario that does not load, a kind that
 //! cannot be swept, or a scenario without time steps exits 2 with nothing written.
 
 mod analysis;
+mod api;
 mod args;
+mod cases;
+mod page;
 mod plan;
 mod report;
 mod table;
@@ -28,16 +54,23 @@ mod tests;
 mod values;
 pub mod vary;
 
-pub use analysis::rayleigh_time_of;
-pub use args::Args;
-pub use plan::{grid, Case, Plan, DEFAULT_TOL};
-pub use report::{write_results, Context};
-pub use table::{finish, read_rows, write_rows, Row};
-pub use targets::Target;
+pub use api::{sweep, SweepResult};
+pub(crate) use args::Args;
+pub(crate) use cases::run_cases;
+pub use plan::{grid, Case, Plan, SweepOptions, DEFAULT_PER_DECADE, DEFAULT_TOL};
+pub use report::Recommended;
+pub(crate) use table::finish;
+pub use table::{Row, Status};
 pub use values::Shard;
+pub use vary::{vary, Axis, Level, VaryOptions, VaryResult};
+
+use analysis::rayleigh_time_of;
+use cases::run;
+use report::{results, Context};
+use table::{read_rows, write_rows};
+use targets::Target;
 
 use crate::error::Error;
-use crate::io::StagedDir;
 use crate::run::prepare;
 use crate::scenes::Prepared;
 use std::path::{Path, PathBuf};
@@ -47,58 +80,14 @@ pub(crate) use analysis::summarise;
 #[cfg(test)]
 pub(crate) use plan::{dt_range, shard};
 #[cfg(test)]
-pub(crate) use table::{from_csv, to_csv, Status, HEADER};
+pub(crate) use table::{from_csv, to_csv, HEADER};
 #[cfg(test)]
 pub(crate) use values::{parse_dt, parse_dt_range, parse_shard, parse_tol, DtRange};
-
-/// Runs `cases` of a sweepable scenario (in parallel) and returns their rows, without
-/// `error_vs_finest`; a bad input (exit 2) for other kinds.
-pub fn run_cases(p: &Prepared, cases: &[Case]) -> Result<Vec<Row>, Error> {
-    run_cases_with(p, cases, &|| {})
-}
-
-/// As [`run_cases`], calling `done` after each case (for a progress bar).
-pub fn run_cases_with(
-    p: &Prepared,
-    cases: &[Case],
-    done: &(dyn Fn() + Sync),
-) -> Result<Vec<Row>, Error> {
-    use rayon::prelude::*;
-    let target = Target::of(p)?;
-    let rows: Vec<Row> = cases
-        .par_iter()
-        .map(|c| {
-            // Ctrl-C/SIGTERM: no new case starts, and the running ones stop within their
-            // interrupt checks (about a millisecond of work on the free engine).
-            if crate::interrupt::requested() {
-                return Vec::new();
-            }
-            let rows = target.run_case(p, c);
-            done();
-            rows
-        })
-        .flatten()
-        .collect();
-    if crate::interrupt::requested() {
-        return Err(Error::InterruptedUnwritten(p.path.clone()));
-    }
-    Ok(rows)
-}
-
-/// Runs the plan's cases of one scenario: finished rows (see [`finish`]) for a whole grid, the
-/// unfinished rows of the shard for a sharded plan.
-pub fn run(p: &Prepared, plan: &Plan, done: &(dyn Fn() + Sync)) -> Result<Vec<Row>, Error> {
-    let mut rows = run_cases_with(p, &plan.cases_to_run(), done)?;
-    if plan.shard.is_none() {
-        finish(&mut rows);
-    }
-    Ok(rows)
-}
 
 /// `settle sweep`: checks every scenario and plan, then sweeps each file into
 /// `OUT/<name>_sweep/` (or writes its shard's part file there), or merges part files; with
 /// `--vary`, a parameter sweep ([`vary::main`]).
-pub fn main(args: &Args) -> Result<(), Error> {
+pub(crate) fn main(args: &Args) -> Result<(), Error> {
     if !args.merge.is_empty() {
         return merge(args);
     }
@@ -127,8 +116,20 @@ pub fn main(args: &Args) -> Result<(), Error> {
     Ok(())
 }
 
-/// Sweeps one prepared scenario into `out`.
+/// Sweeps one prepared scenario into `out` (the whole grid through [`api::compute`], or one
+/// shard into its part file).
 fn sweep_file(p: &Prepared, plan: &Plan, out: &Path, quiet: bool) -> Result<(), Error> {
+    let Some(Shard { index, count }) = plan.shard else {
+        let r = api::compute(p, plan.clone(), !quiet)?;
+        if !quiet {
+            println!("{}", r.lines.join("\n"));
+        }
+        let dest = r.write(out)?;
+        if !quiet {
+            println!("  -> {}", dest.display());
+        }
+        return Ok(());
+    };
     let cases = plan.cases_to_run();
     let bar = crate::progress::bar(
         cases.len() as u64,
@@ -138,36 +139,17 @@ fn sweep_file(p: &Prepared, plan: &Plan, out: &Path, quiet: bool) -> Result<(), 
     );
     let rows = run(p, plan, &|| bar.inc(1))?;
     bar.finish_and_clear();
-    let name = format!("{}_sweep", p.scenario.name);
-    if let Some(Shard { index, count }) = plan.shard {
-        let dir = out.join(&name);
-        std::fs::create_dir_all(&dir).map_err(|e| Error::Io(dir.clone(), e))?;
-        let file = dir.join(format!("sweep_part_{index}_of_{count}.csv"));
-        write_rows(&file, &rows).map_err(|e| Error::Io(file.clone(), e))?;
-        if !quiet {
-            println!(
-                "{}: shard {index}/{count} ({} rows) -> {}",
-                p.scenario.name,
-                rows.len(),
-                file.display()
-            );
-        }
-        return Ok(());
-    }
-    let io = |e| Error::Io(out.join(&name), e);
-    let stage = StagedDir::new(out, &name).map_err(io)?;
-    let cx = Context {
-        title: &p.scenario.name,
-        tol: plan.tol,
-        rayleigh_time_s: rayleigh_time_of(p),
-        quiet,
-    };
-    write_results(&stage.path(""), &rows, &cx)?;
-    crate::io::report::write_report(&stage.path(""), &crate::io::report::Page::sweep(&name))
-        .map_err(io)?;
-    let dest = stage.commit().map_err(io)?;
+    let dir = out.join(format!("{}_sweep", p.scenario.name));
+    std::fs::create_dir_all(&dir).map_err(|e| Error::Io(dir.clone(), e))?;
+    let file = dir.join(format!("sweep_part_{index}_of_{count}.csv"));
+    write_rows(&file, &rows).map_err(|e| Error::Io(file.clone(), e))?;
     if !quiet {
-        println!("  -> {}", dest.display());
+        println!(
+            "{}: shard {index}/{count} ({} rows) -> {}",
+            p.scenario.name,
+            rows.len(),
+            file.display()
+        );
     }
     Ok(())
 }
@@ -247,11 +229,16 @@ fn merge_dt(args: &Args, files: Vec<PathBuf>) -> Result<(), Error> {
             .unwrap_or("sweep"),
         tol,
         rayleigh_time_s: prepared.as_ref().and_then(rayleigh_time_of),
-        quiet: args.quiet,
     };
-    write_results(&dest, &rows, &cx)?;
+    let report = results(&rows, &cx)?;
+    if !args.quiet {
+        println!("{}", report.lines.join("\n"));
+    }
+    // The page of the folder as it is: the merged outputs beside the part files.
+    let io = |e| Error::Io(dest.clone(), e);
+    report.outputs.write_into(&dest).map_err(io)?;
     crate::io::report::write_report(&dest, &crate::io::report::Page::sweep(cx.title))
-        .map_err(|e| Error::Io(dest.clone(), e))?;
+        .map_err(io)?;
     if !args.quiet {
         println!(
             "merged {} parts ({} rows) -> {}",

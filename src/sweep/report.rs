@@ -1,18 +1,18 @@
-//! The outputs of a finished sweep: `sweep.csv`, the charts `quantity_vs_dt.svg`,
-//! `speed_accuracy.svg` and (funnel pours) `counts_vs_dt.svg`, `recommended_dt.csv`, and the
-//! console table.
+//! The outputs of a finished sweep, in memory ([`Outputs`]): `sweep.csv`, the charts
+//! `quantity_vs_dt.svg`, `speed_accuracy.svg` and (funnel pours) `counts_vs_dt.svg`,
+//! `recommended_dt.csv`, and the console table.
 
 use super::analysis::{recommended_dt, summarise, verified, CaseSummary, RAYLEIGH_FRACTION};
-use super::table::{integrator_rank, write_rows, Row, Status};
+use super::table::{integrator_rank, to_csv, Row, Status};
 use crate::dynamics::Integrator;
 use crate::error::Error;
 use crate::io::chart::{Chart, Marker, Scale, Series};
 use crate::io::fmt::num;
 use crate::io::fmt::{g, short, sig};
-use crate::io::write_atomic;
+use crate::io::{Outputs, Table};
 use std::collections::BTreeMap;
 use std::io;
-use std::path::Path;
+use std::path::PathBuf;
 
 /// What the report needs besides the rows.
 #[derive(Clone, Debug)]
@@ -23,23 +23,32 @@ pub struct Context<'a> {
     pub tol: f64,
     /// Rayleigh time of the scenario's first elastic sphere, s, if any.
     pub rayleigh_time_s: Option<f64>,
-    /// Print nothing.
-    pub quiet: bool,
 }
 
-/// Writes every output of finished `rows` (see [`super::table::finish`]) into `dir`.
-pub fn write_results(dir: &Path, rows: &[Row], cx: &Context) -> Result<(), Error> {
-    let io_err = |file: &str| {
-        let path = dir.join(file);
-        move |e: io::Error| Error::Io(path, e)
-    };
-    write_rows(&dir.join("sweep.csv"), rows).map_err(io_err("sweep.csv"))?;
+/// The outputs of finished rows, in memory: what [`results`] makes.
+#[derive(Clone, Debug)]
+pub struct Report {
+    /// `sweep.csv`, `recommended_dt.csv` and the charts (no report page).
+    pub outputs: Outputs,
+    /// The recommended dt of every integrator swept, in [`Integrator::ALL`] order.
+    pub recommended: Vec<Recommended>,
+    /// The console lines: the table of cases, then one line per recommended dt.
+    pub lines: Vec<String>,
+}
+
+/// Every output of finished `rows` (see [`super::table::finish`]): `sweep.csv`, the charts,
+/// `recommended_dt.csv`, and the console lines.
+pub fn results(rows: &[Row], cx: &Context) -> Result<Report, Error> {
+    let io_err = |file: &'static str| move |e: io::Error| Error::Io(PathBuf::from(file), e);
+    let mut outputs = Outputs::new();
+    outputs.table(
+        Table::from_csv("sweep.csv", &to_csv(rows).map_err(io_err("sweep.csv"))?)
+            .map_err(io_err("sweep.csv"))?,
+    );
     let sums = summarise(rows);
-    charts(dir, cx.title, &sums)?;
-    counts_chart(dir, cx.title, rows)?;
-    if !cx.quiet {
-        println!("{}", table_lines(cx.title, cx.tol, &sums).join("\n"));
-    }
+    charts(&mut outputs, cx.title, &sums)?;
+    counts_chart(&mut outputs, cx.title, rows)?;
+    let mut lines = table_lines(cx.title, cx.tol, &sums);
     let recommended: Vec<Recommended> = Integrator::ALL
         .into_iter()
         .filter(|i| sums.iter().any(|s| s.integrator == *i))
@@ -52,14 +61,13 @@ pub fn write_results(dir: &Path, rows: &[Row], cx: &Context) -> Result<(), Error
             }
         })
         .collect();
-    let csv = recommended_csv(&recommended, cx).map_err(io_err("recommended_dt.csv"))?;
-    write_atomic(&dir.join("recommended_dt.csv"), &csv).map_err(io_err("recommended_dt.csv"))?;
-    if !cx.quiet {
-        for r in &recommended {
-            println!("{}", recommended_line(r, cx));
-        }
-    }
-    Ok(())
+    outputs.table(recommended_table(&recommended, cx));
+    lines.extend(recommended.iter().map(|r| recommended_line(r, cx)));
+    Ok(Report {
+        outputs,
+        recommended,
+        lines,
+    })
 }
 
 /// The recommended dt of one integrator.
@@ -70,35 +78,40 @@ pub struct Recommended {
     /// Largest dt of the grid whose error against the finest stable dt is within the tolerance
     /// at every finer dt too, s (None: none in the grid).
     pub dt_s: Option<f64>,
-    /// A finer stable dt confirms it ([`verified`]); false when it is the finest stable dt tried.
+    /// A finer stable dt of the grid confirms it; false when it is the finest stable dt tried.
     pub verified: bool,
 }
 
 /// `recommended_dt.csv`: integrator, recommended dt (empty if none in the grid), tol, Rayleigh
 /// time and its 20 % rule.
-fn recommended_csv(rec: &[Recommended], cx: &Context) -> io::Result<Vec<u8>> {
-    let mut w = csv::Writer::from_writer(Vec::new());
-    w.write_record([
-        "integrator",
-        "recommended_dt_s",
-        "tol",
-        "rayleigh_time_s",
-        "rayleigh_20pct_dt_s",
-        "verified",
-    ])?;
-    for r in rec {
-        w.write_record([
-            r.integrator.name().to_string(),
-            r.dt_s.map(num).unwrap_or_default(),
-            num(cx.tol),
-            cx.rayleigh_time_s.map(num).unwrap_or_default(),
-            cx.rayleigh_time_s
-                .map(|t| num(RAYLEIGH_FRACTION * t))
-                .unwrap_or_default(),
-            r.verified.to_string(),
-        ])?;
-    }
-    w.into_inner().map_err(|e| io::Error::other(e.to_string()))
+fn recommended_table(rec: &[Recommended], cx: &Context) -> Table {
+    let rows = rec
+        .iter()
+        .map(|r| {
+            vec![
+                r.integrator.name().to_string(),
+                r.dt_s.map(num).unwrap_or_default(),
+                num(cx.tol),
+                cx.rayleigh_time_s.map(num).unwrap_or_default(),
+                cx.rayleigh_time_s
+                    .map(|t| num(RAYLEIGH_FRACTION * t))
+                    .unwrap_or_default(),
+                r.verified.to_string(),
+            ]
+        })
+        .collect();
+    Table::with_rows(
+        "recommended_dt.csv",
+        [
+            "integrator",
+            "recommended_dt_s",
+            "tol",
+            "rayleigh_time_s",
+            "rayleigh_20pct_dt_s",
+            "verified",
+        ],
+        rows,
+    )
 }
 
 /// The console table of a sweep, one line per case, numbers as [`crate::io::fmt`] writes them
@@ -180,11 +193,30 @@ pub fn recommended_line(r: &Recommended, cx: &Context) -> String {
     line
 }
 
+/// The caveat of a recommended dt, as a warning of the sweep: none found in the grid, or one
+/// that no finer stable dt confirms (the finest stable dt tried); None when it is verified.
+pub fn caveat(r: &Recommended, cx: &Context) -> Option<String> {
+    let name = r.integrator.name();
+    match r.dt_s {
+        None => Some(format!(
+            "{name}: no recommended dt in the grid (none within error vs finest < {}): add \
+             finer time steps",
+            cx.tol
+        )),
+        Some(d) if !r.verified => Some(format!(
+            "{name}: the recommended dt {} s is unverified: it is the finest stable dt tried \
+             (the reference of every error); add a finer dt to confirm it",
+            short(d)
+        )),
+        Some(_) => None,
+    }
+}
+
 /// Draws `quantity_vs_dt.svg` (max error against the finest dt, per quantity and integrator,
 /// against dt: one colour per integrator, one marker shape per quantity) and `speed_accuracy.svg`
-/// (worst error against wall time, one line per integrator). Errors of exactly zero are drawn at
-/// 1e-16 (the log axis has no zero).
-pub fn charts(dir: &Path, title: &str, summaries: &[CaseSummary]) -> Result<(), Error> {
+/// (worst error against wall time, one line per integrator) into `out`. Errors of exactly zero
+/// are drawn at 1e-16 (the log axis has no zero).
+pub fn charts(out: &mut Outputs, title: &str, summaries: &[CaseSummary]) -> Result<(), Error> {
     // Keyed by integrator order, then quantity name.
     let mut by_q: BTreeMap<(usize, String), Vec<(f64, f64)>> = BTreeMap::new();
     let mut speed: BTreeMap<usize, Vec<(f64, f64)>> = BTreeMap::new();
@@ -211,10 +243,7 @@ pub fn charts(dir: &Path, title: &str, summaries: &[CaseSummary]) -> Result<(), 
         .into_iter()
         .collect();
     let name = |rank: usize| Integrator::ALL.get(rank).map_or("?", |i| i.name());
-    let chart_err = |file: &str| {
-        let path = dir.join(file);
-        move |e: io::Error| Error::Io(path, e)
-    };
+    let chart_err = |file: &'static str| move |e: io::Error| Error::Io(PathBuf::from(file), e);
     let mut chart = Chart::new(format!(
         "{title}: max relative error against the finest stable dt"
     ))
@@ -227,28 +256,25 @@ pub fn charts(dir: &Path, title: &str, summaries: &[CaseSummary]) -> Result<(), 
             Marker::nth(shape),
         );
     }
-    chart
-        .svg(&dir.join("quantity_vs_dt.svg"))
+    out.chart("quantity_vs_dt.svg", &chart)
         .map_err(chart_err("quantity_vs_dt.svg"))?;
-    speed
-        .into_iter()
-        .fold(
-            Chart::new(format!("{title}: accuracy against cost"))
-                .x("wall time (s)", Scale::Log)
-                .y(
-                    "worst |relative error| vs analytic, force balance or finest dt (-)",
-                    Scale::Log,
-                ),
-            |c, (rank, pts)| c.series(Series::sorted_line(name(rank).to_string(), pts, rank)),
-        )
-        .svg(&dir.join("speed_accuracy.svg"))
+    let speed = speed.into_iter().fold(
+        Chart::new(format!("{title}: accuracy against cost"))
+            .x("wall time (s)", Scale::Log)
+            .y(
+                "worst |relative error| vs analytic, force balance or finest dt (-)",
+                Scale::Log,
+            ),
+        |c, (rank, pts)| c.series(Series::sorted_line(name(rank).to_string(), pts, rank)),
+    );
+    out.chart("speed_accuracy.svg", &speed)
         .map_err(chart_err("speed_accuracy.svg"))
 }
 
-/// Draws `counts_vs_dt.svg` when the rows hold ball counts (a funnel-pour sweep, like f-EDEM
-/// Fig. 20): each count (`balls_*` quantities) against dt, one colour per integrator, one shape
-/// per count. Returns false (nothing written) for other sweeps.
-pub fn counts_chart(dir: &Path, title: &str, rows: &[Row]) -> Result<bool, Error> {
+/// Draws `counts_vs_dt.svg` into `out` when the rows hold ball counts (a funnel-pour sweep, like
+/// f-EDEM Fig. 20): each count (`balls_*` quantities) against dt, one colour per integrator,
+/// one shape per count. Returns false (nothing drawn) for other sweeps.
+pub fn counts_chart(out: &mut Outputs, title: &str, rows: &[Row]) -> Result<bool, Error> {
     let mut by_q: BTreeMap<(usize, String), Vec<(f64, f64)>> = BTreeMap::new();
     for r in rows.iter().filter(|r| r.status == Status::Stable) {
         if r.quantity.starts_with("balls_") && r.value.is_finite() {
@@ -281,8 +307,9 @@ pub fn counts_chart(dir: &Path, title: &str, rows: &[Row]) -> Result<bool, Error
             Marker::nth(shape),
         );
     }
-    let path = dir.join("counts_vs_dt.svg");
-    chart.svg(&path).map_err(|e| Error::Io(path, e))?;
+    let name = "counts_vs_dt.svg";
+    out.chart(name, &chart)
+        .map_err(|e| Error::Io(PathBuf::from(name), e))?;
     Ok(true)
 }
 
@@ -311,7 +338,6 @@ mod tests {
             title: "t",
             tol: 0.01,
             rayleigh_time_s: None,
-            quiet: true,
         }
     }
 

@@ -18,7 +18,8 @@ pub enum Status {
     Unstable,
 }
 
-/// One row of a sweep: a quantity of a body in a case. Column order is [`HEADER`].
+/// One row of a sweep: a quantity of a body in a case. The columns of `sweep.csv` are its
+/// fields, in this order.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Row {
     /// Integrator.
@@ -49,7 +50,7 @@ pub struct Row {
     /// Relative error against the reference, (value − reference)/reference.
     #[serde(serialize_with = "ser_num", deserialize_with = "de_num")]
     pub error_vs_reference: f64,
-    /// Relative error against the finest stable dt of the same integrator (filled by [`finish`]).
+    /// Relative error against the finest stable dt of the same integrator (filled by `finish`).
     #[serde(serialize_with = "ser_num", deserialize_with = "de_num")]
     pub error_vs_finest: f64,
 }

@@ -265,3 +265,121 @@ fn run_cases_refuses_kinds_it_cannot_sweep() {
         assert_eq!(e.exit_code(), 2);
     }
 }
+
+/// The command line's arguments and the library's options build the same plan: the options of
+/// `--dt-range 1e-5:1e-3 --per-decade 2 --integrator implicit --tol 0.05` as typed values, and
+/// the scenario's `[sweep]` table when none is given.
+#[test]
+fn the_library_options_build_the_command_lines_plan() {
+    use crate::sweep::{Args, DtRange, Plan, Shard, SweepOptions};
+    let p = prepare(Path::new("scenarios/valentik_susp1.toml"), None, &[]).unwrap();
+    let args = Args {
+        dt_range: Some(DtRange {
+            lo_s: 1e-5,
+            hi_s: 1e-3,
+        }),
+        per_decade: 2,
+        integrator: vec![Integrator::Implicit],
+        tol: Some(0.05),
+        shard: Some(Shard { index: 1, count: 2 }),
+        ..Args::default()
+    };
+    let opts = SweepOptions {
+        dt_range: Some((1e-5, 1e-3)),
+        per_decade: Some(2),
+        integrators: vec!["implicit".into()],
+        tol: Some(0.05),
+        ..SweepOptions::default()
+    };
+    let cli = Plan::resolve(&args, &p).unwrap();
+    let lib = Plan::new(&opts, &p, args.shard).unwrap();
+    assert_eq!(cli, lib);
+    assert_eq!(lib.dts_s.len(), 5);
+    assert_eq!(lib.integrators, [Integrator::Implicit]);
+    // Nothing given: the scenario's [sweep] table (10 dts, all three integrators, tol 0.01).
+    let defaults = Plan::new(&SweepOptions::default(), &p, None).unwrap();
+    assert_eq!(
+        defaults,
+        Plan::resolve(
+            &Args {
+                per_decade: 3,
+                ..Args::default()
+            },
+            &p
+        )
+        .unwrap()
+    );
+    assert_eq!(defaults.dts_s.len(), 10);
+    assert_eq!(defaults.integrators, Integrator::ALL);
+    assert_eq!(defaults.tol, 0.01);
+}
+
+/// Each bad option is refused naming the option, as clap refuses it on the command line.
+#[test]
+fn bad_library_options_name_the_option() {
+    use crate::sweep::{Plan, SweepOptions};
+    let p = prepare(Path::new("scenarios/stokes_single.toml"), None, &[]).unwrap();
+    let dts = vec![1e-3];
+    for (opts, option) in [
+        (
+            SweepOptions {
+                dts: vec![f64::NAN],
+                ..Default::default()
+            },
+            "--dt",
+        ),
+        (
+            SweepOptions {
+                dts: vec![0.0],
+                ..Default::default()
+            },
+            "--dt",
+        ),
+        (
+            SweepOptions {
+                dt_range: Some((1e-3, f64::INFINITY)),
+                ..Default::default()
+            },
+            "--dt-range",
+        ),
+        (
+            SweepOptions {
+                dts: dts.clone(),
+                dt_range: Some((1e-5, 1e-3)),
+                ..Default::default()
+            },
+            "--dt-range",
+        ),
+        (
+            SweepOptions {
+                dt_range: Some((1e-5, 1e-3)),
+                per_decade: Some(0),
+                ..Default::default()
+            },
+            "--per-decade",
+        ),
+        (
+            SweepOptions {
+                dts: dts.clone(),
+                tol: Some(0.0),
+                ..Default::default()
+            },
+            "--tol",
+        ),
+        (
+            SweepOptions {
+                dts: dts.clone(),
+                integrators: vec!["Explicit".into()],
+                ..Default::default()
+            },
+            "--integrator",
+        ),
+    ] {
+        match Plan::new(&opts, &p, None) {
+            Err(crate::error::Error::BadInput(b)) => {
+                assert_eq!(b.key.as_deref(), Some(option), "{opts:?}: {}", b.message)
+            }
+            other => panic!("{opts:?}: {other:?}"),
+        }
+    }
+}

@@ -18,18 +18,27 @@ impl fmt::Display for BadValue {
 
 impl std::error::Error for BadValue {}
 
-const DT_ALLOWED: &str = "a time step dt > 0 s (finite), e.g. 1e-3";
-const RANGE_ALLOWED: &str = "LO:HI with 0 < LO < HI (s, finite), e.g. 1e-8:1e-1";
+/// The allowed values of `--dt`.
+pub const DT_ALLOWED: &str = "a time step dt > 0 s (finite), e.g. 1e-3";
+/// The allowed values of `--dt-range`.
+pub const RANGE_ALLOWED: &str = "LO:HI with 0 < LO < HI (s, finite), e.g. 1e-8:1e-1";
 const SHARD_ALLOWED: &str = "I/N with 1 ≤ I ≤ N, e.g. 2/8";
 /// The allowed range of `--tol`: a relative error, above 0 (0 would admit no step) and at most
 /// 1 (100 %, beyond which the comparison means nothing); as `[sweep] tol` in a scenario.
 pub const TOL_ALLOWED: &str = "0 < TOL ≤ 1 (a relative error against the finest stable dt)";
 
 fn positive_s(s: &str) -> Option<f64> {
-    s.trim()
-        .parse::<f64>()
-        .ok()
-        .filter(|x| *x > 0.0 && x.is_finite())
+    s.trim().parse::<f64>().ok().filter(|x| is_dt(*x))
+}
+
+/// Whether `x` is a time step `--dt` accepts: finite and > 0, s.
+pub fn is_dt(x: f64) -> bool {
+    x > 0.0 && x.is_finite()
+}
+
+/// Whether `x` is a tolerance `--tol` accepts ([`TOL_ALLOWED`]).
+pub fn is_tol(x: f64) -> bool {
+    x > 0.0 && x <= 1.0
 }
 
 /// Parses one `--dt` value: a finite time step > 0, s.
@@ -72,7 +81,7 @@ pub fn parse_tol(s: &str) -> Result<f64, BadValue> {
     s.trim()
         .parse::<f64>()
         .ok()
-        .filter(|t| *t > 0.0 && *t <= 1.0)
+        .filter(|t| is_tol(*t))
         .ok_or(BadValue {
             allowed: TOL_ALLOWED,
         })

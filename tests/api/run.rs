@@ -101,7 +101,6 @@ fn assert_same_outputs(file: &str, set: &[&str], kind: Kind) {
     }
 }
 
-
 #[test]
 fn free_settling_tables_equal_the_files_of_settle_run() {
     assert_same_outputs("valentik_susp1.toml", &[], Kind::FreeSettling);

@@ -77,6 +77,21 @@ class Output:
 
 # --- sweep.rs: sweep, vary (keep this line: the sections below belong to separate files) ---
 
+def sweep(
+    scenario: Scenario,
+    dt: Optional[List[float]] = None,
+    dt_range: Optional[Tuple[float, float]] = None,
+    per_decade: Optional[int] = None,
+    integrators: Optional[List[str]] = None,
+    tol: Optional[float] = None,
+    progress: Optional[ProgressCallback] = None,
+) -> Output: ...
+def vary(
+    scenario: Scenario,
+    axes: List[Tuple[str, Union[str, List[str]]]],
+    progress: Optional[ProgressCallback] = None,
+) -> Output: ...
+
 # --- end of sweep.rs ---
 
 # --- lab.rs: reduce, invert, laws ---

@@ -8,8 +8,9 @@ use super::table::VaryTable;
 use crate::error::Error;
 use crate::io::chart::{Chart, Scale, Series};
 use crate::io::fmt::g_whole;
+use crate::io::Outputs;
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// The points of one series, (x, y).
 type Points = Vec<(f64, f64)>;
@@ -105,10 +106,10 @@ impl XAxis {
     }
 }
 
-/// Draws `<quantity>_vs_<first key>.svg` for every result quantity of `t` into `dir` (the
+/// Draws `<quantity>_vs_<first key>.svg` for every result quantity of `t` into `out` (the
 /// references `reference_…` are drawn as hollow markers beside a single series) and returns
-/// their paths.
-pub fn charts(dir: &Path, title: &str, t: &VaryTable) -> Result<Vec<PathBuf>, Error> {
+/// their names.
+pub fn charts(out: &mut Outputs, title: &str, t: &VaryTable) -> Result<Vec<String>, Error> {
     let Some(key) = t.keys.first() else {
         return Ok(Vec::new());
     };
@@ -162,7 +163,7 @@ pub fn charts(dir: &Path, title: &str, t: &VaryTable) -> Result<Vec<PathBuf>, Er
                 series.push(r);
             }
         }
-        let path = dir.join(format!("{}_vs_{}.svg", file_safe(q), file_safe(key)));
+        let name = format!("{}_vs_{}.svg", file_safe(q), file_safe(key));
         let x_label = format!("{key} [{}]", unit_of(key));
         let chart = Chart::new(format!("{title}: {q} against {key}"))
             .y(format!("{q} [{}]", unit_of(q)), Scale::Linear);
@@ -170,11 +171,9 @@ pub fn charts(dir: &Path, title: &str, t: &VaryTable) -> Result<Vec<PathBuf>, Er
             XAxis::Numeric(scale) => chart.x(x_label, *scale),
             XAxis::Categories(c) => chart.x_categories(x_label, c.iter().map(Level::to_string)),
         };
-        chart
-            .all_series(series)
-            .svg(&path)
-            .map_err(|e| Error::Io(path.clone(), e))?;
-        written.push(path);
+        out.chart(&name, &chart.all_series(series))
+            .map_err(|e| Error::Io(PathBuf::from(&name), e))?;
+        written.push(name);
     }
     Ok(written)
 }

@@ -3,9 +3,11 @@
 //! for a categorical axis (`transient.history=off,basset`), a text passed as `--set` passes it.
 //! Pure: no I/O.
 
+use crate::error::Error;
 use crate::sweep::values::BadValue;
 use std::cmp::Ordering;
 use std::fmt;
+use std::path::Path;
 
 /// Most values on one axis, and most cases in a whole grid: a larger grid is a typo more often
 /// than a plan (each case is a whole run).
@@ -54,7 +56,8 @@ impl Level {
         }
     }
 
-    /// The value as `--set KEY=VALUE` takes it ([`override_text`] for a number).
+    /// The value as `--set KEY=VALUE` takes it (for a number: an integer when whole, else
+    /// exponent notation).
     pub fn override_text(&self) -> String {
         match self {
             Level::Num(x) => override_text(*x),
@@ -73,8 +76,8 @@ impl Level {
     }
 }
 
-/// As written to `vary.csv` and the console: a number as [`crate::io::fmt::num`] writes it, a text
-/// as is.
+/// As written to `vary.csv` and the console: a number in its shortest form that reads back to
+/// the same value, a text as is.
 impl fmt::Display for Level {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
@@ -167,27 +170,77 @@ pub fn parse_vary(s: &str) -> Result<Axis, BadValue> {
             .collect();
         (Spacing::Linear, v)
     } else {
-        // A number, or a word --set takes (a text that is not a number, nor NaN or ±inf).
-        let level = |t: &str| match Level::parse(t) {
-            Level::Num(x) if !x.is_finite() => None,
-            Level::Text(w) if w.is_empty() => None,
-            l => Some(l),
-        };
-        let v: Option<Vec<Level>> = grid.split(',').map(level).collect();
-        let v = v.ok_or(bad)?;
-        if v.is_empty() || v.len() > MAX_CASES {
-            return Err(bad);
-        }
-        (Spacing::Linear, v)
+        (Spacing::Linear, list(grid.split(',')).ok_or(bad)?)
     };
-    let mut values: Vec<Level> = values;
-    values.sort_by(Level::order);
-    values.dedup();
-    Ok(Axis {
-        key: key.to_string(),
-        values,
-        spacing,
-    })
+    Ok(Axis::sorted(key, values, spacing))
+}
+
+/// The values of a list `V1,V2,…`: each a number or a word `--set` takes (a text that is not a
+/// number, nor NaN or ±inf); None if one is not, or for none or over [`MAX_CASES`] values.
+fn list<'a>(items: impl Iterator<Item = &'a str>) -> Option<Vec<Level>> {
+    let level = |t: &str| match Level::parse(t) {
+        Level::Num(x) if !x.is_finite() => None,
+        Level::Text(w) if w.is_empty() => None,
+        l => Some(l),
+    };
+    let v: Vec<Level> = items.map(level).collect::<Option<_>>()?;
+    (!v.is_empty() && v.len() <= MAX_CASES).then_some(v)
+}
+
+impl Axis {
+    /// The axis of `key` with `values` sorted and without repeats.
+    fn sorted(key: &str, mut values: Vec<Level>, spacing: Spacing) -> Self {
+        values.sort_by(Level::order);
+        values.dedup();
+        Axis {
+            key: key.to_string(),
+            values,
+            spacing,
+        }
+    }
+
+    /// An axis as `--vary KEY=GRID` gives it ([`VARY_ALLOWED`]): `KEY=LO:HI:N`,
+    /// `KEY=log:LO:HI:N` or `KEY=V1,V2,…`; a bad one is a bad argument of `--vary` naming it.
+    ///
+    /// ```
+    /// let a = settle::sweep::Axis::parse("fluid.viscosity_pa_s=log:1e-3:1e-1:3")?;
+    /// assert_eq!(a.values.len(), 3); // 1e-3, 1e-2, 1e-1 Pa·s
+    /// # Ok::<(), settle::Error>(())
+    /// ```
+    pub fn parse(text: &str) -> Result<Self, Error> {
+        parse_vary(text).map_err(|e| Error::bad_argument("--vary", Path::new(text), e.to_string()))
+    }
+
+    /// The axis of `key` (a scenario key, as `--set` takes it) over `values`, each a number
+    /// (in the key's unit) or a word or boolean `--set` takes: `--vary KEY=V1,V2,…`. Sorted
+    /// and without repeats; a bad key or value is a bad argument of `--vary` naming it.
+    ///
+    /// ```
+    /// let a = settle::sweep::Axis::list("drag.law", &["stokes", "dallavalle"])?;
+    /// assert_eq!(a.values[0].to_string(), "dallavalle");
+    /// # Ok::<(), settle::Error>(())
+    /// ```
+    pub fn list(key: &str, values: &[impl AsRef<str>]) -> Result<Self, Error> {
+        let items: Vec<&str> = values.iter().map(AsRef::as_ref).collect();
+        let text = format!("{key}={}", items.join(","));
+        let bad = || {
+            Error::bad_argument(
+                "--vary",
+                Path::new(&text),
+                BadValue {
+                    allowed: VARY_ALLOWED,
+                }
+                .to_string(),
+            )
+        };
+        let key = key.trim();
+        // A value holding a comma would be two values of `--vary KEY=V1,V2`.
+        if !crate::scenario::is_key_path(key) || items.iter().any(|v| v.contains(',')) {
+            return Err(bad());
+        }
+        let values = list(items.into_iter()).ok_or_else(bad)?;
+        Ok(Axis::sorted(key, values, Spacing::Linear))
+    }
 }
 
 /// Every point of the full grid of `axes` (one value per axis, in axis order), the first axis

@@ -8,6 +8,7 @@ use super::super::table::{Row, Status};
 use super::super::targets::has_reference;
 use super::grid::Level;
 use crate::io::fmt::num;
+use crate::io::Table;
 use std::io;
 use std::path::Path;
 
@@ -159,10 +160,8 @@ impl VaryTable {
         h
     }
 
-    /// Writes the table to `path` atomically.
-    pub fn write(&self, path: &Path) -> io::Result<()> {
-        let header = self.header();
-        let header: Vec<&str> = header.iter().map(String::as_str).collect();
+    /// The table as the CSV file `name` holds it (`vary.csv`, a part file).
+    pub fn to_table(&self, name: &str) -> Table {
         let rows: Vec<Vec<String>> = self
             .rows
             .iter()
@@ -183,7 +182,16 @@ impl VaryTable {
                 v
             })
             .collect();
-        crate::io::write_csv(path, &header, &rows)
+        Table::with_rows(name, self.header(), rows)
+    }
+
+    /// Writes the table to `path` atomically.
+    pub fn write(&self, path: &Path) -> io::Result<()> {
+        let name = path
+            .file_name()
+            .and_then(|n| n.to_str())
+            .unwrap_or("vary.csv");
+        crate::io::write_atomic(path, &self.to_table(name).to_csv()?)
     }
 
     /// Reads a table written by [`VaryTable::write`]; the error says what is wrong.
