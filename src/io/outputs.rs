@@ -47,7 +47,8 @@ impl Outputs {
         Ok(())
     }
 
-    /// Adds `charts` as panels of the one SVG file `name` ([`super::chart::grid_svg_string`]).
+    /// Adds `charts` as panels of the one SVG file `name` (small multiples under `title`,
+    /// `columns` per row).
     pub fn grid_chart(
         &mut self,
         name: impl Into<String>,
@@ -129,7 +130,7 @@ impl Outputs {
     }
 
     /// Writes every table (as CSV) and file into the folder `dir` (a staging folder), creating
-    /// sub-folders as needed; each file atomically ([`super::atomic::write_atomic`]).
+    /// sub-folders as needed; each file atomically (written beside, then renamed).
     pub fn write_into(&self, dir: &Path) -> io::Result<()> {
         for t in &self.tables {
             write_file(dir, t.name(), &t.to_csv()?)?;

@@ -272,6 +272,25 @@ def load(path: PathLike) -> Scenario:
 Overrides = Union[Mapping[str, Any], Sequence[str], None]
 
 
+def _scenario(scenario: Union[Scenario, PathLike], overrides: Overrides) -> Scenario:
+    """The scenario (a Scenario or the path of a file) with ``overrides`` (``{key: value}`` or
+    ``["KEY=VALUE"]``) applied in order, as ``--set`` applies them; every command takes its
+    scenario through here."""
+    s = scenario if isinstance(scenario, Scenario) else load(scenario)
+    if not overrides:
+        return s
+    if isinstance(overrides, Mapping):
+        for k, v in overrides.items():
+            s = s.set(k, v)
+        return s
+    for kv in overrides:
+        if not isinstance(kv, str) or "=" not in kv:
+            raise TypeError(f"an override is KEY=VALUE, not {kv!r}")
+        k, v = kv.split("=", 1)
+        s = Scenario(s._inner.set(k, v))
+    return s
+
+
 def run(
     scenario: Union[Scenario, PathLike],
     *,
@@ -297,17 +316,7 @@ def run(
     Ctrl-C (``KeyboardInterrupt``) stops the run within about 0.1 s plus one step, and
     nothing is written to ``out``. A run that goes unstable raises :class:`UnstableError`.
     """
-    s = scenario if isinstance(scenario, Scenario) else load(scenario)
-    if overrides:
-        if isinstance(overrides, Mapping):
-            for k, v in overrides.items():
-                s = s.set(k, v)
-        else:
-            for kv in overrides:
-                if not isinstance(kv, str) or "=" not in kv:
-                    raise TypeError(f"an override is KEY=VALUE, not {kv!r}")
-                k, v = kv.split("=", 1)
-                s = Scenario(s._inner.set(k, v))
+    s = _scenario(scenario, overrides)
     if dt is not None:
         s = s.with_dt(dt)
     with _progress.bar(progress) as cb:

@@ -8,29 +8,13 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, List, Mapping, Optional, Sequence, Tuple, Union
 
 from . import _progress, _settle
-from ._core import Output, Overrides, PathLike, Scenario, load
+from ._core import Output, Overrides, PathLike, Scenario, _scenario
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas
 
 #: The name an in-memory table of measurements goes by in error messages and ``fit.toml``.
 MEASURED_TABLE = "<measured table>"
-
-
-def _with_overrides(s: Scenario, overrides: Overrides) -> Scenario:
-    """``s`` with ``overrides`` (``{key: value}`` or ``["KEY=VALUE"]``) applied as ``--set``."""
-    if not overrides:
-        return s
-    if isinstance(overrides, Mapping):
-        for k, v in overrides.items():
-            s = s.set(k, v)
-        return s
-    for kv in overrides:
-        if not isinstance(kv, str) or "=" not in kv:
-            raise TypeError(f"an override is KEY=VALUE, not {kv!r}")
-        k, v = kv.split("=", 1)
-        s = Scenario(s._inner.set(k, v))
-    return s
 
 
 def _bounds(fit: Mapping[str, Tuple[float, float]]) -> List[Tuple[str, float, float]]:
@@ -72,8 +56,7 @@ def fit(
     real number, a bound outside the key's range, a measurement the run does not write, a best
     value on a bound, ...) raises :class:`ScenarioError` with the command line's message.
     """
-    s = scenario if isinstance(scenario, Scenario) else load(scenario)
-    s = _with_overrides(s, overrides)
+    s = _scenario(scenario, overrides)
     bounds = _bounds(fit)
     path: Optional[str] = None
     table: Optional[Tuple[str, str]] = None

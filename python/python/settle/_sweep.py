@@ -8,29 +8,11 @@ import numbers
 from typing import Any, List, Mapping, Optional, Sequence, Tuple, Union
 
 from . import _progress, _settle
-from ._core import Output, Overrides, PathLike, Scenario, load
+from ._core import Output, Overrides, PathLike, Scenario, _scenario
 
 #: The values of one ``vary`` axis: the grid text of ``--vary KEY=GRID`` after the ``=``
 #: (``"10:40:13"``, ``"log:1e-3:1e-1:5"``, ``"off,basset"``) or a sequence of values.
 Grid = Union[str, Sequence[Union[float, int, str, bool]]]
-
-
-def _scenario(scenario: Union[Scenario, PathLike], overrides: Overrides) -> Scenario:
-    """The scenario (a Scenario or the path of a file) with ``overrides`` applied in order, as
-    ``--set`` applies them."""
-    s = scenario if isinstance(scenario, Scenario) else load(scenario)
-    if not overrides:
-        return s
-    if isinstance(overrides, Mapping):
-        for k, v in overrides.items():
-            s = s.set(k, v)
-        return s
-    for kv in overrides:
-        if not isinstance(kv, str) or "=" not in kv:
-            raise TypeError(f"an override is KEY=VALUE, not {kv!r}")
-        k, v = kv.split("=", 1)
-        s = Scenario(s._inner.set(k, v))
-    return s
 
 
 def _floats(name: str, x: Union[float, Sequence[float]]) -> List[float]:

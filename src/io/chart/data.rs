@@ -3,7 +3,7 @@
 
 use super::{Chart, Item, Scale};
 
-/// One chart file: one panel, or the panels of a grid ([`super::grid_svg`]).
+/// One chart file: one panel, or the panels of a grid (small multiples).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Figure {
     /// The title above the panels (the panel's own title for a single chart).
