@@ -13,11 +13,11 @@ import pandas as pd
 import pytest
 
 import settle
+from frames import READ_CSV, assert_frame_is_read_csv
 
 ROOT = Path(__file__).resolve().parents[2]
 SCENARIOS = ROOT / "scenarios"
 BINARY = Path(os.environ.get("SETTLE_BIN", ROOT / "target" / "release" / "settle"))
-READ_CSV = {"float_precision": "round_trip"} if int(pd.__version__.split(".")[0]) < 3 else {}
 
 # docs/commands/fit.md's worked cases: η_B of paste from a settling distance (one fall height),
 # and a constant restitution from f-EDEM Table A2 (at dt = 1e-4 s, as
@@ -69,7 +69,7 @@ def assert_output_equals_folder(o: settle.Output, folder: Path, same_record: boo
         stem = f[: -len(".csv")]
         assert o.csv(stem) == (folder / f).read_bytes(), f
         expected = pd.read_csv(folder / f, **READ_CSV)
-        pd.testing.assert_frame_equal(o.tables[stem], expected, check_dtype=False, check_exact=True)
+        assert_frame_is_read_csv(o.tables[stem], expected, stem)
     for name, data in o.files.items():
         if name != "fit.toml" or same_record:
             assert data == (folder / name).read_bytes(), name

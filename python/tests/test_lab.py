@@ -15,6 +15,7 @@ import pandas as pd
 import pytest
 
 import settle
+from frames import READ_CSV, assert_frame_is_read_csv
 
 ROOT = Path(__file__).resolve().parents[2]
 LAB = ROOT / "data" / "lab"
@@ -23,7 +24,6 @@ SAMPLE2 = [
     for f in ("readings.csv", "readings_d7928.csv", "readings_pipette.csv", "readings_sphere.csv")
 ]
 BINARY = Path(os.environ.get("SETTLE_BIN", ROOT / "target" / "release" / "settle"))
-READ_CSV = {"float_precision": "round_trip"} if int(pd.__version__.split(".")[0]) < 3 else {}
 
 
 def cli(*args: str, cwd: Path | None = None, check: bool = True) -> subprocess.CompletedProcess:
@@ -72,13 +72,7 @@ def assert_same_as_folder(r: settle.Output, folder: Path) -> None:
         lines = path.read_text().splitlines()
         preamble = list(itertools.takewhile(lambda line: line.startswith("#"), lines))
         expected = pd.read_csv(path, skiprows=len(preamble), **READ_CSV)
-        assert list(got.columns) == list(expected.columns), stem
-        pd.testing.assert_frame_equal(got, expected, check_dtype=False, check_exact=True)
-        for name in got.columns:
-            if pd.api.types.is_bool_dtype(expected[name]):
-                assert got[name].dtype == bool, (stem, name)
-            elif pd.api.types.is_numeric_dtype(expected[name]):
-                assert got[name].dtype == "float64", (stem, name)
+        assert_frame_is_read_csv(got, expected, stem)
     others = [n for n in names if not n.endswith(".csv")]
     assert sorted(r.files) == others
     for n in others:

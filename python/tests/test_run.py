@@ -13,15 +13,13 @@ import pandas as pd
 import pytest
 
 import settle
+from frames import READ_CSV, assert_frame_is_read_csv
 
 ROOT = Path(__file__).resolve().parents[2]
 SCENARIOS = ROOT / "scenarios"
 BINARY = Path(os.environ.get("SETTLE_BIN", ROOT / "target" / "release" / "settle"))
 
 
-# pandas < 3 reads floats to the last digit only with float_precision="round_trip" (pandas 3
-# does by default and deprecates the argument).
-READ_CSV = {"float_precision": "round_trip"} if int(pd.__version__.split(".")[0]) < 3 else {}
 
 
 def cli(*args: str, check: bool = True) -> subprocess.CompletedProcess:
@@ -62,16 +60,7 @@ def assert_tables_equal_files(r: settle.Result, run_dir: Path) -> None:
         preamble = list(itertools.takewhile(lambda line: line.startswith("#"), lines))
         assert preamble == got.attrs.get("preamble", []), stem
         expected = pd.read_csv(path, skiprows=len(preamble), **READ_CSV)
-        assert list(got.columns) == list(expected.columns), stem
-        # numbers to the last digit; integer columns of read_csv are float64 here
-        pd.testing.assert_frame_equal(got, expected, check_dtype=False, check_exact=True)
-        for name in got.columns:
-            if pd.api.types.is_bool_dtype(expected[name]):
-                assert got[name].dtype == bool, (stem, name)
-            elif pd.api.types.is_numeric_dtype(expected[name]):
-                assert got[name].dtype == "float64", (stem, name)
-            else:
-                assert got[name].dtype == expected[name].dtype, (stem, name)
+        assert_frame_is_read_csv(got, expected, stem)
 
 
 # One scenario of every kind (the long ones shortened by overrides, as in tests/api/run.rs).

@@ -16,11 +16,11 @@ import pandas as pd
 import pytest
 
 import settle
+from frames import READ_CSV, assert_frame_is_read_csv
 
 ROOT = Path(__file__).resolve().parents[2]
 STOKES = ROOT / "scenarios" / "stokes_single.toml"
 BINARY = Path(os.environ.get("SETTLE_BIN", ROOT / "target" / "release" / "settle"))
-READ_CSV = {"float_precision": "round_trip"} if int(pd.__version__.split(".")[0]) < 3 else {}
 WALL = "wall_time_s"
 
 
@@ -68,14 +68,7 @@ def assert_output_is_the_folder(r: settle.Output, folder: Path, charts_equal: Li
         assert without_wall(r.csv(stem)) == without_wall(path.read_bytes()), stem
         got = r.tables[stem].drop(columns=[WALL], errors="ignore")
         expected = pd.read_csv(path, **READ_CSV).drop(columns=[WALL], errors="ignore")
-        pd.testing.assert_frame_equal(got, expected, check_dtype=False, check_exact=True)
-        for col in got.columns:
-            if pd.api.types.is_bool_dtype(expected[col]):
-                assert got[col].dtype == bool, (stem, col)
-            elif pd.api.types.is_numeric_dtype(expected[col]):
-                assert got[col].dtype == "float64", (stem, col)
-            else:
-                assert got[col].dtype == expected[col].dtype, (stem, col)
+        assert_frame_is_read_csv(got, expected, stem)
     for name in charts_equal:
         assert r.files[name] == (folder / name).read_bytes(), name
 

@@ -156,23 +156,23 @@ def _frame(header: List[str], columns: List[Any], preamble: List[str]) -> "panda
     return df
 
 
-class Result:
-    """The outcome of a run, in memory: its tables, warnings, record and status; ``write``
-    writes the files ``settle run`` writes."""
+class _Tables:
+    """What a run and a command have in common: tables as DataFrames, CSV bytes, charts."""
 
-    __slots__ = ("_inner", "_tables", "_record")
+    __slots__ = ("_inner", "_tables")
 
-    def __init__(self, inner: _settle.RunResult) -> None:
+    _inner: Union[_settle.RunResult, _settle.Output]
+
+    def __init__(self, inner: Union[_settle.RunResult, _settle.Output]) -> None:
         self._inner = inner
         self._tables: Optional[Dict[str, "pandas.DataFrame"]] = None
-        self._record: Optional[Dict[str, Any]] = None
 
     @property
     def tables(self) -> Dict[str, "pandas.DataFrame"]:
-        """Every table of the run, keyed by the stem of its CSV file (``summary``,
-        ``timeseries``, ``pictures/t_10s``): equal, cell for cell, to ``pandas.read_csv`` of
-        the file ``settle run`` writes (numeric columns float64, true/false columns bool; the
-        comment lines a readings file has before its header in ``df.attrs["preamble"]``)."""
+        """Every table, keyed by the stem of its CSV file (``summary``, ``timeseries``,
+        ``pictures/t_10s``): equal, cell for cell, to ``pandas.read_csv`` of the file the
+        command line writes (numeric columns float64, true/false columns bool; the comment
+        lines a readings file has before its header in ``df.attrs["preamble"]``)."""
         if self._tables is None:
             self._tables = {
                 stem: _frame(header, cols, pre) for stem, header, cols, pre in self._inner.raw_tables()
@@ -180,21 +180,48 @@ class Result:
         return self._tables
 
     def csv(self, name: str) -> bytes:
-        """The bytes of the CSV file ``name`` (stem or file name) as ``settle run`` writes it."""
+        """The bytes of the CSV file ``name`` (stem or file name) as the command line writes it."""
         b = self._inner.csv(name)
         if b is None:
             raise KeyError(name)
         return b
 
     @property
+    def charts(self) -> List[str]:
+        """The charts :meth:`plot` can draw (file names: ``velocity.svg``, ...), in the order
+        they were made."""
+        return self._inner.figure_names()
+
+    @property
     def warnings(self) -> List[str]:
-        """The validity warnings of the run (a law used outside its range, ...)."""
+        """The validity warnings (a law used outside its range, ...)."""
         return self._inner.warnings
 
     @property
     def lines(self) -> List[str]:
-        """The lines ``settle run`` prints after the run of a contact scene."""
+        """The lines the command line prints."""
         return self._inner.lines
+
+    def _plot(self, name: str) -> Any:
+        data = self._inner.figure(name)
+        if data is None:
+            raise KeyError(f"no chart {name!r}: the charts with data are {self.charts}")
+        from ._plot import figure
+
+        return figure(data)
+
+
+class Result(_Tables):
+    """The outcome of a run, in memory: its tables, warnings, record and status; ``write``
+    writes the files ``settle run`` writes."""
+
+    __slots__ = ("_record",)
+
+    _inner: _settle.RunResult
+
+    def __init__(self, inner: _settle.RunResult) -> None:
+        super().__init__(inner)
+        self._record: Optional[Dict[str, Any]] = None
 
     @property
     def status(self) -> str:
@@ -229,12 +256,6 @@ class Result:
         return self._inner.steps
 
     @property
-    def charts(self) -> List[str]:
-        """The charts :meth:`plot` can draw (file names: ``velocity.svg``, ...), in the order
-        the run made them; the first of the kind is :attr:`main_chart`."""
-        return self._inner.figure_names()
-
-    @property
     def main_chart(self) -> str:
         """The file name of the kind's main chart (``velocity.svg``, ``granulometry.svg``, ...)."""
         return self._inner.main_chart
@@ -243,7 +264,7 @@ class Result:
         """The chart ``name`` (a file name or stem of :attr:`charts`; default the kind's main
         chart) as a ``matplotlib.figure.Figure``: the data of the SVG file ``settle run``
         writes, drawn with matplotlib (an optional dependency)."""
-        return _plot_of(self._inner, name or self.main_chart)
+        return self._plot(name or self.main_chart)
 
     def write(self, folder: PathLike) -> str:
         """Writes the run's files to ``folder/<name>/`` as ``settle run --out folder`` does
@@ -253,15 +274,6 @@ class Result:
 
     def __repr__(self) -> str:
         return f"<settle.Result {self._inner.scenario.name!r} {self.status}>"
-
-
-def _plot_of(inner: Union[_settle.RunResult, _settle.Output], name: str) -> Any:
-    data = inner.figure(name)
-    if data is None:
-        raise KeyError(f"no chart {name!r}: the charts with data are {inner.figure_names()}")
-    from ._plot import figure
-
-    return figure(data)
 
 
 def load(path: PathLike) -> Scenario:
@@ -326,39 +338,20 @@ def run(
     return r
 
 
-class Output:
+class Output(_Tables):
     """What a command other than ``run`` made (``sweep``, ``vary``, ``reduce``, ``invert``,
     ``laws``, ``fit``), in memory: its tables as DataFrames equal to the CSV files the command
     line writes, its other files (charts) as bytes, its warnings and console lines; ``write``
     writes the folder the command line writes."""
 
-    __slots__ = ("_inner", "_tables")
+    __slots__ = ()
 
-    def __init__(self, inner: _settle.Output) -> None:
-        self._inner = inner
-        self._tables: Optional[Dict[str, "pandas.DataFrame"]] = None
+    _inner: _settle.Output
 
     @property
     def name(self) -> str:
         """The results folder's name (``valentik_susp1_sweep``, ``soil_a_reduced``, ``laws``)."""
         return self._inner.name
-
-    @property
-    def tables(self) -> Dict[str, "pandas.DataFrame"]:
-        """Every table, keyed by the stem of its CSV file: equal, cell for cell, to
-        ``pandas.read_csv`` of the file the command line writes."""
-        if self._tables is None:
-            self._tables = {
-                stem: _frame(header, cols, pre) for stem, header, cols, pre in self._inner.raw_tables()
-            }
-        return self._tables
-
-    def csv(self, name: str) -> bytes:
-        """The bytes of the CSV file ``name`` (stem or file name) as the command line writes it."""
-        b = self._inner.csv(name)
-        if b is None:
-            raise KeyError(name)
-        return b
 
     @property
     def files(self) -> Dict[str, bytes]:
@@ -370,21 +363,6 @@ class Output:
                 out[n] = b
         return out
 
-    @property
-    def warnings(self) -> List[str]:
-        """Validity warnings."""
-        return self._inner.warnings
-
-    @property
-    def lines(self) -> List[str]:
-        """The lines the command line prints."""
-        return self._inner.lines
-
-    @property
-    def charts(self) -> List[str]:
-        """The charts :meth:`plot` can draw (file names), in the order they were made."""
-        return self._inner.figure_names()
-
     def plot(self, name: Optional[str] = None) -> Any:
         """The chart ``name`` (a file name or stem of :attr:`charts`; default the first) as a
         ``matplotlib.figure.Figure``, drawn from the data of the SVG file the command writes."""
@@ -393,7 +371,7 @@ class Output:
             if not names:
                 raise KeyError(f"{self.name} has no chart")
             name = names[0]
-        return _plot_of(self._inner, name)
+        return self._plot(name)
 
     def write(self, folder: PathLike) -> str:
         """Writes ``folder/<name>/`` as the command line does with ``--out folder``; returns
