@@ -327,8 +327,8 @@ fn inverted_name(first: &Readings) -> String {
 /// Runs `settle invert`: [`invert`] of the files, then [`InvertResult::write`] into
 /// `OUT/<stem>_inverted/`. The options and the output folder are checked before the inversion.
 pub fn run(req: &Request) -> Result<Report, Error> {
-    let opts = req.options();
-    options(&opts, req.files.len())?;
+    let opts = &req.options;
+    options(opts, req.files.len())?;
     let readings: Vec<Readings> = req
         .files
         .iter()
@@ -343,7 +343,7 @@ pub fn run(req: &Request) -> Result<Report, Error> {
              replace it: choose another --out",
         ));
     }
-    let result = invert(&readings, &opts)?;
+    let result = invert(&readings, opts)?;
     let out = result.write(&req.out_dir)?;
     Ok(Report {
         lines: result.lines(&out),

@@ -90,61 +90,18 @@ impl Default for InvertOptions {
 pub struct Request {
     /// The readings files (one test of one soil each, any instrument).
     pub files: Vec<PathBuf>,
-    /// `--model`: `ideal-stokes` or `full`.
-    pub model: String,
-    /// `--bins`: resolved diameter bins (None: twice the readings, 8–30).
-    pub bins: Option<usize>,
-    /// `--diameters-um LO:HI`: the resolved range, µm (None: from the readings).
-    pub diameters_um: Option<String>,
-    /// `--lambda`: a number, `discrepancy` or `gcv`.
-    pub lambda: String,
-    /// `--resolution`: the readings' resolution in their unit, one for every file or one per
-    /// file in order (empty: each instrument's default).
-    pub resolution: Vec<f64>,
-    /// `--repeats`: Monte Carlo repeats of the band (0: no band).
-    pub repeats: usize,
-    /// `--seed` of the Monte Carlo (ChaCha8).
-    pub seed: u64,
-    /// `--bounds`: also the strict bounds of the curve at each edge ([`super::solve::Linear::strict_bounds`]).
-    pub bounds: bool,
+    /// The options (`--model`, `--bins`, …).
+    pub options: InvertOptions,
     /// Output folder; results go to `out_dir/<stem of the first file>_inverted/`.
     pub out_dir: PathBuf,
 }
 
 impl Default for Request {
     fn default() -> Self {
-        Self::with_options(Vec::new(), InvertOptions::default(), PathBuf::from("out"))
-    }
-}
-
-impl Request {
-    /// The request of `files` with `opts`, written to `out_dir`.
-    pub fn with_options(files: Vec<PathBuf>, opts: InvertOptions, out_dir: PathBuf) -> Self {
         Self {
-            files,
-            model: opts.model,
-            bins: opts.bins,
-            diameters_um: opts.diameters_um,
-            lambda: opts.lambda,
-            resolution: opts.resolution,
-            repeats: opts.repeats,
-            seed: opts.seed,
-            bounds: opts.bounds,
-            out_dir,
-        }
-    }
-
-    /// The options of the request.
-    pub fn options(&self) -> InvertOptions {
-        InvertOptions {
-            model: self.model.clone(),
-            bins: self.bins,
-            diameters_um: self.diameters_um.clone(),
-            lambda: self.lambda.clone(),
-            resolution: self.resolution.clone(),
-            repeats: self.repeats,
-            seed: self.seed,
-            bounds: self.bounds,
+            files: Vec::new(),
+            options: InvertOptions::default(),
+            out_dir: PathBuf::from("out"),
         }
     }
 }
