@@ -123,7 +123,7 @@ impl SphereSpec {
     }
 }
 
-/// Kinds with contacts run in a Rapier 3D world: a [contacts] table (returned), dimension 3,
+/// Kinds with contacts run in a Rapier 3D world: a `[contacts]` table (returned), dimension 3,
 /// engine `auto` or `rapier`.
 pub(crate) fn contact_scene_3d(c: &Check, s: &Scenario) -> Result<Contacts, BadInput> {
     let kind = s.kind.name();
