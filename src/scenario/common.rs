@@ -30,7 +30,7 @@ pub struct Common {
     pub fluid_density_kg_m3: f64,
     /// How a body crossing the free surface is immersed (`fluid.submergence`).
     pub submergence: Submergence,
-    /// The drag law of every body ([`super::Drag::law`]: the `[drag]` table in this fluid,
+    /// The drag law of every body (`Drag::law`: the `[drag]` table in this fluid,
     /// after the `physics` switch).
     pub drag: DragLaw,
     /// Time step, duration and integrator.

@@ -9,8 +9,9 @@
 
 use super::check::Check;
 use super::schema::{
-    free_settling, funnel_pour, restitution_drop, sedimentation, tilt_friction, FreeSettlingSpec,
-    FunnelPourSpec, Kind, RestitutionSpec, Scenario, SedimentationSpec, TiltFrictionSpec,
+    free_settling, funnel_pour, restitution_drop, sedimentation, tilt_friction, Engine,
+    EngineChoice, Entry, FreeSettlingSpec, FunnelPourSpec, Kind, RestitutionSpec, Scenario,
+    SedimentationSpec, TiltFrictionSpec,
 };
 use crate::error::BadInput;
 
@@ -212,6 +213,29 @@ pub fn sweepable_names() -> Vec<&'static str> {
         .collect()
 }
 
+// The kind's name and the engine it runs on are read from the registry, so they are defined
+// here, beside it (the schema below does not read the registry).
+impl Scenario {
+    /// Which engine the scenario runs on: `engine = "rapier"` always gives Rapier; `auto` (and
+    /// `free`) give the free integrator for the kinds without contacts (free settling, drop,
+    /// sedimentation, whose grain contacts run in their own solve) and Rapier for the contact
+    /// kinds (restitution drop, tilt, funnel pour).
+    pub fn engine(&self) -> Engine {
+        if self.engine == EngineChoice::Rapier || info(self.kind).rapier {
+            Engine::Rapier
+        } else {
+            Engine::Free
+        }
+    }
+}
+
+impl Kind {
+    /// The name of the kind as written in scenario files (`free_settling`, …).
+    pub fn name(self) -> &'static str {
+        info(self).name
+    }
+}
+
 impl SceneSpec {
     /// The kind's name as written in scenario files.
     pub fn kind_name(&self) -> &'static str {
@@ -222,8 +246,8 @@ impl SceneSpec {
     pub fn kind(&self) -> Kind {
         match self {
             SceneSpec::FreeSettling(f) => match f.entry {
-                super::Entry::Submerged => Kind::FreeSettling,
-                super::Entry::Drop => Kind::Drop,
+                Entry::Submerged => Kind::FreeSettling,
+                Entry::Drop => Kind::Drop,
             },
             SceneSpec::RestitutionDrop(_) => Kind::RestitutionDrop,
             SceneSpec::TiltFriction(_) => Kind::TiltFriction,

@@ -30,8 +30,8 @@ mod validate;
 pub use common::Common;
 pub use kinds::{info, sweepable_names, SceneSpec};
 pub use load::{is_key_path, parse_str, record_table, Overrides, Parsed};
+pub(crate) use schema::check_sphere;
 pub use schema::*;
-pub(crate) use validate::check_sphere;
 // Re-exported for the unit tests only.
 #[cfg(test)]
 pub(crate) use kinds::{KindInfo, KINDS};

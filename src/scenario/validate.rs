@@ -86,13 +86,3 @@ pub fn validate(s: &Scenario, file: &Path) -> Result<(SceneSpec, RheologyModel),
     }
     Ok((scene, rheology))
 }
-
-/// Checks one sphere (also used for spheres read from CSV, with `key` naming the row).
-pub(crate) fn check_sphere(
-    file: &Path,
-    key: &str,
-    sp: &SphereSpec,
-    s: &Scenario,
-) -> Result<(), BadInput> {
-    sp.check(&Check { file }, key, s)
-}

@@ -1,9 +1,9 @@
 //! The container, the release and the spheres: `[container]`, `[release]`, `[[spheres]]`,
 //! `[spheres_csv]`.
 
-use super::{Dim, Kind, Scenario};
+use super::base::Dim;
 use crate::error::BadInput;
-use crate::scenario::check::{cc, oc, Check};
+use crate::scenario::check::{oc, Check};
 use serde::{Deserialize, Serialize};
 
 /// The container.
@@ -120,114 +120,5 @@ impl Container {
         self.diameter_m
             .unwrap_or(f64::INFINITY)
             .min(self.width_m.unwrap_or(f64::INFINITY))
-    }
-}
-
-impl Release {
-    /// Depth and speed in range; fall heights for kind `drop` only, each reached by free fall
-    /// within `time.end_s`.
-    pub(crate) fn check(&self, c: &Check, s: &Scenario) -> Result<(), BadInput> {
-        c.table(
-            "release",
-            &[
-                ("depth_m", self.depth_m, cc(0.0, 1e4, "m")),
-                ("velocity_m_s", self.velocity_m_s, cc(0.0, 1e3, "m/s")),
-            ],
-        )?;
-        c.each(
-            "release.fall_heights_m",
-            &self.fall_heights_m,
-            cc(0.0, 1e4, "m"),
-        )?;
-        match s.kind {
-            Kind::Drop if self.fall_heights_m.is_empty() => {
-                return Err(c.err(
-                    "release.fall_heights_m",
-                    "missing: kind = \"drop\" needs at least one fall height ≥ 0 m",
-                ));
-            }
-            Kind::FreeSettling if !self.fall_heights_m.is_empty() => {
-                return Err(c.err("release.fall_heights_m", "only allowed with kind = \"drop\" (free_settling releases submerged spheres at release.depth_m)"));
-            }
-            _ => {}
-        }
-        // A ball still in the air at time.end_s has no settling distance (it would be written
-        // as minus the height left to fall). In air it falls freely (no fluid forces above the
-        // surface): h = v₀ T + ½ g T².
-        let (g, v0, end) = (s.gravity_m_s2, self.velocity_m_s, s.time.end_s);
-        let h_max = v0 * end + 0.5 * g * end * end;
-        for (i, &h) in self.fall_heights_m.iter().enumerate() {
-            if h >= h_max {
-                let t_fall = ((v0 * v0 + 2.0 * g * h).sqrt() - v0) / g;
-                return Err(c.err(
-                    &format!("release.fall_heights_m[{i}]"),
-                    format!(
-                        "{h} m takes {t_fall:.4} s of free fall to reach the surface, not within time.end_s = {end} s: allowed 0 ≤ fall height < {h_max:.6} m (v₀ T + ½ g T², T = time.end_s), or raise time.end_s"
-                    ),
-                ));
-            }
-        }
-        Ok(())
-    }
-}
-
-impl SphereSpec {
-    /// Checks one sphere; `key` names it (`spheres[0]`, or a CSV row). Besides its own ranges:
-    /// narrower than the container and released above its bottom.
-    pub(crate) fn check(&self, c: &Check, key: &str, s: &Scenario) -> Result<(), BadInput> {
-        c.table(
-            key,
-            &[
-                ("diameter_m", self.diameter_m, oc(0.0, 10.0, "m")),
-                (
-                    "density_kg_m3",
-                    self.density_kg_m3,
-                    oc(0.0, 25_000.0, "kg/m³"),
-                ),
-            ],
-        )?;
-        if let Some(e) = self.youngs_modulus_pa {
-            c.range(&format!("{key}.youngs_modulus_pa"), e, oc(0.0, 1e13, "Pa"))?;
-        }
-        if let Some(nu) = self.poisson_ratio {
-            if !(nu > -1.0 && nu < 0.5) {
-                return Err(c.err(
-                    &format!("{key}.poisson_ratio"),
-                    format!("{nu} is out of range: allowed -1 < poisson_ratio < 0.5"),
-                ));
-            }
-        }
-        if let Some(v) = self.v_measured_m_s {
-            c.range(&format!("{key}.v_measured_m_s"), v, cc(0.0, 1e3, "m/s"))?;
-        }
-        if let Some(ct) = &s.container {
-            let (d, b) = (self.diameter_m, ct.narrowest_m());
-            if d >= b {
-                let which = if ct.diameter_m.is_some_and(|x| x <= b) {
-                    "container.diameter_m"
-                } else {
-                    "container.width_m"
-                };
-                return Err(c.err(
-                    &format!("{key}.diameter_m"),
-                    format!(
-                        "{d} m does not fit in the container: allowed 0 < diameter_m < {which} = {b} m"
-                    ),
-                ));
-            }
-            if let Some(t) = &s.transient {
-                t.check_confined_sphere(c, key, d, s)?;
-            }
-            if s.release.depth_m + 0.5 * d > ct.height_m {
-                return Err(c.err(
-                    "release.depth_m",
-                    format!(
-                        "{} m puts {key} (d = {} m) below the container bottom at {} m",
-                        s.release.depth_m, d, ct.height_m
-                    ),
-                ));
-            }
-        }
-        Ok(())
     }
 }

@@ -1,6 +1,5 @@
 //! Contact properties: `[contacts]`.
 
-use super::{Dim, EngineChoice, Scenario};
 use crate::error::BadInput;
 use crate::scenario::check::{cc, Check};
 use serde::{Deserialize, Serialize};
@@ -70,29 +69,4 @@ impl Contacts {
             ],
         )
     }
-}
-
-/// Kinds with contacts run in a Rapier 3D world: a [contacts] table (returned), dimension 3,
-/// engine `auto` or `rapier`.
-pub(crate) fn contact_scene_3d(c: &Check, s: &Scenario) -> Result<Contacts, BadInput> {
-    let kind = s.kind.name();
-    let Some(contacts) = &s.contacts else {
-        return Err(c.err(
-            "contacts",
-            format!("missing: kind = \"{kind}\" needs a [contacts] table (restitution, friction, rolling_resistance)"),
-        ));
-    };
-    if s.dimension != Dim::Three {
-        return Err(c.err(
-            "dimension",
-            format!("kind = \"{kind}\" is 3D-only (Rapier 3D contacts): allowed 3"),
-        ));
-    }
-    if s.engine == EngineChoice::Free {
-        return Err(c.err(
-            "engine",
-            format!("kind = \"{kind}\" needs contacts: allowed `auto`, `rapier`"),
-        ));
-    }
-    Ok(contacts.clone())
 }

@@ -1,6 +1,6 @@
 //! The fluid and the drag law: `[fluid]` and `[drag]`.
 
-use super::Physics;
+use super::base::Physics;
 use crate::error::BadInput;
 use crate::scenario::check::{cc, oc, Check};
 use serde::{Deserialize, Serialize};

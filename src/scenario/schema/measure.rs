@@ -1,6 +1,6 @@
 //! Measurement settings: `[measure]`.
 
-use super::within_run;
+use super::base::within_run;
 use crate::error::BadInput;
 use crate::scenario::check::{cc, oc, Check};
 use serde::{Deserialize, Serialize};
