@@ -9,7 +9,7 @@ use pyo3::types::{
 };
 use settle::{Column, Drawn, Error, Figure, Table};
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 create_exception!(
     settle,
@@ -156,82 +156,103 @@ pub fn raw_tables<'py>(py: Python<'py>, tables: &[Table]) -> PyResult<Vec<Bound<
         .collect()
 }
 
-/// Runs of this process still going: the last one to return withdraws a Ctrl-C's stop request.
+/// Runs of this process still going (detached ones included): the last one to end withdraws a
+/// Ctrl-C's stop request.
 static ACTIVE: AtomicUsize = AtomicUsize::new(0);
+
+/// How long a stopped computation may take to return before the `KeyboardInterrupt` is raised
+/// without it (it then finishes in the background and its result is dropped), s.
+const GRACE_S: f64 = 0.3;
 
 /// Runs `f` on a worker thread with the GIL released, as every binding runs a computation.
 /// Every 0.1 s the calling thread takes the GIL to check Python's signals: a Ctrl-C
-/// (`KeyboardInterrupt`) asks settle to stop ([`settle::interrupt::request`]), `f` stops at its
-/// next check (every step or case) and returns, and the KeyboardInterrupt is raised. Ctrl-C
-/// stops every settle run of the process, as on the command line; the last to return withdraws
-/// the request. When `progress` is a callable it is called (with the GIL) with `(name, pos,
-/// len, unit, message)` whenever the computation's progress bar moves.
-pub fn blocking<T: Send>(
+/// (`KeyboardInterrupt`) asks settle to stop ([`settle::interrupt::request`]); `f` stops at its
+/// next check (every step or case) and the KeyboardInterrupt is raised as soon as `f` returns,
+/// or after [`GRACE_S`] if `f` is still making the outputs of what it did (they are dropped:
+/// nothing is written). Ctrl-C stops every settle run of the process, as on the command line;
+/// the last to end withdraws the request, and a new computation waits for that first. When
+/// `progress` is a callable it is called (with the GIL) with `(name, pos, len, unit, message)`
+/// whenever the computation's progress bar moves.
+pub fn blocking<T: Send + 'static>(
     py: Python<'_>,
     progress: Option<&Bound<'_, PyAny>>,
-    f: impl FnOnce() -> Result<T, Error> + Send,
+    f: impl FnOnce() -> Result<T, Error> + Send + 'static,
 ) -> PyResult<T> {
+    wait_for_stopped_runs(py)?;
     let watch = settle::Watch::new();
+    let (tx, rx) = std::sync::mpsc::channel();
+    let w = watch.clone();
     ACTIVE.fetch_add(1, Ordering::SeqCst);
-    let mut interrupted: Option<PyErr> = None;
+    std::thread::spawn(move || {
+        let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| w.scope(f)));
+        if ACTIVE.fetch_sub(1, Ordering::SeqCst) == 1 && settle::interrupt::requested() {
+            settle::interrupt::clear();
+        }
+        let _ = tx.send(r);
+    });
+    // A Mutex makes the receiver shareable with the GIL-free closure below.
+    let rx = std::sync::Mutex::new(rx);
+    let mut interrupted: Option<(PyErr, Instant)> = None;
     let mut last = None;
-    let outcome = std::thread::scope(|s| {
-        let (tx, rx) = std::sync::mpsc::channel();
-        // A Mutex makes the receiver shareable with the GIL-free closure below.
-        let rx = std::sync::Mutex::new(rx);
-        let w = watch.clone();
-        s.spawn(move || {
-            let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| w.scope(f)));
-            let _ = tx.send(r);
+    let outcome = loop {
+        let got = py.allow_threads(|| match rx.lock() {
+            Ok(rx) => rx.recv_timeout(Duration::from_millis(100)),
+            Err(_) => Err(std::sync::mpsc::RecvTimeoutError::Disconnected),
         });
-        loop {
-            let got = py.allow_threads(|| match rx.lock() {
-                Ok(rx) => rx.recv_timeout(Duration::from_millis(100)),
-                Err(_) => Err(std::sync::mpsc::RecvTimeoutError::Disconnected),
-            });
-            match got {
-                Ok(r) => return Some(r),
-                Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => return None,
-                Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {}
-            }
-            if interrupted.is_none() {
+        match got {
+            Ok(r) => break Some(r),
+            Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => break None,
+            Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {}
+        }
+        match &interrupted {
+            None => {
                 if let Err(e) = py.check_signals() {
                     settle::interrupt::request();
-                    interrupted = Some(e);
+                    interrupted = Some((e, Instant::now()));
                 }
             }
-            if let (Some(cb), Some(shown)) = (progress, watch.shown()) {
-                let key = (shown.pos, shown.message.clone());
-                if last.as_ref() != Some(&key) {
-                    last = Some(key);
-                    let args = (shown.name, shown.pos, shown.len, shown.unit, shown.message);
-                    if let Err(e) = cb.call1(args) {
-                        // A failing callback stops the run as Ctrl-C would, and is raised.
-                        settle::interrupt::request();
-                        interrupted.get_or_insert(e);
-                    }
+            Some((_, at)) if at.elapsed().as_secs_f64() > GRACE_S => break None,
+            Some(_) => {}
+        }
+        if let (Some(cb), Some(shown)) = (progress, watch.shown()) {
+            let key = (shown.pos, shown.message.clone());
+            if last.as_ref() != Some(&key) {
+                last = Some(key);
+                let args = (shown.name, shown.pos, shown.len, shown.unit, shown.message);
+                if let Err(e) = cb.call1(args) {
+                    // A failing callback stops the run as Ctrl-C would, and is raised.
+                    settle::interrupt::request();
+                    interrupted.get_or_insert((e, Instant::now()));
                 }
             }
         }
-    });
-    if ACTIVE.fetch_sub(1, Ordering::SeqCst) == 1 && settle::interrupt::requested() {
-        settle::interrupt::clear();
+    };
+    if let Some((e, _)) = interrupted {
+        return Err(e);
     }
     if let (Some(cb), Some(shown)) = (progress, watch.shown()) {
         let _ = cb.call1((shown.name, shown.pos, shown.len, shown.unit, shown.message));
     }
-    let result = match outcome {
-        Some(Ok(r)) => r,
-        Some(Err(_)) | None => {
-            return Err(PyRuntimeError::new_err(
-                "settle panicked: this is a bug, please report it with the scenario",
-            ))
-        }
-    };
-    if let Some(e) = interrupted {
-        return Err(e);
+    match outcome {
+        Some(Ok(r)) => r.map_err(to_py),
+        Some(Err(_)) | None => Err(PyRuntimeError::new_err(
+            "settle panicked: this is a bug, please report it with the scenario",
+        )),
     }
-    result.map_err(to_py)
+}
+
+/// After a Ctrl-C, waits (GIL released, signals checked) until every stopped computation has
+/// ended, so that a new one is not stopped by the old request.
+fn wait_for_stopped_runs(py: Python<'_>) -> PyResult<()> {
+    while settle::interrupt::requested() {
+        if ACTIVE.load(Ordering::SeqCst) == 0 {
+            settle::interrupt::clear();
+            break;
+        }
+        py.allow_threads(|| std::thread::sleep(Duration::from_millis(20)));
+        py.check_signals()?;
+    }
+    Ok(())
 }
 
 /// Numbers as the bytes of native f64 values (read with numpy.frombuffer).

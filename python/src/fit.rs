@@ -46,8 +46,9 @@ fn fit(
         }
     };
     let opts = FitOptions { progress: false };
-    let r = blocking(py, progress, || {
-        settle::fit::fit(&scenario.0, &bounds, measured, &opts)
+    let s = scenario.0.clone();
+    let r = blocking(py, progress, move || {
+        settle::fit::fit(&s, &bounds, measured, &opts)
     })?;
     Ok(Output::new(r.name, r.outputs, r.warnings, r.lines))
 }
@@ -64,7 +65,7 @@ fn slump<'py>(
     density: f64,
     g: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let s = blocking(py, None, || {
+    let s = blocking(py, None, move || {
         settle::fit::slump(height_mm, &slump_mm, density, g)
     })?;
     let d = PyDict::new(py);

@@ -3,7 +3,7 @@
 //! DataFrame (python/python/settle/_lab.py), as `(name, header, rows, figures)`: the table's
 //! name (standing for the file), its columns, its cells as text and the `# key = value` figures.
 
-use crate::convert::blocking;
+use crate::convert::{blocking, to_py};
 use crate::output::Output;
 use pyo3::prelude::*;
 use settle::invert::InvertOptions;
@@ -61,12 +61,13 @@ fn reduce(
         standard,
         hydrometer,
     };
-    blocking(py, None, || {
-        let r = settle::reduce::reduce(readings, &opts)?;
-        let dest = written(&r.name, out.as_deref(), |d| r.write(d))?;
-        let lines = r.lines(&dest);
-        Ok(Output::new(r.name, r.outputs, r.warnings, lines))
-    })
+    // computed apart, written after: a computation stopped by Ctrl-C never writes
+    let r = blocking(py, None, move || settle::reduce::reduce(readings, &opts))?;
+    let dest = py
+        .allow_threads(|| written(&r.name, out.as_deref(), |d| r.write(d)))
+        .map_err(to_py)?;
+    let lines = r.lines(&dest);
+    Ok(Output::new(r.name, r.outputs, r.warnings, lines))
 }
 
 /// `settle invert READINGS... [options] [--out OUT]` in memory: an `Output` named
@@ -102,12 +103,13 @@ fn invert(
         seed,
         bounds,
     };
-    blocking(py, None, || {
-        let r = settle::invert::invert(&readings, &opts)?;
-        let dest = written(&r.name, out.as_deref(), |d| r.write(d))?;
-        let lines = r.lines(&dest);
-        Ok(Output::new(r.name, r.outputs, r.warnings, lines))
-    })
+    // computed apart, written after: a computation stopped by Ctrl-C never writes
+    let r = blocking(py, None, move || settle::invert::invert(&readings, &opts))?;
+    let dest = py
+        .allow_threads(|| written(&r.name, out.as_deref(), |d| r.write(d)))
+        .map_err(to_py)?;
+    let lines = r.lines(&dest);
+    Ok(Output::new(r.name, r.outputs, r.warnings, lines))
 }
 
 /// `settle laws [SPHERES --fluids FLUIDS] [--out OUT]` in memory: an `Output` named `laws`;
@@ -121,12 +123,13 @@ fn laws(
     out: Option<PathBuf>,
 ) -> PyResult<Output> {
     let opts = LawsOptions { spheres, fluids };
-    blocking(py, None, || {
-        let r = settle::laws::laws(&opts)?;
-        let dest = written(&r.name, out.as_deref(), |d| r.write(d))?;
-        let lines = r.lines(&dest);
-        Ok(Output::new(r.name, r.outputs, r.warnings, lines))
-    })
+    // computed apart, written after: a computation stopped by Ctrl-C never writes
+    let r = blocking(py, None, move || settle::laws::laws(&opts))?;
+    let dest = py
+        .allow_threads(|| written(&r.name, out.as_deref(), |d| r.write(d)))
+        .map_err(to_py)?;
+    let lines = r.lines(&dest);
+    Ok(Output::new(r.name, r.outputs, r.warnings, lines))
 }
 
 /// Adds this file's functions to the module.

@@ -94,7 +94,8 @@ impl Scenario {
             force,
             threads,
         };
-        blocking(py, progress, || self.0.run_with(&opts)).map(RunResult)
+        let s = self.0.clone();
+        blocking(py, progress, move || s.run_with(&opts)).map(RunResult)
     }
 }
 

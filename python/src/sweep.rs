@@ -35,8 +35,8 @@ fn sweep(
         tol,
         progress: false,
     };
-    let s = &scenario.0;
-    let r = blocking(py, progress, || settle::sweep::sweep(s, &opts))?;
+    let s = scenario.0.clone();
+    let r = blocking(py, progress, move || settle::sweep::sweep(&s, &opts))?;
     let name = r.name().to_string();
     Ok(Output::new(name, r.outputs, r.warnings, r.lines))
 }
@@ -57,9 +57,9 @@ fn vary(
         .iter()
         .map(|item| axis(&item))
         .collect::<PyResult<Vec<Axis>>>()?;
-    let s = &scenario.0;
+    let s = scenario.0.clone();
     let opts = VaryOptions { progress: false };
-    let r = blocking(py, progress, || settle::sweep::vary(s, &axes, &opts))?;
+    let r = blocking(py, progress, move || settle::sweep::vary(&s, &axes, &opts))?;
     let name = r.name().to_string();
     Ok(Output::new(name, r.outputs, r.warnings, r.lines))
 }

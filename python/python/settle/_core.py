@@ -325,7 +325,7 @@ def run(
     when running many small scenarios in parallel Python threads, so that they do not compete
     for the same cores.
 
-    Ctrl-C (``KeyboardInterrupt``) stops the run within about 0.1 s plus one step, and
+    Ctrl-C (``KeyboardInterrupt``) stops the run within about half a second, and
     nothing is written to ``out``. A run that goes unstable raises :class:`UnstableError`.
     """
     s = _scenario(scenario, overrides)
