@@ -387,11 +387,17 @@ pub fn fit(
     seed: u64,
     bounds: bool,
 ) -> Result<Fit, Error> {
+    // Ctrl-C/SIGTERM: checked at each iteration, repeat and bounded edge (issue 26: the first
+    // signal used to be acknowledged and ignored); nothing is written.
+    let stopped = || Error::InterruptedUnwritten(tests[0].file.clone());
     let inv = iterate(tests, bins, model, rule)?;
-    let mut curve = band(&inv, tests, bins, rule, repeats, seed);
+    let mut curve = band(&inv, tests, bins, rule, repeats, seed).ok_or_else(stopped)?;
     if bounds {
         let m = inv.predicted.len() as f64;
         for p in &mut curve {
+            if crate::interrupt::requested() {
+                return Err(stopped());
+            }
             let c: Vec<f64> = (0..bins.len())
                 .map(|j| bins.fraction_finer(j, p.diameter_m))
                 .collect();
@@ -452,6 +458,9 @@ fn iterate(
     let (mut iterations, mut converged) = (0, false);
     let mut last = None;
     while iterations < 40 {
+        if crate::interrupt::requested() {
+            return Err(Error::InterruptedUnwritten(tests[0].file.clone()));
+        }
         iterations += 1;
         let (lin, _) = linearise(tests, &units, &w)?;
         let sol = lin.solve(rule);
@@ -506,7 +515,8 @@ fn percentile(sorted: &[f64], p: f64) -> f64 {
 /// to every reading a rounding error U(−Δ/2, Δ/2) and a reading error N(0, Δ/√6), draws the
 /// penalty's target η = z/√λ (z standard normal: the Gaussian prior of the Tikhonov term) and
 /// solves the last linear problem again with λ chosen by the same rule: a draw of the
-/// constrained posterior, λ's own uncertainty included.
+/// constrained posterior, λ's own uncertainty included. None when a stop was requested
+/// ([`crate::interrupt::requested`], checked at every repeat).
 fn band(
     inv: &Inversion,
     tests: &[Test],
@@ -514,7 +524,7 @@ fn band(
     rule: LambdaRule,
     repeats: usize,
     seed: u64,
-) -> Vec<CurvePoint> {
+) -> Option<Vec<CurvePoint>> {
     let edges = resolved_edges(bins);
     let w = &inv.solution.w;
     let mut samples: Vec<Vec<f64>> = vec![Vec::with_capacity(repeats); edges.len()];
@@ -524,6 +534,9 @@ fn band(
         .flat_map(|t| t.readings.iter().map(move |_| t.resolution))
         .collect();
     for _ in 0..repeats {
+        if crate::interrupt::requested() {
+            return None;
+        }
         let mut lin = inv.linear.clone();
         for (i, d) in res.iter().enumerate() {
             lin.b[i] += d * (rng.random::<f64>() - 0.5) + d / 6f64.sqrt() * normal(&mut rng);
@@ -534,7 +547,7 @@ fn band(
             samples[k].push(100.0 * bins.cumulative(&s.w, d));
         }
     }
-    edges
+    let curve = edges
         .iter()
         .zip(samples.iter_mut())
         .map(|(&d, s)| {
@@ -553,5 +566,6 @@ fn band(
                 bounds: None,
             }
         })
-        .collect()
+        .collect();
+    Some(curve)
 }

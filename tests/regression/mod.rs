@@ -19,4 +19,5 @@ mod issue_12_sweep_unsweepable_kind;
 mod issue_13_console_tables;
 mod issue_13_run_toml_rerun;
 mod issue_13_vary_any_key;
+mod issue_26_invert_ctrl_c;
 mod issue_8_concurrent_checkpoint_saves;
