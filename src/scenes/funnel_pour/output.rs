@@ -308,11 +308,7 @@ fn draw_z_chart(
     height_m: f64,
 ) -> io::Result<()> {
     let reps = repeats.max(1) as f64;
-    let x_max = bins
-        .iter()
-        .map(|b| b.count as f64 / reps)
-        .fold(1.0, f64::max)
-        * 1.1;
+    let x_max = z_chart_x_max(bins, reps);
     let top = bins.last().map_or(height_m, |b| b.z_hi_m.max(height_m));
     let y_max = top * 100.0 * 1.05;
     let root = SVGBackend::with_string(text, (700, 800)).into_drawing_area();
@@ -375,16 +371,21 @@ fn draw_z_chart(
     Ok(())
 }
 
+/// The right end of the z chart's x axis: 10 % beyond the largest mean count per repeat (at
+/// least 1.1 balls).
+fn z_chart_x_max(bins: &[ZBin], reps: f64) -> f64 {
+    bins.iter()
+        .map(|b| b.count as f64 / reps)
+        .fold(1.0, f64::max)
+        * 1.1
+}
+
 /// The data of `z_distribution.svg` for a caller that draws it itself: the bars as a line
 /// through each bin's (mean count per repeat, mid-height in cm), f-EDEM's range and the paste
 /// surface as reference lines.
 fn z_figure(title: &str, bins: &[ZBin], repeats: usize, height_m: f64) -> Figure {
     let reps = repeats.max(1) as f64;
-    let x_max = bins
-        .iter()
-        .map(|b| b.count as f64 / reps)
-        .fold(1.0, f64::max)
-        * 1.1;
+    let x_max = z_chart_x_max(bins, reps);
     let level = |label: &str, z_cm: f64, colour: Option<usize>| Drawn::Curve {
         label: label.to_string(),
         points: vec![(0.0, z_cm), (x_max, z_cm)],
