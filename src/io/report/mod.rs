@@ -13,6 +13,7 @@ mod table;
 use crate::io::fmt::sig_trim;
 pub use html::{base64, esc};
 
+use crate::io::Outputs;
 use html::{href, inline_svg, scope_ids, svg_title};
 use std::fmt::Write as _;
 use std::fs;
@@ -90,12 +91,97 @@ pub fn write_report(dir: &Path, page: &Page) -> io::Result<()> {
 /// the tables `page.tables`, every `*.svg` and `*.png` in `dir` and its subfolders, and for
 /// `page.runs` each `../NAME/run.toml`.
 pub fn render(dir: &Path, page: &Page) -> io::Result<String> {
-    let run_toml = read_run_toml(dir);
+    render_files(&Files::Folder(dir), page)
+}
+
+/// The report page of a command's `outputs` in memory, as HTML text: byte for byte the page
+/// [`render`] makes of the folder `outputs` writes ([`Outputs::write_folder`]). `page.runs` must
+/// be empty (the runs beside a folder exist only on disk).
+pub fn render_outputs(outputs: &Outputs, page: &Page) -> String {
+    debug_assert!(
+        page.runs.is_empty(),
+        "a page of outputs in memory links no runs"
+    );
+    // Reading from memory cannot fail: a name not in `outputs` is never asked for.
+    render_files(&Files::Memory(outputs), page).unwrap_or_default()
+}
+
+/// Where a page's files come from: a results folder, or a command's outputs in memory.
+enum Files<'a> {
+    Folder(&'a Path),
+    Memory(&'a Outputs),
+}
+
+impl Files<'_> {
+    /// Every file (relative paths, `/`-separated), in the order [`list_files`] gives a folder's.
+    fn list(&self) -> io::Result<Vec<String>> {
+        match self {
+            Files::Folder(dir) => list_files(dir),
+            Files::Memory(o) => Ok(walk_order(
+                o.tables()
+                    .iter()
+                    .map(|t| t.name().to_string())
+                    .chain(o.files().iter().map(|(n, _)| n.clone())),
+            )),
+        }
+    }
+
+    /// The bytes of the file `rel`.
+    fn read(&self, rel: &str) -> io::Result<Vec<u8>> {
+        match self {
+            Files::Folder(dir) => fs::read(dir.join(rel)),
+            Files::Memory(o) => o
+                .bytes(rel)
+                .ok_or_else(|| io::Error::new(io::ErrorKind::NotFound, rel.to_string())),
+        }
+    }
+
+    /// The folder the files are in, when they are on disk.
+    fn folder(&self) -> Option<&Path> {
+        match self {
+            Files::Folder(dir) => Some(dir),
+            Files::Memory(_) => None,
+        }
+    }
+}
+
+/// The relative paths `names` in the order [`list_files`] walks a folder holding them: at each
+/// level the files first, sorted, then each subfolder's, sorted; hidden entries, temporary files,
+/// the page itself and anything deeper than four levels left out.
+fn walk_order(names: impl Iterator<Item = String>) -> Vec<String> {
+    let mut out: Vec<String> = names
+        .filter(|n| {
+            let parts: Vec<&str> = n.split('/').collect();
+            n != FILE_NAME
+                && parts.len() <= 4
+                && !parts.iter().any(|p| p.starts_with('.'))
+                && !n.ends_with(crate::io::TMP_SUFFIX)
+        })
+        .collect();
+    out.sort_by(|a, b| {
+        let (pa, pb): (Vec<&str>, Vec<&str>) = (a.split('/').collect(), b.split('/').collect());
+        for i in 0..pa.len().min(pb.len()) {
+            if pa[i] != pb[i] {
+                let (a_file, b_file) = (i + 1 == pa.len(), i + 1 == pb.len());
+                return b_file.cmp(&a_file).then_with(|| pa[i].cmp(pb[i]));
+            }
+        }
+        pa.len().cmp(&pb.len())
+    });
+    out.dedup();
+    out
+}
+
+/// The page of the files `files`.
+fn render_files(files: &Files, page: &Page) -> io::Result<String> {
+    let dir = files.folder();
+    let listed = files.list()?;
+    let run_toml = read_run_toml(files);
     let run = run_toml.as_ref().and_then(|t| t.get("run")?.as_table());
     let scenario = run_toml.as_ref().map(scenario_table);
     let field = |k: &str| scenario.as_ref().and_then(|s| s.get(k)?.as_str());
     let name = field("name").unwrap_or(page.title);
-    let charts = chart_files(dir)?;
+    let charts = charts_of(&listed);
     let mut h = String::new();
     let _ = write!(
         h,
@@ -142,12 +228,20 @@ pub fn render(dir: &Path, page: &Page) -> io::Result<String> {
         sections.push(("warnings", "Warnings", warnings_section(run)));
         sections.push(("record", "Run record", record_section(run)));
     }
-    if !page.runs.is_empty() {
-        sections.push(("runs", "Runs", runs_section(dir, page.runs)));
+    let runs = match dir {
+        Some(dir) if !page.runs.is_empty() => Some((dir, page.runs)),
+        _ => None,
+    };
+    if let Some((dir, names)) = runs {
+        sections.push(("runs", "Runs", runs_section(dir, names)));
     }
-    sections.push(("results", "Results", tables_section(dir, page.tables)));
-    sections.push(("charts", "Charts", charts_section(dir, &charts, page.runs)?));
-    sections.push(("files", "Files", files_section(dir)?));
+    sections.push((
+        "results",
+        "Results",
+        tables_section(files, &listed, page.tables),
+    ));
+    sections.push(("charts", "Charts", charts_section(files, &charts, runs)?));
+    sections.push(("files", "Files", files_section(files, &listed)?));
     if let Some(s) = &scenario {
         sections.push(("scenario", "Scenario", scenario_section(s)));
     }
@@ -168,9 +262,12 @@ pub fn render(dir: &Path, page: &Page) -> io::Result<String> {
     Ok(h)
 }
 
-/// `dir/run.toml` as a table; `None` when absent or unreadable.
-fn read_run_toml(dir: &Path) -> Option<toml::Table> {
-    fs::read_to_string(dir.join("run.toml")).ok()?.parse().ok()
+/// `run.toml` of `files` as a table; `None` when absent or unreadable.
+fn read_run_toml(files: &Files) -> Option<toml::Table> {
+    String::from_utf8(files.read("run.toml").ok()?)
+        .ok()?
+        .parse()
+        .ok()
 }
 
 /// The effective scenario recorded in `run.toml`: its `[scenario]` table, or (a run.toml written
@@ -309,7 +406,7 @@ fn runs_section(dir: &Path, runs: &[String]) -> String {
     );
     let mut all_warnings = Vec::new();
     for name in runs {
-        let t = read_run_toml(&parent.join(name));
+        let t = read_run_toml(&Files::Folder(&parent.join(name)));
         let run = t.as_ref().and_then(|t| t.get("run")?.as_table());
         let sc = t.as_ref().map(scenario_table);
         let get = |k: &str| {
@@ -366,17 +463,20 @@ fn runs_section(dir: &Path, runs: &[String]) -> String {
     h
 }
 
-/// The key result tables present in `dir`, each headed by its linked file name.
-fn tables_section(dir: &Path, tables: &[&str]) -> String {
+/// The key result tables present among `files` (`listed`), each headed by its linked file name.
+fn tables_section(files: &Files, listed: &[String], tables: &[&str]) -> String {
     let mut h = String::from("<section id=\"results\"><h2>Results</h2>");
     let mut any = false;
     for name in tables {
-        let path = dir.join(name);
-        if !path.is_file() {
+        if !listed.iter().any(|l| l == name) {
             continue;
         }
         let _ = write!(h, "<h3><a href=\"{}\">{}</a></h3>", href(name), esc(name));
-        match csv_table(&path, name, MAX_ROWS) {
+        match files
+            .read(name)
+            .ok()
+            .and_then(|b| csv_table(&b, name, MAX_ROWS))
+        {
             Some(t) => h.push_str(&t),
             None => h.push_str("<p class=\"note\">(not readable as a table)</p>"),
         }
@@ -392,13 +492,19 @@ fn tables_section(dir: &Path, tables: &[&str]) -> String {
 /// Every chart in `dir` and its subfolders (`*.svg`, `*.png`), as paths relative to `dir`:
 /// the folder's own first, then each subfolder's, each sorted by name.
 pub fn chart_files(dir: &Path) -> io::Result<Vec<String>> {
-    Ok(list_files(dir)?
-        .into_iter()
+    Ok(charts_of(&list_files(dir)?))
+}
+
+/// The charts (`*.svg`, `*.png`) among the relative paths `listed`, in their order.
+fn charts_of(listed: &[String]) -> Vec<String> {
+    listed
+        .iter()
         .filter(|r| {
             let l = r.to_ascii_lowercase();
             l.ends_with(".svg") || l.ends_with(".png")
         })
-        .collect())
+        .cloned()
+        .collect()
 }
 
 /// Every file in `dir` and its subfolders (relative paths, `/`-separated; hidden entries,
@@ -445,9 +551,15 @@ fn list_files(dir: &Path) -> io::Result<Vec<String>> {
     Ok(out)
 }
 
-/// Every chart of `dir` (and, on the combined page, of each run in `runs`), inlined, numbered,
-/// with a caption: its title and its linked file name.
-fn charts_section(dir: &Path, charts: &[String], runs: &[String]) -> io::Result<String> {
+/// Every chart of `files` (and, on the combined page, of each run in `runs`: the results folder
+/// and the runs' names beside it), inlined, numbered, with a caption: its title and its linked
+/// file name.
+fn charts_section(
+    files: &Files,
+    charts: &[String],
+    runs: Option<(&Path, &[String])>,
+) -> io::Result<String> {
+    let (dir, runs) = runs.unwrap_or((Path::new(""), &[]));
     let parent = dir.parent().map(Path::to_path_buf).unwrap_or_default();
     let mut groups: Vec<(Option<&str>, Vec<String>)> = Vec::new();
     if !charts.is_empty() {
@@ -464,7 +576,7 @@ fn charts_section(dir: &Path, charts: &[String], runs: &[String]) -> io::Result<
     }
     let mut h = String::from("<section id=\"charts\"><h2>Charts</h2>\n");
     let mut n = 0;
-    for (run, files) in &groups {
+    for (run, group) in &groups {
         if let Some(run) = run {
             let _ = writeln!(
                 h,
@@ -473,13 +585,16 @@ fn charts_section(dir: &Path, charts: &[String], runs: &[String]) -> io::Result<
                 href(&format!("../{run}/{FILE_NAME}"))
             );
         }
-        for rel in files {
+        for rel in group {
             n += 1;
-            let (path, link) = match run {
-                Some(run) => (parent.join(run).join(rel), format!("../{run}/{rel}")),
-                None => (dir.join(rel), rel.clone()),
+            let (bytes, link) = match run {
+                Some(run) => (
+                    fs::read(parent.join(run).join(rel))?,
+                    format!("../{run}/{rel}"),
+                ),
+                None => (files.read(rel)?, rel.clone()),
             };
-            h.push_str(&figure(&path, &link, n)?);
+            h.push_str(&figure(&bytes, &link, n));
         }
     }
     h.push_str("</section>\n");
@@ -488,9 +603,9 @@ fn charts_section(dir: &Path, charts: &[String], runs: &[String]) -> io::Result<
 
 /// One chart as a numbered figure: an SVG inlined (its ids made unique to figure `n`), a PNG as
 /// a base64 `data:` URI, captioned with the chart's title and a link to the file.
-fn figure(path: &Path, link: &str, n: usize) -> io::Result<String> {
+fn figure(bytes: &[u8], link: &str, n: usize) -> String {
     let (body, title) = if link.to_ascii_lowercase().ends_with(".svg") {
-        let text = fs::read_to_string(path)?;
+        let text = String::from_utf8_lossy(bytes);
         match inline_svg(&text) {
             Some(svg) => (scope_ids(&svg, &format!("f{n}-")), svg_title(&text)),
             None => (
@@ -503,19 +618,19 @@ fn figure(path: &Path, link: &str, n: usize) -> io::Result<String> {
             format!(
                 "<img alt=\"{}\" src=\"data:image/png;base64,{}\">",
                 esc(link),
-                base64(&fs::read(path)?)
+                base64(bytes)
             ),
             None,
         )
     };
-    Ok(format!(
+    format!(
         "<figure data-file=\"{}\">{body}<figcaption><strong>Figure {n}.</strong> {}\
          <a href=\"{}\">{}</a></figcaption></figure>\n",
         esc(link),
         title.map(|t| format!("{} — ", esc(&t))).unwrap_or_default(),
         href(link),
         esc(link)
-    ))
+    )
 }
 
 /// A file size as a person reads it (B, kB, MB, GB; powers of 1000).
@@ -531,22 +646,24 @@ fn size_text(bytes: u64) -> String {
 
 /// Every output file, linked, with its size; a folder with many files names the first
 /// [`MAX_FILES_PER_FOLDER`] and counts the rest.
-fn files_section(dir: &Path) -> io::Result<String> {
-    let files = list_files(dir)?;
+fn files_section(source: &Files, files: &[String]) -> io::Result<String> {
     let mut h = format!(
         "<section id=\"files\"><h2>Files</h2><p class=\"note\">{} files in this folder \
          (links open them).</p><ul class=\"files\">",
         files.len()
     );
     let mut per_folder: std::collections::BTreeMap<&str, usize> = Default::default();
-    for rel in &files {
+    for rel in files {
         let folder = rel.rsplit_once('/').map_or("", |(f, _)| f);
         let n = per_folder.entry(folder).or_default();
         *n += 1;
         if !folder.is_empty() && *n > MAX_FILES_PER_FOLDER {
             continue;
         }
-        let size = fs::metadata(dir.join(rel)).map(|m| m.len()).unwrap_or(0);
+        let size = match source {
+            Files::Folder(dir) => fs::metadata(dir.join(rel)).map(|m| m.len()).unwrap_or(0),
+            Files::Memory(o) => o.bytes(rel).map_or(0, |b| b.len() as u64),
+        };
         let _ = write!(
             h,
             "<li><a href=\"{}\">{}</a> <span class=\"size\">{}</span></li>",
@@ -652,5 +769,56 @@ mod tests {
             h.contains("<div class=\"box ok\"><strong>none</strong>"),
             "{h}"
         );
+    }
+
+    /// The page of a command's outputs in memory is the page of the folder they are written
+    /// to, byte for byte: the same files in the same order (root files before subfolders, at
+    /// every depth), the same tables, charts and sizes; hidden files and the page itself left
+    /// out in both.
+    #[test]
+    fn outputs_in_memory_render_as_their_folder() {
+        let mut o = Outputs::new();
+        o.table(crate::io::Table::from_csv("sweep.csv", b"dt_s,error\n0.001,0.5\n").unwrap());
+        o.table(crate::io::Table::from_csv("recommended_dt.csv", b"id,dt_s\nS1,1e-3\n").unwrap());
+        o.file(
+            "b/z.svg",
+            "<svg width=\"2\" height=\"1\"><text>Z</text></svg>",
+        );
+        o.file("b/a/deep.txt", "x");
+        o.file(
+            "a.svg",
+            "<svg width=\"3\" height=\"1\"><text>A</text></svg>",
+        );
+        o.file("b/c/d/e/too_deep.txt", "y");
+        o.file("b/.hidden", "h");
+        o.file("ab.png", [137u8, 80, 78, 71]);
+        o.file(
+            "run.toml",
+            "[scenario]\nname = \"s\"\nkind = \"free_settling\"\n",
+        );
+        let dir = std::env::temp_dir().join(format!("settle-report-mem-{}", std::process::id()));
+        let _ = fs::remove_dir_all(&dir);
+        fs::create_dir_all(&dir).unwrap();
+        let f = Folder(dir);
+        o.write_into(&f.0).unwrap();
+        let page = Page::sweep("s");
+        let from_folder = render(&f.0, &page).unwrap();
+        assert_eq!(render_outputs(&o, &page), from_folder);
+        let order: Vec<&str> = [
+            "a.svg",
+            "ab.png",
+            "run.toml",
+            "sweep.csv",
+            "b/z.svg",
+            "b/a/deep.txt",
+        ]
+        .into_iter()
+        .collect();
+        let pos: Vec<usize> = order
+            .iter()
+            .map(|n| from_folder.find(&format!(">{n}</a> <span")).expect(n))
+            .collect();
+        assert!(pos.windows(2).all(|w| w[0] < w[1]), "{order:?} at {pos:?}");
+        assert!(!from_folder.contains("too_deep") && !from_folder.contains(".hidden"));
     }
 }

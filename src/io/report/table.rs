@@ -5,7 +5,6 @@
 
 use super::html::{cell, esc, href};
 use std::fmt::Write as _;
-use std::path::Path;
 
 /// Rows from which a column with the same value in every row is said once instead of repeated.
 const FOLD_CONSTANT_FROM_ROWS: usize = 6;
@@ -41,12 +40,9 @@ fn estimated_width_px(
         .sum()
 }
 
-/// A CSV file's header and rows; `None` when it is not readable as CSV.
-fn read(path: &Path) -> Option<(Vec<String>, Vec<Vec<String>>)> {
-    let mut rd = csv::ReaderBuilder::new()
-        .flexible(true)
-        .from_path(path)
-        .ok()?;
+/// A CSV file's header and rows from its bytes; `None` when it is not readable as CSV.
+fn read(bytes: &[u8]) -> Option<(Vec<String>, Vec<Vec<String>>)> {
+    let mut rd = csv::ReaderBuilder::new().flexible(true).from_reader(bytes);
     let header: Vec<String> = rd.headers().ok()?.iter().map(str::to_string).collect();
     let rows = rd
         .records()
@@ -83,10 +79,10 @@ fn data_cell(raw: &str) -> String {
 /// Text cells up to this many characters are never broken over lines (`fedem-table1`).
 const SHORT_TEXT_CHARS: usize = 24;
 
-/// The HTML of the CSV file `path` (linked as `rel`): at most `max_rows` rows, then a line
+/// The HTML of the CSV file `bytes` (linked as `rel`): at most `max_rows` rows, then a line
 /// saying how many more the file has. `None` when the file cannot be read as CSV.
-pub fn csv_table(path: &Path, rel: &str, max_rows: usize) -> Option<String> {
-    let (header, rows) = read(path)?;
+pub fn csv_table(bytes: &[u8], rel: &str, max_rows: usize) -> Option<String> {
+    let (header, rows) = read(bytes)?;
     let total = rows.len();
     let value = |r: &Vec<String>, c: usize| r.get(c).map_or("", |v| v.trim()).to_string();
     let empty: Vec<usize> = (0..header.len())
@@ -194,13 +190,7 @@ mod tests {
     use super::*;
 
     fn table(text: &str, max_rows: usize) -> String {
-        let dir = std::env::temp_dir().join(format!("settle-report-table-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let p = dir.join(format!("t{}.csv", text.len()));
-        std::fs::write(&p, text).unwrap();
-        let h = csv_table(&p, "t.csv", max_rows).unwrap();
-        let _ = std::fs::remove_file(&p);
-        h
+        csv_table(text.as_bytes(), "t.csv", max_rows).unwrap()
     }
 
     #[test]
