@@ -18,7 +18,7 @@ fn cost(sample: u32, sets: &[&str]) -> Cost {
     let path = format!("scenarios/sedimentation_sample{sample}.toml");
     let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
     let p = crate::scenario::parse(Path::new(&path), &sets).unwrap();
-    estimate(&p.scenario)
+    estimate(&p)
 }
 
 /// Full physics without contacts at N = 10⁶, CPU (user + sys) of `settle run` per sample
@@ -91,7 +91,7 @@ fn a_million_grains_with_contacts_are_refused_without_force() {
         ]
     };
     let p = crate::scenario::parse(path, &sets(true)).unwrap();
-    let e = check(&p.scenario, path, false).unwrap_err().to_string();
+    let e = check(&p, false).unwrap_err().to_string();
     for w in [
         "sedimentation_sample2.toml",
         "sample.particles",
@@ -101,7 +101,7 @@ fn a_million_grains_with_contacts_are_refused_without_force() {
     ] {
         assert!(e.contains(w), "`{w}` missing: {e}");
     }
-    assert!(check(&p.scenario, path, true).is_ok());
+    assert!(check(&p, true).is_ok());
     let p = crate::scenario::parse(path, &sets(false)).unwrap();
-    assert!(check(&p.scenario, path, false).is_ok());
+    assert!(check(&p, false).is_ok());
 }
