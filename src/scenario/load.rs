@@ -29,7 +29,7 @@ pub struct Overrides {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Parsed {
     /// The scenario as read (overrides applied): the record written back to `run.toml`.
-    pub(in crate::scenario) scenario: Scenario,
+    pub(super) scenario: Scenario,
     /// What every kind reads, typed.
     pub common: Common,
     /// What the scenario's kind needs, typed.
@@ -69,11 +69,13 @@ impl Parsed {
         super::inputs::read_reference(&self.scenario, file)
     }
 
-    /// The effective scenario as a record (run.toml's `[scenario]`).
-    pub fn record(&self) -> Record {
-        Record {
-            scenario: self.scenario.clone(),
-        }
+    /// Its parts, the raw scenario consumed into its record: the common part, the kind's spec,
+    /// the fluid's rheology and the record of the effective scenario (run.toml's `[scenario]`).
+    pub fn into_parts(self) -> (Common, SceneSpec, RheologyModel, Record) {
+        let record = Record {
+            scenario: self.scenario,
+        };
+        (self.common, self.scene, self.rheology, record)
     }
 }
 

@@ -65,17 +65,11 @@ impl Prepared {
         if let Some(dt) = dt_s {
             ov.push(format!("time.dt_s={dt:e}"));
         }
-        let parsed = crate::scenario::parse_str(text, path, &ov)?;
+        let parsed: crate::scenario::Parsed = crate::scenario::parse_str(text, path, &ov)?;
         check(&parsed.common)?;
         let spheres = parsed.spheres(path)?;
         let reference = parsed.reference(path)?;
-        let record = parsed.record();
-        let crate::scenario::Parsed {
-            common,
-            scene,
-            rheology,
-            ..
-        } = parsed;
+        let (common, scene, rheology, record) = parsed.into_parts();
         Ok(Prepared {
             path: path.to_path_buf(),
             common,

@@ -17,7 +17,7 @@ use std::path::Path;
 fn cost(sample: u32, sets: &[&str]) -> Cost {
     let path = format!("scenarios/sedimentation_sample{sample}.toml");
     let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
-    let p = crate::scenario::parse(Path::new(&path), &sets).unwrap();
+    let p = crate::scenes::tests::prepare(Path::new(&path), None, &sets).unwrap();
     estimate(&p)
 }
 
@@ -90,7 +90,7 @@ fn a_million_grains_with_contacts_are_refused_without_force() {
             format!("sample.contacts={contacts}"),
         ]
     };
-    let p = crate::scenario::parse(path, &sets(true)).unwrap();
+    let p = crate::scenes::tests::prepare(path, None, &sets(true)).unwrap();
     let e = check(&p, false).unwrap_err().to_string();
     for w in [
         "sedimentation_sample2.toml",
@@ -102,6 +102,6 @@ fn a_million_grains_with_contacts_are_refused_without_force() {
         assert!(e.contains(w), "`{w}` missing: {e}");
     }
     assert!(check(&p, true).is_ok());
-    let p = crate::scenario::parse(path, &sets(false)).unwrap();
+    let p = crate::scenes::tests::prepare(path, None, &sets(false)).unwrap();
     assert!(check(&p, false).is_ok());
 }
