@@ -185,7 +185,7 @@ type Row = (String, f64, f64, f64, f64);
 /// Every reading of `instruments.csv` of the run `out` (scenario `p`) against the same
 /// instrument on the hindered forward field of the input curve.
 fn against_forward(p: &Prepared, out: &Outputs) -> Vec<Row> {
-    let su = setup(&p).unwrap();
+    let su = setup(p).unwrap();
     let set = InstrumentSet::new(&su);
     let an = set.analysis;
     let col = Column {
