@@ -148,10 +148,9 @@ impl Scenario {
     /// The effective scenario (overrides applied, defaults filled in, input files as absolute
     /// paths) as the text of a scenario file: the `[scenario]` table of `run.toml`.
     pub fn to_toml(&self) -> Result<String, Error> {
-        let io = |e: String| Error::Io(self.origin.clone(), std::io::Error::other(e));
-        let table = crate::scenario::record_table(&self.prepared.scenario, &self.origin)
-            .map_err(|e| io(e.to_string()))?;
-        toml::to_string(&table).map_err(|e| io(e.to_string()))
+        let table = self.prepared.record_table()?;
+        toml::to_string(&table)
+            .map_err(|e| Error::Io(self.origin.clone(), std::io::Error::other(e)))
     }
 
     /// The prepared scenario, for the crate's other commands ([`crate::sweep`]).
@@ -185,7 +184,7 @@ impl Scenario {
     /// [`Status::Interrupted`].
     pub fn run_with(&self, opts: &RunOptions) -> Result<RunResult, Error> {
         let p = &self.prepared;
-        crate::scenes::cost::check(&p.scenario, &p.path, opts.force)?;
+        crate::scenes::cost::check(p, opts.force)?;
         let ctx = RunContext {
             quiet: !opts.progress,
             ..RunContext::default()

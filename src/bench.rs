@@ -72,6 +72,21 @@ fn valentik(root: &Path) -> Result<Vec<Prepared>, Error> {
         .collect()
 }
 
+/// The free-settling scene of `p`, or a bad input naming its kind (the benchmarks of free
+/// spheres load free-settling and drop scenarios).
+fn spheres_scene(p: &Prepared) -> Result<free_settling::Scene<'_>, Error> {
+    free_settling::Scene::of(p).ok_or_else(|| {
+        Error::bad_input(
+            &p.path,
+            Some("kind"),
+            format!(
+                "`{}`: allowed kind = \"free_settling\" or \"drop\"",
+                p.common.kind.name()
+            ),
+        )
+    })
+}
+
 fn run_all(ps: &[Prepared], dt: f64, integ: Integrator) -> Result<(f64, u64), Error> {
     let t0 = Instant::now();
     let mut steps = 0;
@@ -81,7 +96,7 @@ fn run_all(ps: &[Prepared], dt: f64, integ: Integrator) -> Result<(f64, u64), Er
             integrator: integ,
             timeseries: false,
         };
-        let r = free_settling::run(&p.scenario, p.rheology, &p.spheres, opts)
+        let r = free_settling::run(spheres_scene(p)?, &p.spheres, opts)
             .map_err(|u| Error::Unstable(p.path.clone(), u))?;
         steps += r.iter().map(|x| x.steps).sum::<u64>();
     }
@@ -231,7 +246,7 @@ fn paste_drops(root: &Path, out: &mut Vec<Figure>) -> Result<(), Error> {
             integrator: Integrator::Exponential,
             timeseries: false,
         };
-        let r = free_settling::run(&paste.scenario, paste.rheology, &paste.spheres, opts)
+        let r = free_settling::run(spheres_scene(&paste)?, &paste.spheres, opts)
             .map_err(|u| Error::Unstable(paste_file.clone(), u))?;
         let steps: u64 = r.iter().map(|x| x.steps).sum();
         out.push(fig(
@@ -340,7 +355,7 @@ fn sedimentation_case(
         .map_err(Error::BadInput)?;
     let peak_reset = reset_peak_rss();
     let rss0 = rss_bytes();
-    let su = crate::scenes::sedimentation::setup(&p.scenario, &p.path)?;
+    let su = crate::scenes::sedimentation::setup(&p)?;
     let cpu0 = cpu_time_s();
     let t0 = Instant::now();
     let st = crate::scenes::sedimentation::simulate(
@@ -473,9 +488,7 @@ fn transient_step(root: &Path, quick: bool, out: &mut Vec<Figure>) -> Result<(),
         }
         let p = prepare(&file, Some(dt), &ov).map_err(Error::BadInput)?;
         let states = match history {
-            Some(_) => {
-                free_settling::history_states(&p.scenario, p.rheology, &p.spheres).unwrap_or(0)
-            }
+            Some(_) => free_settling::history_states(spheres_scene(&p)?, &p.spheres).unwrap_or(0),
             None => 2,
         };
         let opts = RunOptions {
@@ -484,7 +497,7 @@ fn transient_step(root: &Path, quick: bool, out: &mut Vec<Figure>) -> Result<(),
             timeseries: false,
         };
         let t0 = Instant::now();
-        let r = free_settling::run(&p.scenario, p.rheology, &p.spheres, opts)
+        let r = free_settling::run(spheres_scene(&p)?, &p.spheres, opts)
             .map_err(|u| Error::Unstable(file.clone(), u))?;
         let wall = t0.elapsed().as_secs_f64();
         Ok((wall, r.iter().map(|x| x.steps).sum(), states))
@@ -541,7 +554,7 @@ fn valentik_sweep(ps: &[Prepared], out: &mut Vec<Figure>) -> Result<(), Error> {
     let t0 = Instant::now();
     let mut cases = 0;
     for p in ps {
-        let sw = p.scenario.sweep.as_ref().ok_or_else(|| {
+        let sw = p.common.sweep.as_ref().ok_or_else(|| {
             Error::bad_input(
                 &p.path,
                 Some("sweep"),

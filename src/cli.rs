@@ -433,7 +433,7 @@ fn print_report(r: &FileReport) {
 /// format of [`crate::io::fmt`].
 pub fn table(r: &FileReport) -> Vec<String> {
     use crate::io::fmt::g;
-    let s = &r.prepared.scenario;
+    let s = &r.prepared.common;
     if r.results.is_empty() {
         let mut out = vec![format!(
             "{} ({} s wall) -> {}",

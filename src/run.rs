@@ -5,7 +5,7 @@
 use crate::error::BadInput;
 use crate::error::Error;
 use crate::io::{self as output, StagedDir};
-use crate::scenario::{self, Kind, Scenario};
+use crate::scenario::{self, Common, Kind};
 use crate::scenes::free_settling::{self, output as out_fs};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -45,7 +45,7 @@ pub struct RunRequest {
 
 /// Refuses names the output layout reserves ([`RESERVED_NAMES`]) and names too long for a
 /// folder ([`MAX_NAME_BYTES`]).
-fn check_name(s: &Scenario, path: &Path) -> Result<(), BadInput> {
+fn check_name(s: &Common, path: &Path) -> Result<(), BadInput> {
     if RESERVED_NAMES.contains(&s.name.as_str()) {
         return Err(BadInput::new(
             path,
@@ -146,7 +146,7 @@ struct RunToml<'a> {
     /// with these settings and length_unit_m = its diameter; shown for the smallest sphere.
     #[serde(skip_serializing_if = "Option::is_none")]
     engine_settings: Option<crate::engine::EngineSettings>,
-    /// The effective scenario ([`scenario::record_table`]).
+    /// The effective scenario ([`Prepared::record_table`]).
     scenario: toml::Table,
 }
 
@@ -202,7 +202,7 @@ pub fn execute(p: &Prepared, ctx: &RunContext) -> Result<Executed, Error> {
 /// The text of `run.toml` of the run `done` of `p`: the record of the run and its effective
 /// scenario.
 pub fn run_toml(p: &Prepared, done: &Executed) -> Result<String, Error> {
-    let s = &p.scenario;
+    let c = &p.common;
     let report = &done.report;
     let meta = RunToml {
         run: RunMeta {
@@ -213,9 +213,9 @@ pub fn run_toml(p: &Prepared, done: &Executed) -> Result<String, Error> {
             } else {
                 "complete"
             },
-            engine: s.engine().name(),
-            integrator: s.time.integrator.name(),
-            dt_s: s.time.dt_s,
+            engine: c.engine.name(),
+            integrator: c.time.integrator.name(),
+            dt_s: c.time.dt_s,
             steps: report.steps,
             bodies: report.bodies,
             wall_time_s: done.wall_time_s,
@@ -224,8 +224,7 @@ pub fn run_toml(p: &Prepared, done: &Executed) -> Result<String, Error> {
             overrides: &p.overrides,
         },
         engine_settings: report.engine_settings,
-        scenario: scenario::record_table(s, &p.path)
-            .map_err(|e| Error::Io(p.path.clone(), std::io::Error::other(e)))?,
+        scenario: p.record_table()?,
     };
     let text =
         toml::to_string(&meta).map_err(|e| Error::Io(p.path.clone(), std::io::Error::other(e)))?;
@@ -235,15 +234,13 @@ pub fn run_toml(p: &Prepared, done: &Executed) -> Result<String, Error> {
 /// Writes the run `done` of `p` to `out_dir/<name>/`: its outputs, `run.toml` and the report
 /// page, staged and moved into place ([`StagedDir`]); returns the folder.
 pub fn write(p: &Prepared, done: &Executed, out_dir: &Path) -> Result<PathBuf, Error> {
-    let s = &p.scenario;
-    let stage =
-        StagedDir::new(out_dir, &s.name).map_err(|e| Error::Io(out_dir.join(&s.name), e))?;
+    let name = &p.common.name;
+    let stage = StagedDir::new(out_dir, name).map_err(|e| Error::Io(out_dir.join(name), e))?;
     let io = |e: std::io::Error| Error::Io(stage.dest().to_path_buf(), e);
     done.outputs.write_into(&stage.path("")).map_err(io)?;
     let text = run_toml(p, done)?;
     output::write_atomic(&stage.path("run.toml"), text.as_bytes()).map_err(io)?;
-    output::report::write_report(&stage.path(""), &output::report::Page::run(&s.name))
-        .map_err(io)?;
+    output::report::write_report(&stage.path(""), &output::report::Page::run(name)).map_err(io)?;
     commit(stage, &p.path)
 }
 
@@ -274,10 +271,7 @@ pub fn run_files(req: &RunRequest) -> Result<Vec<FileReport>, Error> {
     let (req, saved) = resolve_resume(req)?;
     let prepared = prepare_all(&req)?;
     check_destinations(&req.out_dir, &prepared)?;
-    let fingerprints: Vec<String> = prepared
-        .iter()
-        .map(|p| toml::to_string(&p.scenario).unwrap_or_default())
-        .collect();
+    let fingerprints: Vec<String> = prepared.iter().map(Prepared::fingerprint).collect();
     let mut checkpoints = Checkpoints::new(&req.out_dir, req.checkpoint_every_s);
     let ck_dir = checkpoints.dir().to_path_buf();
     let io_ck = |e: std::io::Error| Error::Io(ck_dir.clone(), e);
@@ -365,21 +359,21 @@ fn prepare_all(req: &RunRequest) -> Result<Vec<Prepared>, Error> {
         .map_err(Error::BadInput)?;
     let mut names = std::collections::HashSet::new();
     for p in &prepared {
-        if !names.insert(p.scenario.name.clone()) {
+        if !names.insert(p.common.name.clone()) {
             return Err(Error::BadInput(BadInput::new(
                 &p.path,
                 Some("name"),
                 format!(
                     "`{}` is used by another scenario of this run: names must be unique",
-                    p.scenario.name
+                    p.common.name
                 ),
             )));
         }
-        let cost = crate::scenes::cost::estimate(&p.scenario);
+        let cost = crate::scenes::cost::estimate(p);
         if !req.quiet && cost.is_long() {
             eprintln!("{}: {}", p.path.display(), cost.describe());
         }
-        crate::scenes::cost::check(&p.scenario, &p.path, req.force).map_err(Error::BadInput)?;
+        crate::scenes::cost::check(p, req.force).map_err(Error::BadInput)?;
     }
     Ok(prepared)
 }
@@ -396,7 +390,7 @@ pub fn check_destinations(out_dir: &Path, prepared: &[Prepared]) -> Result<(), E
         ));
     }
     for p in prepared {
-        destination_allowed(&out_dir.join(&p.scenario.name), &p.path)?;
+        destination_allowed(&out_dir.join(&p.common.name), &p.path)?;
     }
     let combined = out_dir.join("combined");
     if prepared.len() > 1 && output::check_destination(&combined).is_err() {
@@ -442,13 +436,9 @@ fn write_combined(out_dir: &Path, reports: &[FileReport]) -> Result<(), Error> {
     let mut rows = Vec::new();
     let mut all = Vec::new();
     for r in reports {
-        let s = &r.prepared.scenario;
+        let time = &r.prepared.common.time;
         for x in &r.results {
-            rows.push(out_fs::summary_row(
-                x,
-                s.time.dt_s,
-                s.time.integrator.name(),
-            ));
+            rows.push(out_fs::summary_row(x, time.dt_s, time.integrator.name()));
         }
         all.extend(r.results.iter().cloned());
     }
@@ -476,7 +466,7 @@ fn write_combined(out_dir: &Path, reports: &[FileReport]) -> Result<(), Error> {
     }
     let names: Vec<String> = reports
         .iter()
-        .map(|r| r.prepared.scenario.name.clone())
+        .map(|r| r.prepared.common.name.clone())
         .collect();
     output::report::write_report(&stage.path(""), &output::report::Page::combined(&names))
         .map_err(io)?;

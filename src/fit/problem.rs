@@ -116,7 +116,7 @@ impl Problem {
 
     /// The scenario's name.
     pub fn name(&self) -> &str {
-        &self.base.scenario.name
+        &self.base.common.name
     }
 
     /// Runs of the scenario made so far.
@@ -169,7 +169,7 @@ impl Problem {
                 have.sort();
                 return Err(bad(format!(
                     "a {} run writes no such CSV: it writes {}",
-                    self.base.scenario.kind.name(),
+                    self.base.common.kind.name(),
                     have.join(", ")
                 )));
             };

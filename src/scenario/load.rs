@@ -23,11 +23,13 @@ pub struct Overrides {
 }
 
 /// A validated scenario with its typed parts: the common part every kind reads, the scene
-/// spec of its kind and the rheology of its fluid.
+/// spec of its kind and the rheology of its fluid. The raw scenario stays inside the scenario
+/// layer: out of it come only its input files ([`Parsed::spheres`], [`Parsed::reference`]) and
+/// its [`Record`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct Parsed {
     /// The scenario as read (overrides applied): the record written back to `run.toml`.
-    pub scenario: Scenario,
+    pub(super) scenario: Scenario,
     /// What every kind reads, typed.
     pub common: Common,
     /// What the scenario's kind needs, typed.
@@ -47,6 +49,55 @@ impl Parsed {
             scene,
             rheology,
         })
+    }
+}
+
+impl Parsed {
+    /// The spheres of the scenario (read from `spheres_csv` when given, one case per fall
+    /// height of a drop), relative input files found from `file`'s folder
+    /// ([`super::inputs::spheres`]).
+    pub fn spheres(&self, file: &Path) -> Result<Vec<super::inputs::SphereCase>, BadInput> {
+        super::inputs::spheres(&self.scenario, file)
+    }
+
+    /// The measured curves of its `[reference]` (None without one;
+    /// [`super::inputs::read_reference`]).
+    pub fn reference(
+        &self,
+        file: &Path,
+    ) -> Result<Option<super::inputs::MeasuredCurves>, BadInput> {
+        super::inputs::read_reference(&self.scenario, file)
+    }
+
+    /// Its parts, the raw scenario consumed into its record: the common part, the kind's spec,
+    /// the fluid's rheology and the record of the effective scenario (run.toml's `[scenario]`).
+    pub fn into_parts(self) -> (Common, SceneSpec, RheologyModel, Record) {
+        let record = Record {
+            scenario: self.scenario,
+        };
+        (self.common, self.scene, self.rheology, record)
+    }
+}
+
+/// The effective scenario of a run (overrides applied, defaults filled in), kept whole as the
+/// record of the run and nothing else: what comes out of it is its TOML, never its raw keys
+/// (scenes read the typed parts of [`Parsed`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Record {
+    scenario: Scenario,
+}
+
+impl Record {
+    /// The table written to `run.toml` as `[scenario]` ([`record_table`]): the tables the kind
+    /// uses, input files as absolute paths (relative ones are found from `file`'s folder).
+    pub fn table(&self, file: &Path) -> Result<toml::Table, toml::ser::Error> {
+        record_table(&self.scenario, file)
+    }
+
+    /// The whole effective scenario as TOML text (every table, input files as given): a
+    /// fingerprint that tells whether a scenario changed (the checkpoints of `settle run`).
+    pub fn fingerprint(&self) -> String {
+        toml::to_string(&self.scenario).unwrap_or_default()
     }
 }
 

@@ -11,8 +11,9 @@
 //! scenes take: the [`Common`] part every kind reads (its fluid as a [`RheologyModel`] and a
 //! density, its drag as a [`crate::fluid::DragLaw`], the engine resolved) and the [`SceneSpec`]
 //! of its kind (every table the kind needs present and checked, its input files read); the
-//! dimension is read straight into a [`Dim`]. The raw [`Scenario`] stays beside them as the
-//! record written to `run.toml`.
+//! dimension is read straight into a [`Dim`]. The raw [`Scenario`] stops here: beside the typed
+//! parts it leaves this module only as an opaque [`Record`], the effective scenario written to
+//! `run.toml`.
 //!
 //! What a kind is (its name, tables, spec, scene folder, example, outputs) is written once, in
 //! the registry [`KINDS`].
@@ -29,7 +30,7 @@ mod validate;
 
 pub use common::Common;
 pub use kinds::{info, sweepable_names, SceneSpec};
-pub use load::{is_key_path, parse_str, record_table, Overrides, Parsed};
+pub use load::{is_key_path, parse_str, Overrides, Parsed, Record};
 pub(crate) use schema::check_sphere;
 pub use schema::*;
 // Re-exported for the unit tests only.

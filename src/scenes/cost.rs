@@ -6,8 +6,7 @@
 //! starts ([`Cost::is_long`], [`Cost::describe`]).
 
 use crate::error::BadInput;
-use crate::scenario::Scenario;
-use std::path::Path;
+use crate::scenario::Common;
 
 /// Wall time above which a run is refused without `--force`, s (24 h).
 pub const MAX_WALL_S: f64 = 24.0 * 3600.0;
@@ -63,9 +62,9 @@ pub const STEP_HINT: &str = "raise the step, shorten time.end_s, or run with --f
 
 /// A run of `bodies` Rapier bodies over `time.end_s / time.dt_s` steps, writing a summary row
 /// per body: the load of the contact kinds.
-pub fn rapier_load(s: &Scenario, bodies: f64, key: &'static str) -> Load {
+pub fn rapier_load(c: &Common, bodies: f64, key: &'static str) -> Load {
     Load {
-        steps: s.time.end_s / s.time.dt_s,
+        steps: c.time.end_s / c.time.dt_s,
         bodies,
         body_step_s: RAPIER_BODY_STEP_S,
         body_bytes: RAPIER_BODY_BYTES,
@@ -128,9 +127,9 @@ fn hours(s: f64) -> String {
     }
 }
 
-/// Estimates the cost of a scenario (see the module doc).
-pub fn estimate(s: &Scenario) -> Cost {
-    of(&super::load(s))
+/// Estimates the cost of a prepared scenario (see the module doc).
+pub fn estimate(p: &super::Prepared) -> Cost {
+    of(&super::load(p))
 }
 
 /// The cost of a load.
@@ -155,9 +154,10 @@ pub fn physical_memory_bytes() -> Option<f64> {
 
 /// Refuses a scenario whose estimate exceeds the limits: [`MAX_WALL_S`] and
 /// [`MAX_MEMORY_BYTES`] unless `force`, and the machine's physical memory always. The error names
-/// the file, the key that drives the cost and the estimate.
-pub fn check(s: &Scenario, file: &Path, force: bool) -> Result<Cost, BadInput> {
-    let load = super::load(s);
+/// the scenario file, the key that drives the cost and the estimate.
+pub fn check(p: &super::Prepared, force: bool) -> Result<Cost, BadInput> {
+    let file = p.path.as_path();
+    let load = super::load(p);
     let c = of(&load);
     let key = load.key;
     let memory = format!(

@@ -11,21 +11,22 @@ pub mod tilt_friction;
 pub mod validity;
 
 use crate::error::BadInput;
-use crate::scenario::{Kind, RheologyModel, Scenario, SceneSpec};
+use crate::scenario::{Common, RheologyModel, SceneSpec};
 use std::path::{Path, PathBuf};
 
-/// A loaded scenario ready to run: the effective scenario and its input files, read and checked.
+/// A loaded scenario ready to run: its typed parts and its input files, read and checked.
+/// Parse, don't validate: nothing raw is left here (the raw scenario stops at the loader,
+/// [`crate::scenario::Parsed`]); scenes read [`Prepared::common`] and their spec
+/// ([`Prepared::scene`]), and the effective scenario survives only as the record of the run
+/// ([`Prepared::record_table`], [`Prepared::fingerprint`]).
 #[derive(Clone, Debug)]
 pub struct Prepared {
     /// The scenario file.
     pub path: PathBuf,
-    /// The effective scenario (overrides applied): the record written to `run.toml`. Scenes
-    /// read [`Prepared::common`] and their spec ([`Prepared::scene`]), not this (the
-    /// sedimentation cylinder's simulation still takes it whole).
-    pub scenario: Scenario,
     /// What every kind reads, typed ([`crate::scenario::Parsed::common`]).
-    pub common: crate::scenario::Common,
-    /// Its spheres (free settling and drops; read from `spheres_csv` when given).
+    pub common: Common,
+    /// Its spheres (free settling and drops; read from `spheres_csv` when given, one case per
+    /// fall height of a drop).
     pub spheres: Vec<crate::scenario::inputs::SphereCase>,
     /// What the scenario's kind needs, typed ([`crate::scenario::Parsed::scene`]).
     pub scene: SceneSpec,
@@ -35,21 +36,23 @@ pub struct Prepared {
     /// without one).
     pub reference: Option<crate::scenario::inputs::MeasuredCurves>,
     /// The overrides as given on the command line (`--set`, `--dt`), recorded in `run.toml`;
-    /// already applied to `scenario`.
+    /// already applied.
     pub overrides: crate::scenario::Overrides,
+    /// The effective scenario (overrides applied), kept only as the run's record.
+    record: crate::scenario::Record,
 }
 
 impl Prepared {
     /// Reads, overrides, validates and prepares the text `text` of the scenario file `path`
     /// (its folder is where relative input files are found), as `settle run --dt DT_S --set
-    /// OVERRIDES` does: `--dt` is `time.dt_s`; `check` vets the validated scenario before its
+    /// OVERRIDES` does: `--dt` is `time.dt_s`; `check` vets the typed common part before the
     /// input files (`spheres_csv`, `sample.csv`, `[reference]`) are read.
     pub fn parse(
         text: &str,
         path: &Path,
         dt_s: Option<f64>,
         overrides: &[String],
-        check: impl FnOnce(&Scenario) -> Result<(), BadInput>,
+        check: impl FnOnce(&Common) -> Result<(), BadInput>,
     ) -> Result<Prepared, BadInput> {
         let mut ov = overrides.to_vec();
         if let Some(dt) = dt_s.filter(|d| !d.is_finite()) {
@@ -62,18 +65,13 @@ impl Prepared {
         if let Some(dt) = dt_s {
             ov.push(format!("time.dt_s={dt:e}"));
         }
-        let crate::scenario::Parsed {
-            scenario,
-            common,
-            scene,
-            rheology,
-        } = crate::scenario::parse_str(text, path, &ov)?;
-        check(&scenario)?;
-        let spheres = crate::scenario::inputs::spheres(&scenario, path)?;
-        let reference = crate::scenario::inputs::read_reference(&scenario, path)?;
+        let parsed: crate::scenario::Parsed = crate::scenario::parse_str(text, path, &ov)?;
+        check(&parsed.common)?;
+        let spheres = parsed.spheres(path)?;
+        let reference = parsed.reference(path)?;
+        let (common, scene, rheology, record) = parsed.into_parts();
         Ok(Prepared {
             path: path.to_path_buf(),
-            scenario,
             common,
             spheres,
             scene,
@@ -83,7 +81,23 @@ impl Prepared {
                 set: overrides.to_vec(),
                 dt_s,
             },
+            record,
         })
+    }
+
+    /// The effective scenario as `run.toml` records it in `[scenario]`: the tables its kind
+    /// uses, defaults filled in, input files as absolute paths, so that the record runs again
+    /// anywhere.
+    pub fn record_table(&self) -> Result<toml::Table, crate::error::Error> {
+        self.record
+            .table(&self.path)
+            .map_err(|e| crate::error::Error::Io(self.path.clone(), std::io::Error::other(e)))
+    }
+
+    /// The whole effective scenario as TOML text: equal for two preparations exactly when they
+    /// describe the same case (the checkpoints of `settle run` refuse to resume another).
+    pub fn fingerprint(&self) -> String {
+        self.record.fingerprint()
     }
 }
 
@@ -133,14 +147,15 @@ pub fn run_scene(
     })
 }
 
-/// The load of scenario `s` as its kind's scene estimates it (`scenes/<kind>/cost.rs`), for
-/// [`cost::estimate`] and [`cost::check`].
-pub fn load(s: &Scenario) -> cost::Load {
-    match s.kind {
-        Kind::FreeSettling | Kind::Drop => free_settling::cost::load(s),
-        Kind::RestitutionDrop => restitution_drop::cost::load(s),
-        Kind::TiltFriction => tilt_friction::cost::load(s),
-        Kind::FunnelPour => funnel_pour::cost::load(s),
-        Kind::Sedimentation => sedimentation::cost::load(s),
+/// The load of the prepared scenario `p` as its kind's scene estimates it
+/// (`scenes/<kind>/cost.rs`), for [`cost::estimate`] and [`cost::check`].
+pub fn load(p: &Prepared) -> cost::Load {
+    let c = &p.common;
+    match &p.scene {
+        SceneSpec::FreeSettling(_) => free_settling::cost::load(c, p.spheres.len()),
+        SceneSpec::RestitutionDrop(_) => restitution_drop::cost::load(c),
+        SceneSpec::TiltFriction(_) => tilt_friction::cost::load(c),
+        SceneSpec::FunnelPour(f) => funnel_pour::cost::load(c, f),
+        SceneSpec::Sedimentation(sd) => sedimentation::cost::load(c, sd),
     }
 }

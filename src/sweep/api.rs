@@ -101,15 +101,15 @@ pub(crate) fn compute(p: &Prepared, plan: Plan, progress: bool) -> Result<SweepR
     let cases = plan.cases_to_run();
     let bar = crate::progress::bar(
         cases.len() as u64,
-        &p.scenario.name,
+        &p.common.name,
         "cases, {per_sec},",
         !progress,
     );
     let rows = run(p, &plan, &|| bar.inc(1))?;
     bar.finish_and_clear();
-    let name = format!("{}_sweep", p.scenario.name);
+    let name = format!("{}_sweep", p.common.name);
     let cx = Context {
-        title: &p.scenario.name,
+        title: &p.common.name,
         tol: plan.tol,
         rayleigh_time_s: rayleigh_time_of(p),
     };

@@ -106,7 +106,7 @@ pub(crate) fn main(args: &Args) -> Result<(), Error> {
     // create it. (Shards only add their part files to it.)
     for (p, plan) in &jobs {
         if plan.shard.is_none() {
-            let dest = out.join(format!("{}_sweep", p.scenario.name));
+            let dest = out.join(format!("{}_sweep", p.common.name));
             crate::run::destination_allowed(&dest, &p.path)?;
         }
     }
@@ -133,20 +133,20 @@ fn sweep_file(p: &Prepared, plan: &Plan, out: &Path, quiet: bool) -> Result<(), 
     let cases = plan.cases_to_run();
     let bar = crate::progress::bar(
         cases.len() as u64,
-        &p.scenario.name,
+        &p.common.name,
         "cases, {per_sec},",
         quiet,
     );
     let rows = run(p, plan, &|| bar.inc(1))?;
     bar.finish_and_clear();
-    let dir = out.join(format!("{}_sweep", p.scenario.name));
+    let dir = out.join(format!("{}_sweep", p.common.name));
     std::fs::create_dir_all(&dir).map_err(|e| Error::Io(dir.clone(), e))?;
     let file = dir.join(format!("sweep_part_{index}_of_{count}.csv"));
     write_rows(&file, &rows).map_err(|e| Error::Io(file.clone(), e))?;
     if !quiet {
         println!(
             "{}: shard {index}/{count} ({} rows) -> {}",
-            p.scenario.name,
+            p.common.name,
             rows.len(),
             file.display()
         );
@@ -220,12 +220,12 @@ fn merge_dt(args: &Args, files: Vec<PathBuf>) -> Result<(), Error> {
     std::fs::create_dir_all(&dest).map_err(|e| Error::Io(dest.clone(), e))?;
     let tol = args
         .tol
-        .or_else(|| prepared.as_ref()?.scenario.sweep.as_ref()?.tol)
+        .or_else(|| prepared.as_ref()?.common.sweep.as_ref()?.tol)
         .unwrap_or(DEFAULT_TOL);
     let cx = Context {
         title: prepared
             .as_ref()
-            .map(|p| p.scenario.name.as_str())
+            .map(|p| p.common.name.as_str())
             .unwrap_or("sweep"),
         tol,
         rayleigh_time_s: prepared.as_ref().and_then(rayleigh_time_of),

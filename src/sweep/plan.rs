@@ -185,7 +185,7 @@ impl Plan {
     /// else [`DEFAULT_TOL`]. `shard`: run only that slice of the grid.
     pub fn new(opts: &SweepOptions, p: &Prepared, shard: Option<Shard>) -> Result<Self, Error> {
         let (per_decade, given) = opts.check()?;
-        let table = p.scenario.sweep.as_ref();
+        let table = p.common.sweep.as_ref();
         let integrators = if !given.is_empty() {
             given
         } else {

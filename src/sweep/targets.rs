@@ -7,7 +7,7 @@
 use super::plan::Case;
 use super::table::{rel, Row, Status};
 use crate::error::Error;
-use crate::scenario::{FunnelPourSpec, SceneSpec};
+use crate::scenario::{FreeSettlingSpec, FunnelPourSpec, SceneSpec};
 use crate::scenes::free_settling::{self, Halt, RunOptions, SphereResult};
 use crate::scenes::Prepared;
 use std::time::Instant;
@@ -15,9 +15,9 @@ use std::time::Instant;
 /// How the cases of a scenario run.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Target<'a> {
-    /// Every sphere alone ([`free_settling::run_interruptible`]): kinds `free_settling` and
-    /// `drop`.
-    Spheres,
+    /// Every sphere alone ([`free_settling::run_scene_cases`]): kinds `free_settling` and
+    /// `drop`, of this spec.
+    Spheres(&'a FreeSettlingSpec),
     /// The first repeat of a funnel pour ([`crate::scenes::funnel_pour::run_repeat`]), of this spec.
     FunnelPour(&'a FunnelPourSpec),
 }
@@ -26,7 +26,7 @@ impl<'a> Target<'a> {
     /// The target of a prepared scenario, or a bad input (exit 2) naming its file and kind.
     pub fn of(p: &'a Prepared) -> Result<Self, Error> {
         match &p.scene {
-            SceneSpec::FreeSettling(_) => Ok(Self::Spheres),
+            SceneSpec::FreeSettling(f) => Ok(Self::Spheres(f)),
             SceneSpec::FunnelPour(f) => Ok(Self::FunnelPour(f)),
             _ => Err(Error::bad_input(
                 &p.path,
@@ -43,7 +43,7 @@ impl<'a> Target<'a> {
     /// Runs one case and returns its rows (without `error_vs_finest`).
     pub fn run_case(self, p: &Prepared, c: &Case) -> Vec<Row> {
         match self {
-            Self::Spheres => spheres_case(p, c),
+            Self::Spheres(f) => spheres_case(p, f, c),
             Self::FunnelPour(f) => funnel_case(p, f, c),
         }
     }
@@ -94,14 +94,18 @@ pub fn has_reference(quantity: &str) -> bool {
 }
 
 /// One case of a free-settling or drop sweep: every sphere alone at the case's dt.
-fn spheres_case(p: &Prepared, c: &Case) -> Vec<Row> {
+fn spheres_case(p: &Prepared, f: &FreeSettlingSpec, c: &Case) -> Vec<Row> {
     let opts = RunOptions {
         dt_s: c.dt_s,
         integrator: c.integrator,
         timeseries: false,
     };
     let t0 = Instant::now();
-    let res = match free_settling::run_interruptible(&p.scenario, p.rheology, &p.spheres, opts) {
+    let sc = free_settling::Scene {
+        common: &p.common,
+        spec: f,
+    };
+    let res = match free_settling::run_scene_cases(sc, &p.spheres, opts) {
         Ok(r) => Ok(r),
         Err(Halt::Unstable(u)) => Err(u),
         // The caller discards every row of an interrupted sweep.
@@ -125,8 +129,7 @@ fn spheres_case(p: &Prepared, c: &Case) -> Vec<Row> {
             .collect(),
         Err(u) => {
             // The same bodies and quantities as a stable case, with NaN values.
-            let probes: Vec<String> = p
-                .scenario
+            let probes: Vec<String> = f
                 .measure
                 .as_ref()
                 .map(|m| {
@@ -170,10 +173,11 @@ fn funnel_case(p: &Prepared, f: &FunnelPourSpec, c: &Case) -> Vec<Row> {
         "z_min_m",
         "z_max_m",
     ];
+    // The case's step and integrator in the typed time the scene reads (its record, not
+    // written by a sweep, keeps the scenario's).
     let mut q = p.clone();
-    q.scenario.time.dt_s = c.dt_s;
-    q.scenario.time.integrator = c.integrator;
-    q.common.time = q.scenario.time.clone();
+    q.common.time.dt_s = c.dt_s;
+    q.common.time.integrator = c.integrator;
     let t0 = Instant::now();
     let res = crate::scenes::funnel_pour::run_repeat(&q, f, 0, f.repeats.seed);
     let wall = t0.elapsed().as_secs_f64();

@@ -6,6 +6,7 @@ mod cycles;
 mod formatters;
 mod layers;
 mod shape;
+mod typed_scenario;
 
 /// Every `.rs` file under `src/`, relative to it, with its text, sorted by path.
 fn sources() -> Vec<(PathBuf, String)> {

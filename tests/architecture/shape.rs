@@ -65,7 +65,7 @@ fn fn_name(line: &str) -> Option<String> {
 }
 
 /// A line without its string literals and `//` comment.
-fn strip(line: &str) -> String {
+pub(super) fn strip(line: &str) -> String {
     let mut out = String::new();
     let mut in_str = false;
     let mut chars = line.chars().peekable();

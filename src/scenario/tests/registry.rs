@@ -186,19 +186,16 @@ fn every_kind_is_registered_once_under_its_name() {
     }
 }
 
-/// Scenes read the typed scenario (`Prepared::common` and their spec), not the raw record
-/// `Prepared::scenario`: no `.scenario` field access in `src/scenes/` outside the sedimentation
-/// cylinder (whose simulation, instruments and outputs still take the raw scenario whole) and
-/// the scenes' unit tests (`tests/` folders, which load scenario files as `settle run` does).
+/// Scenes read the typed scenario (`Prepared::common` and their spec), never a raw one: no
+/// `.scenario` field access anywhere in `src/scenes/`, their unit tests included (`Prepared` has
+/// no such field; `tests/architecture/typed_scenario.rs` checks that no scene names the raw type).
 #[test]
 fn scenes_read_their_spec_not_the_raw_scenario() {
     fn walk(dir: &Path, out: &mut Vec<String>) {
         for e in std::fs::read_dir(dir).unwrap().flatten() {
             let path = e.path();
             if path.is_dir() {
-                if !path.ends_with("sedimentation") && !path.ends_with("tests") {
-                    walk(&path, out);
-                }
+                walk(&path, out);
                 continue;
             }
             let text = std::fs::read_to_string(&path).unwrap();

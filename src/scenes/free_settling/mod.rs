@@ -62,7 +62,7 @@ mod transient;
 
 pub use scene::Scene;
 pub use setup::{release_depth_m, RunOptions};
-pub use simulate::{run, run_interruptible, run_scene_cases, Halt, SphereResult};
+pub use simulate::{run, run_scene_cases, Halt, SphereResult};
 
 use crate::error::Error;
 use crate::scenario::FreeSettlingSpec;
@@ -72,19 +72,10 @@ use crate::scenes::{Prepared, SceneReport};
 pub(crate) use simulate::{run_rapier, run_sphere, StopReason};
 
 /// State variables per body of the history force (v, x and one per exponential of the kernel)
-/// of the first sphere of `cases` in `scenario`; None without a history force.
-pub fn history_states(
-    scenario: &crate::scenario::Scenario,
-    rheology: crate::scenario::RheologyModel,
-    cases: &[crate::scenario::inputs::SphereCase],
-) -> Option<usize> {
+/// of the first sphere of `cases` in the scene `sc`; None without a history force.
+pub fn history_states(sc: Scene, cases: &[crate::scenario::inputs::SphereCase]) -> Option<usize> {
     let c = cases.first()?;
-    let (common, spec) = scene::typed(scenario, rheology);
-    let sc = Scene {
-        common: &common,
-        spec: &spec,
-    };
-    let su = setup::SphereSetup::<3>::new(sc, c, RunOptions::of(scenario));
+    let su = setup::SphereSetup::<3>::new(sc, c, RunOptions::of_common(sc.common));
     su.transient.as_ref()?.history.as_ref().map(|m| m.states())
 }
 

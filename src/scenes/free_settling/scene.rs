@@ -1,8 +1,8 @@
-//! What a free-settling run reads ([`Scene`]): the typed common part of its scenario and the
-//! spec of its kind, from a prepared scenario or (for the functions that take a scenario as
-//! read) from the raw one.
+//! What a free-settling run reads ([`Scene`]): the typed common part of its prepared scenario
+//! and the spec of its kind.
 
-use crate::scenario::{Common, FreeSettlingSpec, RheologyModel, Scenario};
+use crate::scenario::{Common, FreeSettlingSpec, SceneSpec};
+use crate::scenes::Prepared;
 
 /// What a free-settling run reads: the typed common part and the kind's spec.
 #[derive(Clone, Copy, Debug)]
@@ -13,9 +13,15 @@ pub struct Scene<'a> {
     pub spec: &'a FreeSettlingSpec,
 }
 
-/// The typed parts of a free-settling or drop scenario `s` whose fluid has rheology
-/// `rheology`, for the functions that take a scenario as read ([`super::run`] and the others):
-/// the same values as [`crate::scenario::Parsed`] holds.
-pub(super) fn typed(s: &Scenario, rheology: RheologyModel) -> (Common, FreeSettlingSpec) {
-    (Common::of(s, rheology), FreeSettlingSpec::of(s))
+impl<'a> Scene<'a> {
+    /// The scene of a prepared free-settling or drop scenario (None for another kind).
+    pub fn of(p: &'a Prepared) -> Option<Self> {
+        match &p.scene {
+            SceneSpec::FreeSettling(spec) => Some(Self {
+                common: &p.common,
+                spec,
+            }),
+            _ => None,
+        }
+    }
 }

@@ -6,7 +6,7 @@ use super::scene::Scene;
 use crate::dynamics::Integrator;
 use crate::fluid::{sphere_mass_kg, DragLaw, SphereDrag};
 use crate::scenario::inputs::SphereCase;
-use crate::scenario::{Common, Engine, FreeSettlingSpec, Scenario, Submergence};
+use crate::scenario::{Common, Engine, FreeSettlingSpec, Submergence};
 use nalgebra::SVector;
 
 /// Options of one run that do not belong in the scenario file.
@@ -22,16 +22,7 @@ pub struct RunOptions {
 
 impl RunOptions {
     /// The options a scenario file asks for (`time.dt_s`, `time.integrator`,
-    /// `record.timeseries`).
-    pub fn of(s: &Scenario) -> Self {
-        Self {
-            dt_s: s.time.dt_s,
-            integrator: s.time.integrator,
-            timeseries: s.record.timeseries,
-        }
-    }
-
-    /// The same, from the typed common part.
+    /// `record.timeseries`), from its typed common part.
     pub fn of_common(c: &Common) -> Self {
         Self {
             dt_s: c.time.dt_s,

@@ -3,7 +3,7 @@
 //! decide whether to stop — and the runners over all spheres (rayon, results in input order),
 //! with one dispatch on the dimension and the engine.
 
-use super::scene::{typed, Scene};
+use super::scene::Scene;
 use super::setup::{uses_rapier, RunOptions, SphereSetup};
 use super::submerged::{added_mass_kg, analytic_at, submerged_step};
 use crate::contact::rayleigh_time_s;
@@ -13,8 +13,7 @@ use crate::fluid::bingham::reynolds_bingham;
 use crate::fluid::immersion;
 use crate::fluid::{sphere_mass_kg, DragLaw, DragRegime};
 use crate::scenario::inputs::SphereCase;
-use crate::scenario::{Dim, RheologyModel};
-use crate::scenario::{Scenario, Submergence};
+use crate::scenario::{Dim, Submergence};
 use nalgebra::SVector;
 use std::collections::VecDeque;
 
@@ -130,25 +129,13 @@ impl From<Unstable> for Halt {
 }
 
 /// Runs every sphere of a free-settling scenario on the free engine, in parallel (rayon);
-/// results in input order. Not interruptible (see [`run_interruptible`]).
+/// results in input order. Not interruptible (see [`run_scene_cases`]).
 pub fn run(
-    scenario: &Scenario,
-    rheology: RheologyModel,
+    sc: Scene,
     cases: &[SphereCase],
     opts: RunOptions,
 ) -> Result<Vec<SphereResult>, Unstable> {
-    let (c, f) = typed(scenario, rheology);
-    run_cases(
-        Scene {
-            common: &c,
-            spec: &f,
-        },
-        cases,
-        opts,
-        false,
-        false,
-    )
-    .map_err(uninterruptible)
+    run_cases(sc, cases, opts, false, false).map_err(uninterruptible)
 }
 
 /// Runs every sphere through its own Rapier world with the force hook (`engine = "rapier"`):
@@ -156,45 +143,15 @@ pub fn run(
 /// (src/scenes/free_settling/tests/rapier.rs); it costs ~300× more per step.
 #[cfg(test)]
 pub fn run_rapier(
-    scenario: &Scenario,
-    rheology: RheologyModel,
+    sc: Scene,
     cases: &[SphereCase],
     opts: RunOptions,
 ) -> Result<Vec<SphereResult>, Unstable> {
-    let (c, f) = typed(scenario, rheology);
-    run_cases(
-        Scene {
-            common: &c,
-            spec: &f,
-        },
-        cases,
-        opts,
-        true,
-        false,
-    )
-    .map_err(uninterruptible)
+    run_cases(sc, cases, opts, true, false).map_err(uninterruptible)
 }
 
-/// Runs every sphere on the engine the scenario asks for, stopping within
+/// Runs every sphere of the scene `sc` on the engine its scenario asks for, stopping within
 /// [`INTERRUPT_CHECK_STEPS`] steps of every running sphere once an interruption is requested.
-pub fn run_interruptible(
-    scenario: &Scenario,
-    rheology: RheologyModel,
-    cases: &[SphereCase],
-    opts: RunOptions,
-) -> Result<Vec<SphereResult>, Halt> {
-    let (c, f) = typed(scenario, rheology);
-    run_scene_cases(
-        Scene {
-            common: &c,
-            spec: &f,
-        },
-        cases,
-        opts,
-    )
-}
-
-/// [`run_interruptible`] of the typed scene `sc`: the entry of a prepared scenario.
 pub fn run_scene_cases(
     sc: Scene,
     cases: &[SphereCase],
@@ -233,16 +190,10 @@ fn run_cases(
 /// Runs one sphere in `D` dimensions (vertical = last axis) on the free engine.
 #[cfg(test)]
 pub fn run_sphere<const D: usize>(
-    scenario: &Scenario,
-    rheology: RheologyModel,
+    sc: Scene,
     case: &SphereCase,
     opts: RunOptions,
 ) -> Result<SphereResult, Unstable> {
-    let (c, f) = typed(scenario, rheology);
-    let sc = Scene {
-        common: &c,
-        spec: &f,
-    };
     run_sphere_with::<D>(sc, case, opts, None, false).map_err(uninterruptible)
 }
 

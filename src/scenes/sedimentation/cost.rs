@@ -2,7 +2,7 @@
 //! `sample.max_step_s`, measured per grain and step, plus the close pairs of the contact solve;
 //! snapshots on disk.
 
-use crate::scenario::{Physics, Scenario};
+use crate::scenario::{Common, Physics, SedimentationSpec};
 use crate::scenes::cost::{Load, STEP_HINT};
 
 /// One grain in one sedimentation snapshot (a CSV row and a VTK point, ≈ 86 bytes each), and the
@@ -36,21 +36,20 @@ const SEDIMENTATION_CONTACT_AREA_M2: f64 = 0.0635 * 0.457;
 const SEDIMENTATION_GRAIN_BYTES: f64 = 300.0;
 
 /// The load of a sedimentation scenario.
-pub fn load(s: &Scenario) -> Load {
-    let sm = s.sample.as_ref();
-    let n = sm.map_or(1.0, |m| m.particles as f64);
-    let max_step = sm.map_or(s.time.dt_s, |m| m.max_step_s);
-    let snaps = sm.map_or(0, |m| m.snapshot_times_s.len()) as f64;
+pub fn load(c: &Common, spec: &SedimentationSpec) -> Load {
+    let sm = &spec.sample;
+    let n = sm.particles as f64;
+    let snaps = sm.snapshot_times_s.len() as f64;
     Load {
-        steps: s.time.end_s / max_step,
+        steps: c.time.end_s / sm.max_step_s,
         bodies: n,
-        body_step_s: grain_step_s(s, n),
+        body_step_s: grain_step_s(c, spec, n),
         body_bytes: SEDIMENTATION_GRAIN_BYTES,
         rows: 0.0,
         row_bytes: 0.0,
         disk_bytes: snaps * n * SNAPSHOT_GRAIN_DISK_BYTES + SEDIMENTATION_FIXED_DISK_BYTES,
         key: "sample.particles",
-        wall: if contacts(s) {
+        wall: if contacts(c, spec) {
             (
                 "sample.particles",
                 "fewer grains (the contacts' cost grows as N^2.5), sample.contacts = false, \
@@ -62,28 +61,23 @@ pub fn load(s: &Scenario) -> Load {
     }
 }
 
-/// Whether `s` is a sedimentation run whose close grain pairs are resolved (`sample.contacts`
-/// with full physics).
-fn contacts(s: &Scenario) -> bool {
-    s.physics == Physics::Full && s.sample.as_ref().is_some_and(|m| m.contacts)
+/// Whether the close grain pairs are resolved (`sample.contacts` with full physics).
+fn contacts(c: &Common, spec: &SedimentationSpec) -> bool {
+    c.physics == Physics::Full && spec.sample.contacts
 }
 
 /// CPU time of the sedimentation cylinder per grain and step, s, for `n` grains: the per-grain
 /// cost of its physics, plus with contacts the cost of the close pairs of one step
 /// ([`SEDIMENTATION_CONTACT_C_S`]) shared over the grains.
-fn grain_step_s(s: &Scenario, n: f64) -> f64 {
-    let per_grain = match s.physics {
+fn grain_step_s(c: &Common, spec: &SedimentationSpec, n: f64) -> f64 {
+    let per_grain = match c.physics {
         Physics::Full => SEDIMENTATION_FULL_GRAIN_STEP_S,
         Physics::IdealStokes => SEDIMENTATION_IDEAL_GRAIN_STEP_S,
     };
-    if !contacts(s) {
+    if !contacts(c, spec) {
         return per_grain;
     }
-    let area_m2 = s
-        .container
-        .as_ref()
-        .and_then(|c| Some(c.height_m * c.width_m.or(c.diameter_m)?))
-        .unwrap_or(SEDIMENTATION_CONTACT_AREA_M2);
+    let area_m2 = spec.height_m * spec.width_m;
     let growth = (n / SEDIMENTATION_CONTACT_N0).max(1.0).sqrt();
     let pairs_s =
         SEDIMENTATION_CONTACT_C_S * n * n * growth * SEDIMENTATION_CONTACT_AREA_M2 / area_m2;

@@ -4,8 +4,7 @@
 
 use crate::error::BadInput;
 use crate::sample::{discretize, representative_grains, Distribution, Grain, SizeClass};
-use crate::scenario::{Common, Contacts, Parsed, Scenario, SceneSpec, SedimentationSpec};
-use std::path::Path;
+use crate::scenario::{Common, Contacts, SceneSpec, SedimentationSpec};
 
 /// Largest travel of the fastest grain of a contact cluster per Rapier step, in diameters of
 /// the cluster's smallest grain.
@@ -91,23 +90,21 @@ impl GrainContacts {
     }
 }
 
-/// Builds the sample of a raw scenario `s` (the file `path`), for a caller that holds no
-/// prepared scenario (benchmarks, tests): `s` is parsed here, once (validated, its
-/// `sample.csv` read); one that is invalid or of another kind is a bad input. A run goes
-/// through [`setup_of`] and parses nothing again.
-pub fn setup(s: &Scenario, path: &Path) -> Result<Setup, BadInput> {
-    let parsed = Parsed::new(s.clone(), path)?;
-    let SceneSpec::Sedimentation(spec) = &parsed.scene else {
+/// Builds the sample of a prepared scenario `p`, for a caller that does not dispatch on its
+/// spec (benchmarks, tests): nothing is parsed or validated again (its spec was built, its
+/// `sample.csv` read, as it was prepared); one of another kind is a bad input.
+pub fn setup(p: &crate::scenes::Prepared) -> Result<Setup, BadInput> {
+    let SceneSpec::Sedimentation(spec) = &p.scene else {
         return Err(BadInput::new(
-            path,
+            &p.path,
             Some("kind"),
             format!(
                 "`{}` has no sample: allowed kind = \"sedimentation\"",
-                s.kind.name()
+                p.common.kind.name()
             ),
         ));
     };
-    Ok(setup_with(&parsed.common, spec, spec.distribution.clone()))
+    Ok(setup_of(p, spec))
 }
 
 /// Builds the sample of a prepared sedimentation scenario of spec `spec` (its distribution

@@ -16,8 +16,7 @@ fn force_lifts_the_time_limit_of_the_cost_guard() {
         &["repeats.count=15".into()],
     )
     .unwrap();
-    let path = Path::new("scenarios/paste_68_balls.toml");
-    assert!(check(&p.scenario, path, false).is_err());
-    let c = check(&p.scenario, path, true).unwrap();
+    assert!(check(&p, false).is_err());
+    let c = check(&p, true).unwrap();
     assert!(c.wall_s > 24.0 * 3600.0, "{c:?}");
 }

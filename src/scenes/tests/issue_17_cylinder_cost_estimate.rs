@@ -17,8 +17,8 @@ use std::path::Path;
 fn cost(sample: u32, sets: &[&str]) -> Cost {
     let path = format!("scenarios/sedimentation_sample{sample}.toml");
     let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
-    let p = crate::scenario::parse(Path::new(&path), &sets).unwrap();
-    estimate(&p.scenario)
+    let p = crate::scenes::tests::prepare(Path::new(&path), None, &sets).unwrap();
+    estimate(&p)
 }
 
 /// Full physics without contacts at N = 10⁶, CPU (user + sys) of `settle run` per sample
@@ -90,8 +90,8 @@ fn a_million_grains_with_contacts_are_refused_without_force() {
             format!("sample.contacts={contacts}"),
         ]
     };
-    let p = crate::scenario::parse(path, &sets(true)).unwrap();
-    let e = check(&p.scenario, path, false).unwrap_err().to_string();
+    let p = crate::scenes::tests::prepare(path, None, &sets(true)).unwrap();
+    let e = check(&p, false).unwrap_err().to_string();
     for w in [
         "sedimentation_sample2.toml",
         "sample.particles",
@@ -101,7 +101,7 @@ fn a_million_grains_with_contacts_are_refused_without_force() {
     ] {
         assert!(e.contains(w), "`{w}` missing: {e}");
     }
-    assert!(check(&p.scenario, path, true).is_ok());
-    let p = crate::scenario::parse(path, &sets(false)).unwrap();
-    assert!(check(&p.scenario, path, false).is_ok());
+    assert!(check(&p, true).is_ok());
+    let p = crate::scenes::tests::prepare(path, None, &sets(false)).unwrap();
+    assert!(check(&p, false).is_ok());
 }

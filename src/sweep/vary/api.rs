@@ -93,7 +93,7 @@ pub fn vary(scenario: &Scenario, axes: &[Axis], opts: &VaryOptions) -> Result<Va
 /// Runs every case of `plan` (not a shard) with a progress bar (hidden unless `progress`) and
 /// makes every output.
 pub(crate) fn compute(plan: VaryPlan, progress: bool) -> Result<VaryResult, Error> {
-    let title = plan.base.scenario.name.clone();
+    let title = plan.base.common.name.clone();
     let bar = crate::progress::bar(
         plan.cases.len() as u64,
         &title,

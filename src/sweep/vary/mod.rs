@@ -75,7 +75,7 @@ fn sweep_file(plan: VaryPlan, out: &Path, quiet: bool) -> Result<(), Error> {
         }
         return Ok(());
     };
-    let name = &plan.base.scenario.name;
+    let name = &plan.base.common.name;
     let bar = crate::progress::bar(plan.cases.len() as u64, name, "cases, {per_sec},", quiet);
     let table = run(&plan, &|| bar.inc(1))?;
     bar.finish_and_clear();
@@ -128,7 +128,7 @@ pub(crate) fn merge(args: &Args, files: &[PathBuf]) -> Result<(), Error> {
     table.sort();
     // The scenario's name: from its file if given, else from the folder `<name>_vary`.
     let title = match args.scenarios.first() {
-        Some(f) => prepare(f, None, &args.set)?.scenario.name,
+        Some(f) => prepare(f, None, &args.set)?.common.name,
         None => args.merge[0]
             .file_name()
             .and_then(|n| n.to_str())

@@ -118,7 +118,7 @@ impl VaryPlan {
 
     /// The output folder's name: `<name>_vary`.
     pub fn folder(&self) -> String {
-        format!("{}_vary", self.base.scenario.name)
+        format!("{}_vary", self.base.common.name)
     }
 }
 
@@ -136,8 +136,8 @@ pub(crate) fn run(plan: &VaryPlan, done: &(dyn Fn() + Sync)) -> Result<VaryTable
             }
             let p = &c.prepared;
             let case = Case {
-                integrator: p.scenario.time.integrator,
-                dt_s: p.scenario.time.dt_s,
+                integrator: p.common.time.integrator,
+                dt_s: p.common.time.dt_s,
             };
             let rows = Target::of(p)
                 .map(|t| t.run_case(p, &case))

@@ -1,7 +1,7 @@
 //! Kinds `free_settling` and `drop` (a mode of free settling: the spheres fall through air into
 //! the fluid first): the spec built from `[container]`, `[release]` and `[measure]`.
 
-use super::super::{Container, EngineChoice, Kind, Measure, Release, Scenario};
+use super::super::{Container, EngineChoice, Measure, Release, Scenario};
 use crate::error::BadInput;
 use crate::scenario::check::Check;
 
@@ -39,18 +39,6 @@ pub(crate) fn drop(c: &Check, s: &Scenario) -> Result<FreeSettlingSpec, BadInput
         return Err(c.err("engine", "`rapier` is not available for kind = \"drop\" yet (no contacts there): allowed `auto`, `free`"));
     }
     Ok(spec(s, Entry::Drop))
-}
-
-impl FreeSettlingSpec {
-    /// The spec of a free-settling or drop scenario `s` (checked by validation), its entry
-    /// from the kind.
-    pub fn of(s: &Scenario) -> Self {
-        let entry = match s.kind {
-            Kind::Drop => Entry::Drop,
-            _ => Entry::Submerged,
-        };
-        spec(s, entry)
-    }
 }
 
 fn spec(s: &Scenario, entry: Entry) -> FreeSettlingSpec {

@@ -3,7 +3,7 @@
 //! same equation of motion (free fall in air, then m dv/dt = (m − m_f) g − F_d(v) with f-EDEM's
 //! Bingham drag, eq. 9/14/19) by classical RK4 with a 1e-6 s step and event location at v = 0.
 
-use super::prepare;
+use super::{prepare, scene};
 use crate::fluid::bingham::{bingham_drag_n, bingham_static_resistance_n};
 use crate::fluid::sphere_mass_kg;
 use crate::scenes::free_settling::{run, RunOptions, StopReason};
@@ -51,10 +51,10 @@ fn settling_distances_match_an_independent_integration() {
     for dt in [1e-5, 1e-4] {
         let opts = RunOptions {
             dt_s: dt,
-            integrator: p.scenario.time.integrator,
+            integrator: p.common.time.integrator,
             timeseries: false,
         };
-        for r in run(&p.scenario, p.rheology, &p.spheres, opts).unwrap() {
+        for r in run(scene(&p), &p.spheres, opts).unwrap() {
             let d = r.case.spec.diameter_m;
             let hf = r.case.fall_height_m.unwrap();
             assert_eq!(r.stop, StopReason::Static, "{} did not stop", r.case.id);
@@ -92,10 +92,10 @@ fn partial_submergence_sinks_a_ball_at_rest_to_its_static_balance() {
     .unwrap();
     let opts = RunOptions {
         dt_s: 1e-5,
-        integrator: p.scenario.time.integrator,
+        integrator: p.common.time.integrator,
         timeseries: false,
     };
-    for r in run(&p.scenario, p.rheology, &p.spheres, opts).unwrap() {
+    for r in run(scene(&p), &p.spheres, opts).unwrap() {
         if r.case.fall_height_m != Some(0.0) {
             continue;
         }

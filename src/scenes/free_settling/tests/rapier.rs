@@ -2,7 +2,7 @@
 //! Valentik–Whitmore spheres stepped through a Rapier world (`engine = "rapier"`) match the
 //! analytic solution and the free integrator.
 
-use super::prepare;
+use super::{prepare, scene};
 use crate::dynamics::Integrator;
 use crate::scenes::free_settling::{run, run_rapier, RunOptions};
 use std::path::Path;
@@ -25,7 +25,7 @@ fn stokes_sphere_through_rapier_matches_the_analytic_solution_in_2d_and_3d() {
         )
         .unwrap();
         for dt in [1e-5, 1e-3, 1e-2] {
-            let r = run_rapier(&p.scenario, p.rheology, &p.spheres, opts(dt))
+            let r = run_rapier(scene(&p), &p.spheres, opts(dt))
                 .unwrap()
                 .remove(0);
             let err = r.max_velocity_error_rel.unwrap();
@@ -42,8 +42,8 @@ fn stokes_sphere_through_rapier_matches_the_analytic_solution_in_2d_and_3d() {
 #[test]
 fn valentik_spheres_through_rapier_equal_the_free_engine() {
     let p = prepare(Path::new("scenarios/valentik_susp1.toml"), None, &[]).unwrap();
-    let free = run(&p.scenario, p.rheology, &p.spheres, opts(1e-3)).unwrap();
-    let rapier = run_rapier(&p.scenario, p.rheology, &p.spheres, opts(1e-3)).unwrap();
+    let free = run(scene(&p), &p.spheres, opts(1e-3)).unwrap();
+    let rapier = run_rapier(scene(&p), &p.spheres, opts(1e-3)).unwrap();
     for (a, b) in free.iter().zip(&rapier) {
         assert_eq!(a.case.id, b.case.id);
         let rel =

@@ -2,7 +2,7 @@
 //! against Roos & Willmarth's data): a terminal-velocity run with each Newtonian law against the
 //! law's own force balance (scenario `scenarios/stokes_single.toml`, resized).
 
-use super::prepare;
+use super::{prepare, scene};
 use crate::dynamics::Integrator;
 use crate::fluid::newtonian::CdCorrelation;
 use crate::scenes::free_settling::{run, RunOptions};
@@ -53,9 +53,7 @@ fn terminal_velocity_with_each_law_matches_its_force_balance() {
                 integrator: Integrator::Exponential,
                 timeseries: false,
             };
-            let r = run(&p.scenario, p.rheology, &p.spheres, opts)
-                .expect("stable")
-                .remove(0);
+            let r = run(scene(&p), &p.spheres, opts).expect("stable").remove(0);
             let v = r.v_simulated_m_s.abs();
             assert!(
                 (v / v_ref - 1.0).abs() < 1e-6,

@@ -3,7 +3,7 @@
 //! Scenario: `scenarios/stokes_single.toml`. Moved from `tests/validation/stokes_single.rs`
 //! (which runs it through `settle run` and the library API): the scene's runner itself.
 
-use super::prepare;
+use super::{prepare, scene};
 use crate::dynamics::Integrator;
 use crate::scenes::free_settling::{run, RunOptions};
 use std::path::Path;
@@ -24,7 +24,7 @@ fn run_with(dt: f64, integrator: Integrator, overrides: &[&str]) -> Outcome {
         integrator,
         timeseries: false,
     };
-    run(&p.scenario, p.rheology, &p.spheres, opts).map(|mut v| v.remove(0))
+    run(scene(&p), &p.spheres, opts).map(|mut v| v.remove(0))
 }
 
 /// Acceptance: max |v − v_analytic| / v_t < 1e-6 at every dt from 1e-8 to 1e-2 s
@@ -115,8 +115,6 @@ fn set_overrides_change_the_physics() {
         integrator: Integrator::Exponential,
         timeseries: false,
     };
-    let r = run(&p.scenario, p.rheology, &p.spheres, opts)
-        .unwrap()
-        .remove(0);
+    let r = run(scene(&p), &p.spheres, opts).unwrap().remove(0);
     assert!((r.v_analytic_m_s.unwrap() - 9.265e-3 / 2.0).abs() < 1e-12);
 }

@@ -3,7 +3,7 @@
 //! the Boussinesq–Basset closed form ([`crate::fluid::transient::BassetProblem`]), which is
 //! itself checked here against an independent quadrature of the integral equation.
 
-use super::prepare;
+use super::{prepare, scene};
 use crate::dynamics::Integrator;
 use crate::fluid::transient::BassetProblem;
 use crate::scenes::free_settling::{run, RunOptions, SphereResult};
@@ -21,9 +21,7 @@ fn run_with(dt: f64, overrides: &[&str]) -> SphereResult {
         integrator: Integrator::Exponential,
         timeseries: false,
     };
-    run(&p.scenario, p.rheology, &p.spheres, opts)
-        .expect("stable")
-        .remove(0)
+    run(scene(&p), &p.spheres, opts).expect("stable").remove(0)
 }
 
 /// v′ = A − B v − C ∫₀ᵗ v′(τ)(t − τ)^{−1/2} dτ, v(0) = 0, solved on a grid uniform in σ = √t

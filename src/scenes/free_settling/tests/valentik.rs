@@ -2,9 +2,9 @@
 //! f-EDEM §4.1. Data: `data/valentik_whitmore_1965_*.csv` (f-EDEM Tables 2 and 3);
 //! scenarios: `scenarios/valentik_susp1.toml` … `valentik_susp6.toml`.
 
-use super::prepare;
+use super::{prepare, scene};
 use crate::fluid::bingham::{cd_from_terminal_velocity, reynolds_bingham};
-use crate::scenario::Rheology;
+use crate::scenario::RheologyModel;
 use crate::scenes::free_settling::{run, RunOptions, SphereResult, StopReason};
 use std::collections::HashMap;
 use std::path::Path;
@@ -104,16 +104,16 @@ fn scenario_fluids_match_table2() {
     for n in 1..=6u32 {
         let path = format!("scenarios/valentik_susp{n}.toml");
         let p = prepare(Path::new(&path), None, &[]).unwrap();
-        let f = &p.scenario.fluid;
         let s = &susp[&n];
-        assert_eq!(f.rheology, Rheology::Bingham);
-        assert_eq!(f.density_kg_m3, s.density_kg_m3, "{path}");
         assert_eq!(
-            f.plastic_viscosity_pa_s,
-            Some(s.plastic_viscosity_pa_s),
+            p.rheology,
+            RheologyModel::Bingham {
+                plastic_viscosity_pa_s: s.plastic_viscosity_pa_s,
+                yield_stress_pa: s.yield_stress_pa,
+            },
             "{path}"
         );
-        assert_eq!(f.yield_stress_pa, Some(s.yield_stress_pa), "{path}");
+        assert_eq!(p.common.fluid_density_kg_m3, s.density_kg_m3, "{path}");
         assert!(p.spheres.iter().all(|c| c.spec.suspension == Some(n)));
     }
 }
@@ -129,10 +129,10 @@ fn run_all(dt: f64) -> Vec<SphereResult> {
         .unwrap();
         let opts = RunOptions {
             dt_s: dt,
-            integrator: p.scenario.time.integrator,
+            integrator: p.common.time.integrator,
             timeseries: true,
         };
-        out.extend(run(&p.scenario, p.rheology, &p.spheres, opts).unwrap());
+        out.extend(run(scene(&p), &p.spheres, opts).unwrap());
     }
     out
 }

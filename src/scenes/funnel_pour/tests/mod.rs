@@ -322,7 +322,12 @@ fn a_ball_dropped_into_paste_through_rapier_stops_where_the_drop_scene_stops_it(
             integrator: Integrator::Exponential,
             timeseries: false,
         };
-        let drop = run_sphere::<3>(&p.scenario, p.rheology, case, opts).expect("drop");
+        let drop = run_sphere::<3>(
+            crate::scenes::free_settling::Scene::of(&p).expect("drop"),
+            case,
+            opts,
+        )
+        .expect("drop");
         let expected = drop.final_bottom_depth_m - 0.5 * D;
         let got = rapier_drop_depth(0.15, 1e-5, sub, c_m);
         println!("{name}, C_m {c_m}: drop scene {expected:.5} m, rapier {got:.5} m");
@@ -361,16 +366,16 @@ fn the_full_scenario_loads_with_the_documented_geometry() {
     use crate::scenes::funnel_pour::Geometry;
     let p =
         crate::scenes::tests::prepare(std::path::Path::new(SCENARIO), None, &[]).expect("scenario");
-    let f = p.scenario.funnel.as_ref().unwrap();
-    assert_eq!(f.count, 68);
-    let geo = Geometry::of(p.scene.funnel_pour().expect("funnel_pour"));
+    let spec = p.scene.funnel_pour().expect("funnel_pour");
+    assert_eq!(spec.funnel.count, 68);
+    let geo = Geometry::of(spec);
     assert!(
         (geo.outlet_z_m - 0.30).abs() < 1e-12,
         "outlet 15 cm above the paste"
     );
     assert!((geo.cylinder_radius_m - 0.0375).abs() < 1e-12);
     assert!((geo.half_angle_rad.to_degrees() - 30.0).abs() < 0.1);
-    let c = p.scenario.contacts.as_ref().unwrap();
+    let c = &spec.contacts;
     assert_eq!(
         (c.restitution, c.friction, c.rolling_resistance),
         (0.612, 0.341, 0.002)

@@ -297,12 +297,15 @@ fn full_physics_with_contacts_accounts_for_every_grain() {
         "sample.contacts=true".into(),
     ];
     let p = prepare(Path::new("scenarios/sedimentation_sample1.toml"), None, &ov).unwrap();
-    let sm = p.scenario.sample.as_ref().unwrap();
+    let crate::scenario::SceneSpec::Sedimentation(spec) = &p.scene else {
+        panic!("a sedimentation scenario")
+    };
+    let sm = &spec.sample;
     assert!(
         sm.contacts && sm.lubrication_on(),
         "contacts on, lubrication follows them"
     );
-    let su = setup(&p.scenario, &p.path).unwrap();
+    let su = setup(&p).unwrap();
     let total: f64 = su
         .grains
         .iter()
@@ -352,7 +355,7 @@ fn full_physics_with_contacts_accounts_for_every_grain() {
     )
     .unwrap();
     // The same grains (the switches do not change the sample), without contacts.
-    let su_off = setup(&p.scenario, &p.path).unwrap();
+    let su_off = setup(&p).unwrap();
     assert_eq!(su_off.grains.len(), su.grains.len());
     let mut deep_off = 0;
     let st = simulate(

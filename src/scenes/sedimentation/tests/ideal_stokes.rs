@@ -27,7 +27,7 @@ fn run(sample: u32, extra: &[&str]) -> (Vec<Snap>, crate::scenes::sedimentation:
     ];
     ov.extend(extra.iter().map(|s| s.to_string()));
     let p = prepare(Path::new(&path), None, &ov).unwrap();
-    let su = setup(&p.scenario, &p.path).unwrap();
+    let su = setup(&p).unwrap();
     let mut snaps = Vec::new();
     let rec = |st: &State| {
         snaps.push(Snap {
@@ -157,7 +157,7 @@ fn sample2_on(
     ];
     ov.extend(overrides.iter().map(|s| s.to_string()));
     let p = prepare(Path::new("scenarios/sedimentation_sample2.toml"), None, &ov).unwrap();
-    let su = setup(&p.scenario, &p.path).unwrap();
+    let su = setup(&p).unwrap();
     let mut records = Vec::new();
     let seen = |st: &State| {
         records.push((
@@ -244,9 +244,9 @@ fn ideal_stokes_free_update_follows_the_analytic_stokes_solution() {
         "sample.snapshot_times_s=[]".into(),
     ];
     let p = prepare(Path::new("scenarios/sedimentation_sample2.toml"), None, &ov).unwrap();
-    let su = setup(&p.scenario, &p.path).unwrap();
-    let (g, mu) = (p.scenario.gravity_m_s2, su.viscosity_pa_s);
-    let (rho_p, rho_f) = (su.spec.sample.density_kg_m3, p.scenario.fluid.density_kg_m3);
+    let su = setup(&p).unwrap();
+    let (g, mu) = (p.common.gravity_m_s2, su.viscosity_pa_s);
+    let (rho_p, rho_f) = (su.spec.sample.density_kg_m3, p.common.fluid_density_kg_m3);
     let start = State::initial(&su);
     for step_loop in [StepLoop::Chosen, StepLoop::PerGrain] {
         let (mut checked, mut landed) = (0, 0);
@@ -301,7 +301,7 @@ fn ideal_stokes_free_update_follows_the_analytic_stokes_solution() {
 fn cell_after_is_cell_of_at_every_row_boundary() {
     use crate::scenes::sedimentation::voidage::VoidageGrid;
     let p = prepare(Path::new("scenarios/sedimentation_sample2.toml"), None, &[]).unwrap();
-    let su = setup(&p.scenario, &p.path).unwrap();
+    let su = setup(&p).unwrap();
     let cell_m = su.spec.sample.voidage_cell_m;
     let grid = VoidageGrid::new(&su, cell_m, false, 1000.0);
     let rows = (su.height_m / cell_m).ceil() as usize;

@@ -61,7 +61,7 @@ fn ideal_stokes_instruments_match_the_input_curve() {
             "sample.snapshot_times_s=[]".into(),
         ];
         let p = prepare(Path::new(&path), None, &ov).unwrap();
-        let su = setup(&p.scenario, &p.path).unwrap();
+        let su = setup(&p).unwrap();
         let set = InstrumentSet::new(&su);
         let an = set.analysis;
         let out = run(&p);
@@ -185,7 +185,7 @@ type Row = (String, f64, f64, f64, f64);
 /// Every reading of `instruments.csv` of the run `out` (scenario `p`) against the same
 /// instrument on the hindered forward field of the input curve.
 fn against_forward(p: &Prepared, out: &Outputs) -> Vec<Row> {
-    let su = setup(&p.scenario, &p.path).unwrap();
+    let su = setup(p).unwrap();
     let set = InstrumentSet::new(&su);
     let an = set.analysis;
     let col = Column {

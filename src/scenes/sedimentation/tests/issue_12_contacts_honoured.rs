@@ -36,7 +36,7 @@ fn run(contacts: Option<&str>) -> (State, GrainContacts) {
         "sample.contacts=true".to_string(),
     ];
     let p = prepare(Path::new(&path), None, &ov).unwrap();
-    let su = setup(&p.scenario, &p.path).unwrap();
+    let su = setup(&p).unwrap();
     let st = simulate(&su, State::initial(&su), &[], &mut ());
     assert!(st.fault.is_none() && !st.interrupted);
     (st, su.contacts)
