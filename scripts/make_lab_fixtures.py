@@ -10,6 +10,7 @@ spreadsheet would export or keep it.
     tests/data/lab/xlsx/soil_b3.xlsx   one row per line, one cell per field, numbers as numbers
     tests/data/lab/ods/soil_b3.ods     the same as OpenDocument
     tests/data/lab/kv/soil_b3.xlsx     the figures as key/value cells (`# dry_mass_g` | 48.797)
+    tests/data/lab/bad/*.xlsx, *.ods   the sheet with one mistake each (tests/app/bad_lab_inputs.rs)
 
 Needs openpyxl and odfpy (pip install openpyxl odfpy). Run from the repository's root:
 python3 scripts/make_lab_fixtures.py
@@ -116,6 +117,54 @@ def main():
     doc.spreadsheet.addElement(table)
     os.makedirs(f"{ROOT}/ods", exist_ok=True)
     doc.save(f"{ROOT}/ods/soil_b3.ods")
+
+    bad_workbooks()
+
+
+def sheet(figures=FIGURES, header=HEADER, rows=ROWS):
+    import openpyxl
+
+    wb = openpyxl.Workbook()
+    ws = wb.active
+    ws.title = "Sheet1"
+    for k, v in figures:
+        ws.append([f"# {k} = {v}"])
+    ws.append(header)
+    for r in rows:
+        ws.append(r)
+    return wb
+
+
+def bad_workbooks():
+    """One mistake per workbook; the row of the readings is 12 + n (11 figure lines, the
+    header on row 12)."""
+    import datetime
+
+    os.makedirs(f"{ROOT}/bad", exist_ok=True)
+    rows = [list(r) for r in ROWS]
+    rows[2][1] = "forty"  # B15
+    sheet(rows=rows).save(f"{ROOT}/bad/text_reading.xlsx")
+    rows = [list(r) for r in ROWS]
+    rows[0][1] = "44,5"  # B13: a decimal comma in a text cell
+    sheet(rows=rows).save(f"{ROOT}/bad/comma_text.xlsx")
+    rows = [list(r) for r in ROWS]
+    rows[1][0] = datetime.time(0, 2, 0)  # A14: a clock time
+    sheet(rows=rows).save(f"{ROOT}/bad/time_cell.xlsx")
+    figures = list(FIGURES)
+    figures[4] = ("dry_mas_g", 48.797)  # A5: a typo in a key
+    sheet(figures=figures).save(f"{ROOT}/bad/unknown_key.xlsx")
+    header = ["time_s"] + HEADER[1:]  # minutes under time_s: A13
+    sheet(header=header).save(f"{ROOT}/bad/minutes_as_seconds.xlsx")
+    rows = [list(r) for r in ROWS]
+    for r in rows:
+        r[2] = 70.7  # C13: °F
+    sheet(rows=rows).save(f"{ROOT}/bad/fahrenheit.xlsx")
+    figures = list(FIGURES)
+    figures[5] = ("specific_gravity", 2700)  # A6: a density in kg/m3
+    sheet(figures=figures).save(f"{ROOT}/bad/density_for_gs.xlsx")
+    rows = [list(r) for r in ROWS]
+    rows[3][1] = 99  # B16: off the 152H's scale
+    sheet(rows=rows).save(f"{ROOT}/bad/off_scale.xlsx")
 
 
 if __name__ == "__main__":

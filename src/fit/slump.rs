@@ -52,15 +52,14 @@ pub const PASTE_DENSITY_KG_M3: (f64, f64) = (1000.0, 3150.0);
 /// The clear unit mistakes of `settle fit slump`, refused naming the value, the likely unit
 /// and the fix; and the doubtful values, returned as warnings.
 fn plausible(height_mm: f64, slumps_mm: &[f64], density: f64) -> Result<Vec<String>, Error> {
-    let refuse = |option: &str, v: f64, m: String| {
-        Err(Error::bad_argument(option, Path::new(&short(v)), m))
-    };
+    let refuse =
+        |option: &str, v: f64, m: String| Err(Error::bad_argument(option, Path::new(&short(v)), m));
     if density > 0.0 && density < 100.0 {
         return refuse(
             "--density",
             density,
             format!(
-                "a paste of {} kg/m³ is lighter than air's tenfold: the density looks like \
+                "a paste of {} kg/m³ is far lighter than water (1000 kg/m³): the density looks like \
                  t/m³ (g/cm³); fix: give kg/m³, --density {}",
                 short(density),
                 short(density * 1000.0)

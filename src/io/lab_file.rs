@@ -50,14 +50,6 @@ pub enum Loc {
 }
 
 impl Loc {
-    /// The line (or the sheet's row), 1-based.
-    pub fn line(&self) -> usize {
-        match self {
-            Loc::Line(n) => *n,
-            Loc::Cell { row, .. } => *row,
-        }
-    }
-
     /// The same row, at the field `field` (0-based) of the row.
     pub fn at(&self, field: usize) -> Loc {
         match self {
@@ -69,11 +61,6 @@ impl Loc {
             },
         }
     }
-
-    /// Whether this is a cell of a workbook.
-    pub fn is_cell(&self) -> bool {
-        matches!(self, Loc::Cell { .. })
-    }
 }
 
 /// `line 9`, or `cell Sheet1!B9`.
@@ -81,7 +68,9 @@ impl fmt::Display for Loc {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Loc::Line(n) => write!(f, "line {n}"),
-            Loc::Cell { sheet, row, col } => write!(f, "cell {sheet}!{}{row}", column_letters(*col)),
+            Loc::Cell { sheet, row, col } => {
+                write!(f, "cell {sheet}!{}{row}", column_letters(*col))
+            }
         }
     }
 }
@@ -255,11 +244,6 @@ impl LabFile {
     /// Reads CSV text (a table in memory written as its CSV); `path` names it in errors.
     pub fn from_text(path: &Path, text: &str) -> Result<Self, Error> {
         csv_file(path, text.as_bytes())
-    }
-
-    /// Every row that is not a `#` row, in order.
-    pub fn table_rows(&self) -> impl Iterator<Item = &LabRow> {
-        self.rows.iter().filter(|r| !r.is_comment())
     }
 }
 
@@ -485,7 +469,8 @@ fn decimal_with(s: &str, mark: char) -> bool {
 fn thousands(s: &str) -> bool {
     let s = s.strip_prefix('-').unwrap_or(s);
     let digits_and_marks = !s.is_empty()
-        && s.bytes().all(|b| b.is_ascii_digit() || b == b'.' || b == b',')
+        && s.bytes()
+            .all(|b| b.is_ascii_digit() || b == b'.' || b == b',')
         && s.bytes().next().is_some_and(|b| b.is_ascii_digit());
     let marks = s.bytes().filter(|b| *b == b'.' || *b == b',').count();
     digits_and_marks && (marks >= 2) && (s.contains('.') || s.contains(','))
@@ -694,7 +679,10 @@ fn fit_to_header(rows: &mut [LabRow], pad: bool) {
     let mut width = None;
     for r in rows.iter_mut().filter(|r| !r.is_comment()) {
         let w = *width.get_or_insert_with(|| {
-            r.cells.iter().rposition(|c| !c.is_empty()).map_or(0, |k| k + 1)
+            r.cells
+                .iter()
+                .rposition(|c| !c.is_empty())
+                .map_or(0, |k| k + 1)
         });
         while r.cells.len() > w && r.cells.last().is_some_and(|c| c.is_empty()) {
             r.cells.pop();
@@ -731,7 +719,10 @@ mod tests {
 
     #[test]
     fn utf8_comma_csv() {
-        let f = read("a.csv", b"# dry_mass_g = 50\ntime_min,reading\n1,45.5\n\n2,40\n");
+        let f = read(
+            "a.csv",
+            b"# dry_mass_g = 50\ntime_min,reading\n1,45.5\n\n2,40\n",
+        );
         assert_eq!(f.detected.delimiter, Some(','));
         assert_eq!(f.detected.decimal_mark, '.');
         assert_eq!(f.detected.encoding.as_deref(), Some("UTF-8"));
@@ -766,7 +757,10 @@ mod tests {
         assert_eq!(f.detected.decimal_mark, '.');
         let e = LabFile::from_bytes(Path::new("d.csv"), b"a;b\n1,5;2.5\n").unwrap_err();
         let m = e.to_string();
-        assert!(m.contains("both decimal marks") && m.contains("`1,5`"), "{m}");
+        assert!(
+            m.contains("both decimal marks") && m.contains("`1,5`"),
+            "{m}"
+        );
         assert!(m.contains("line 2, column 1"), "{m}");
         let e = LabFile::from_bytes(Path::new("d.csv"), b"a;b\n1.234,5;2\n").unwrap_err();
         assert!(e.to_string().contains("thousands separator"), "{e}");

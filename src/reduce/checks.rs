@@ -82,13 +82,17 @@ pub(super) fn check(
             )
         };
         schedule.push(format!(
-            "row 1 ({}), column {} `{time_col}`: the first reading at {} {unit} ({} s) is \
+            "row 1 ({}), column {} `{time_col}`: the first reading at {} {unit}{} is \
              earlier than any standard takes one (D7928's first at 1 min, D422's at 2 min; \
              refused under 20 s): {likely}; fix: {fix}",
             locs[0].at(j),
             j + 1,
             shown(first.time_s),
-            sig_trim(first.time_s, 4)
+            if in_min {
+                format!(" ({} s)", sig_trim(first.time_s, 4))
+            } else {
+                String::new()
+            }
         ));
     }
     if last.time_s > LAST_READING_MAX_S {
@@ -121,9 +125,7 @@ pub(super) fn check(
         }
     }
     if let Instrument::Hydrometer(HydrometerType::H152) = s.instrument {
-        let like_151 = readings
-            .iter()
-            .all(|r| (0.99..=1.06).contains(&r.reading));
+        let like_151 = readings.iter().all(|r| (0.99..=1.06).contains(&r.reading));
         if like_151 && n >= 2 {
             return Err(Error::bad_input(
                 file,

@@ -231,11 +231,10 @@ pub(super) fn choice<T>(
     (key, allowed, example): (&str, &str, &str),
     parse: impl Fn(&str) -> Option<T>,
 ) -> Result<T, Error> {
-    let given = option.clone().map(|v| (v, format!("--{key}"))).or_else(|| {
-        p.figures
-            .get(key)
-            .map(|(v, l)| (v.clone(), l.to_string()))
-    });
+    let given = option
+        .clone()
+        .map(|v| (v, format!("--{key}")))
+        .or_else(|| p.figures.get(key).map(|(v, l)| (v.clone(), l.to_string())));
     let Some((v, at)) = given else {
         return Err(Error::bad_input(
             file,

@@ -125,15 +125,6 @@ pub(crate) struct ReadOut {
     pub warnings: Vec<String>,
 }
 
-/// Reads and checks readings (a file or in memory): the test's figures and its readings.
-pub(crate) fn read_readings(
-    readings: &Readings,
-    req: &ReduceOptions,
-) -> Result<(TestSetup, Vec<LabReading>), Error> {
-    let r = read_checked(readings, req)?;
-    Ok((r.setup, r.readings))
-}
-
 /// Reads and checks readings (a file or in memory) through the format layer, then their
 /// plausibility ([`super::checks`]): a clear mistake (a wrong unit) is bad input, a doubtful
 /// value a warning.
@@ -245,10 +236,7 @@ fn rows(
             let v = &fields[j];
             let where_ = format!("row {row} ({}), column {} `{c}`", line.at(j), j + 1);
             if v.is_empty() {
-                return Err(bad(
-                    file,
-                    format!("{where_}: empty; allowed: {allowed}"),
-                ));
+                return Err(bad(file, format!("{where_}: empty; allowed: {allowed}")));
             }
             let x: f64 = v.parse().map_err(|_| {
                 bad(

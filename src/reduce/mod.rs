@@ -2,7 +2,7 @@
 //! (ASTM D422 or D7928), pipette draws and buoyancy-sphere weighings (seed 000 eqs. 16–18, 22;
 //! `# instrument = pipette | buoyancy-sphere`, [`crate::instruments::reduction`]) into
 //! `OUT/<stem>_reduced/`: `percent_finer.csv`, `percent_finer.svg` and `reduce.toml`.
-//! `read_readings` is the one place that reads readings, for every instrument (`settle invert`
+//! `read_checked` is the one place that reads readings, for every instrument (`settle invert`
 //! reads through it too).
 //!
 //! # From Rust
@@ -26,7 +26,8 @@
 //!
 //! # The readings file
 //!
-//! A plain CSV (no quoted fields) whose first lines are the test's figures as `# key = value`
+//! A CSV (or an `.xlsx` / `.ods` sheet laid out the same way, read by [`crate::io::lab_file`])
+//! whose first lines are the test's figures as `# key = value`
 //! comments, then a header and one row per reading (see `docs/commands/reduce.md`):
 //!
 //! ```text
@@ -51,13 +52,14 @@
 mod checks;
 mod figures;
 mod input;
-mod template;
 mod instrument;
+mod template;
 
+pub use crate::io::lab_file::{Detected, Format};
 pub use figures::ReduceOptions;
-pub(crate) use input::{read_checked, read_readings};
-pub use template::template;
+pub(crate) use input::read_checked;
 pub use input::Readings;
+pub use template::template;
 
 use crate::error::Error;
 use crate::instruments::reduction::{
@@ -65,7 +67,6 @@ use crate::instruments::reduction::{
 };
 use crate::io::chart::{Chart, Scale, Series};
 use crate::io::fmt::{clean, sig_plain};
-use crate::io::lab_file::Detected;
 use crate::io::{Outputs, Table};
 use std::path::{Path, PathBuf};
 
