@@ -500,6 +500,9 @@ fn csv_file(path: &Path, bytes: &[u8]) -> Result<LabFile, Error> {
     };
     let text = text.replace("\r\n", "\n").replace('\r', "\n");
     let lines: Vec<&str> = text.split('\n').collect();
+    let line_starts: Vec<usize> = std::iter::once(0)
+        .chain(text.match_indices('\n').map(|(i, _)| i + 1))
+        .collect();
     let mut notes = vec![match encoding.as_str() {
         "UTF-8" => "encoding: UTF-8 (the bytes are valid UTF-8)".to_string(),
         "Windows-1252" => "encoding: Windows-1252 (Latin-1): the bytes are not UTF-8 and have \
@@ -549,7 +552,17 @@ fn csv_file(path: &Path, bytes: &[u8]) -> Result<LabFile, Error> {
                 format!("line {line}: the line cannot be split into fields (an unclosed quote?)"),
             )
         })?;
-        let line = rec.position().map(|p| p.line() as usize).unwrap_or(0);
+        // The line from the record's byte offset (the csv reader's own line count skips blank
+        // lines).
+        let byte = rec.position().map(|p| p.byte() as usize).unwrap_or(0);
+        let mut line = line_starts.partition_point(|&s| s <= byte);
+        while lines
+            .get(line.wrapping_sub(1))
+            .is_some_and(|l| l.trim().is_empty())
+            && line < lines.len()
+        {
+            line += 1;
+        }
         let cells: Vec<String> = rec.iter().map(|c| c.trim().to_string()).collect();
         if cells.iter().all(|c| c.is_empty()) {
             continue;

@@ -175,6 +175,14 @@ pub(super) fn check(
 /// is likely): a temperature in °F, a 152H reading in a 151H file, a mass in mg.
 pub(super) fn out_of_range_hint(column: &str, x: f64, rules: &RowRules) -> String {
     match column {
+        "time_s" if x > rules_time_max("time_s") => {
+            " (the times look like milliseconds: give seconds)".into()
+        }
+        "time_min" if x > rules_time_max("time_min") => {
+            " (the times look like seconds or milliseconds: give minutes, or rename the column \
+             `time_s`)"
+                .into()
+        }
         "temperature_c" if (50.0..=110.0).contains(&x) => format!(
             " ({} looks like °F, {} °C: give degrees Celsius)",
             sig_trim(x, 4),
@@ -198,6 +206,15 @@ pub(super) fn out_of_range_hint(column: &str, x: f64, rules: &RowRules) -> Strin
             )
         }
         _ => String::new(),
+    }
+}
+
+/// The largest time a column allows (`super::input`'s ranges: 10⁷ s, 10⁶ min).
+fn rules_time_max(column: &str) -> f64 {
+    if column == "time_s" {
+        1e7
+    } else {
+        1e6
     }
 }
 

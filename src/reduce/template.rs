@@ -24,7 +24,7 @@ pub fn template(standard: &str) -> Result<String, Error> {
     let mut t = format!(
         "# settle readings template, ASTM {}: fill in the figures and the readings, then run\n\
          # settle reduce THIS_FILE   (format: docs/commands/reduce.md)\n\
-         # Comment lines that are not `key = value` figures are notes: keep or delete them.\n\
+         # Comment lines without an equals sign are notes: keep or delete them.\n\
          # standard = {name}\n\
          # 152H (g/L) or 151H (specific gravity)\n\
          # hydrometer = 152H\n\

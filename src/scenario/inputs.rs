@@ -590,3 +590,64 @@ pub fn read_sample(sample: &SampleSpec, scenario_path: &Path) -> Result<Distribu
         points: points.into_iter().map(|(d, f, _)| (d, f)).collect(),
     })
 }
+
+#[cfg(test)]
+mod lab_file_tests {
+    use super::*;
+
+    /// A scenario's sample table saved by a spreadsheet (semicolons, decimal commas,
+    /// Windows-1252, CRLF) reads as the CSV does; a bad cell names the line and the column.
+    #[test]
+    fn a_sample_table_saved_by_a_spreadsheet_reads_as_the_csv() {
+        let text = std::fs::read_to_string("data/sedimentation_samples.csv").unwrap();
+        let sheet: String = text
+            .lines()
+            .map(|l| {
+                if l.starts_with('#') {
+                    l.replace("log10", "log₁₀ °").replace(',', " ")
+                } else {
+                    l.split(',')
+                        .map(|c| {
+                            if c.parse::<f64>().is_ok() {
+                                c.replace('.', ",")
+                            } else {
+                                c.to_string()
+                            }
+                        })
+                        .collect::<Vec<_>>()
+                        .join(";")
+                }
+            })
+            .collect::<Vec<_>>()
+            .join("\r\n");
+        let (latin1, _, bad) = encoding_rs::WINDOWS_1252.encode(&sheet);
+        assert!(!bad || sheet.contains('₁'));
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join("samples.csv"), &latin1).unwrap();
+        std::fs::copy(
+            "data/sedimentation_samples.csv",
+            dir.path().join("plain.csv"),
+        )
+        .unwrap();
+        let spec = |csv: &str| -> SampleSpec {
+            toml::from_str(&format!(
+                "csv = \"{csv}\"\nsample = 2\nmass_kg = 0.06\ndensity_kg_m3 = 2500.0\n"
+            ))
+            .unwrap()
+        };
+        let scenario = dir.path().join("s.toml");
+        let plain = read_sample(&spec("plain.csv"), &scenario).unwrap();
+        let sheet = read_sample(&spec("samples.csv"), &scenario).unwrap();
+        assert_eq!(plain, sheet);
+        let broken = String::from_utf8_lossy(&latin1).replacen("\r\n2;", "\r\nzero;", 1);
+        std::fs::write(dir.path().join("broken.csv"), broken.as_bytes()).unwrap();
+        let e = read_sample(&spec("broken.csv"), &scenario).unwrap_err();
+        assert!(
+            e.message.contains("`zero` is not a number"),
+            "{}",
+            e.message
+        );
+        assert!(e.message.contains("line "), "{}", e.message);
+        assert!(e.message.contains("(data row "), "{}", e.message);
+    }
+}

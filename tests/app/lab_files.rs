@@ -125,8 +125,8 @@ fn the_same_sheet_in_every_lab_format_reduces_to_identical_files() {
     }
 }
 
-/// `settle reduce --template d7928` prints a template whose figures and schedule are the
-/// standard's; filled in, it reduces.
+/// The README's lab quick start: `settle reduce --template d7928` prints a template whose
+/// figures and schedule are the standard's; filled in, it reduces, and inverts.
 #[test]
 fn the_template_filled_in_reduces() {
     for (standard, n, header) in [
@@ -173,5 +173,19 @@ fn the_template_filled_in_reduces() {
         assert_exit(&o, 0);
         let s = String::from_utf8_lossy(&o.stdout);
         assert!(s.contains(&format!("{n} readings")), "{s}");
+        assert!(dir.path().join("out/sheet_reduced/reduce.toml").is_file());
+        // The README's step 4: invert the same sheet.
+        if standard == "d7928" {
+            let o = settle_command(
+                "invert",
+                &[f.to_str().unwrap()],
+                &dir.path().join("out"),
+                &["--repeats", "10"],
+            );
+            assert_exit(&o, 0);
+            let t =
+                std::fs::read_to_string(dir.path().join("out/sheet_inverted/invert.toml")).unwrap();
+            assert!(t.contains("[file.input]\nformat = \"csv\""), "{t}");
+        }
     }
 }
