@@ -573,7 +573,7 @@ fn csv_file(path: &Path, bytes: &[u8]) -> Result<LabFile, Error> {
             // delimiters; a quoted one as its cells.
             let text = if raw.trim_start().starts_with('#') {
                 raw.trim()
-                    .trim_end_matches(|c| c == delimiter || c == ' ')
+                    .trim_end_matches([delimiter, ' '])
                     .to_string()
             } else {
                 comment_text(&cells)

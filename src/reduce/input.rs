@@ -195,13 +195,16 @@ fn columns(
     Ok(at)
 }
 
+/// The readings, where each row is, and the time column's name and index.
+type Rows = (Vec<LabReading>, Vec<Loc>, (&'static str, usize));
+
 /// The readings of the table, each value checked by `rules`, with where each row is and the
 /// time column's name and index.
 fn rows(
     file: &Path,
     p: &Parsed,
     rules: &RowRules,
-) -> Result<(Vec<LabReading>, Vec<Loc>, (&'static str, usize)), Error> {
+) -> Result<Rows, Error> {
     let at = columns(file, &p.header, rules.reading, &rules.optional_columns())?;
     let (temperature, blank) = rules.check_columns(file, &at)?;
     if p.rows.is_empty() {
