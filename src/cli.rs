@@ -115,8 +115,13 @@ enum Command {
     /// standard's range) exits 2 naming the file, row and column; nothing is written.
     /// See docs/commands/reduce.md.
     Reduce {
-        /// The readings file (CSV).
-        readings: PathBuf,
+        /// The readings file: CSV (comma or semicolon, decimal point or comma, UTF-8 or
+        /// Latin-1), .xlsx or .ods.
+        #[arg(required_unless_present = "template")]
+        readings: Option<PathBuf>,
+        /// Print a readings template to fill in (d7928 or d422) and exit.
+        #[arg(long, value_name = "STANDARD", conflicts_with = "readings")]
+        template: Option<String>,
         /// d422 or d7928 (overrides the file's `# standard`).
         #[arg(long)]
         standard: Option<String>,
@@ -264,10 +269,23 @@ pub fn main() -> i32 {
         Command::Sweep(args) => exit_code(crate::sweep::main(&args), |()| {}),
         Command::Reduce {
             readings,
+            template,
             standard,
             hydrometer,
             out,
         } => {
+            let Some(readings) = readings else {
+                return match crate::reduce::template(template.as_deref().unwrap_or_default()) {
+                    Ok(t) => {
+                        print!("{t}");
+                        0
+                    }
+                    Err(e) => {
+                        eprintln!("error: {e}");
+                        e.exit_code()
+                    }
+                };
+            };
             let opts = crate::reduce::ReduceOptions {
                 standard,
                 hydrometer,

@@ -243,3 +243,39 @@ def test_laws_spheres_without_fluids_is_refused() -> None:
     # both files: the built-in spheres' tables
     r = settle.laws(spheres, ROOT / "data" / "valentik_whitmore_1965_suspensions.csv")
     assert r.csv("laws") == settle.laws().csv("laws")
+
+
+# --- lab files as labs keep them (issue 26) -------------------------------------------------
+
+LAB_FORMATS = ROOT / "tests" / "data" / "lab"
+
+
+def test_reduce_reads_xlsx_ods_and_latin1_csv_as_the_utf8_csv() -> None:
+    """The same readings sheet as UTF-8 CSV, Latin-1 semicolon CSV with decimal commas, .xlsx
+    and .ods: identical DataFrames, and the record says how each was read."""
+    base = settle.reduce(LAB_FORMATS / "utf8" / "soil_b3.csv")
+    frame = base.tables["percent_finer"]
+    assert len(frame) == 8
+    for path, said in [
+        (LAB_FORMATS / "latin1" / "soil_b3.csv", 'encoding = "Windows-1252"'),
+        (LAB_FORMATS / "xlsx" / "soil_b3.xlsx", 'format = "excel"'),
+        (LAB_FORMATS / "kv" / "soil_b3.xlsx", 'sheet = "Sheet1"'),
+        (LAB_FORMATS / "ods" / "soil_b3.ods", 'format = "ods"'),
+    ]:
+        r = settle.reduce(path)
+        pd.testing.assert_frame_equal(r.tables["percent_finer"], frame)
+        assert r.csv("percent_finer") == base.csv("percent_finer")
+        record = r.files["reduce.toml"].decode()
+        assert said in record.split("[input]")[1], record
+        assert r.lines[1].startswith("  read as: "), r.lines
+
+
+def test_reduce_refuses_minutes_under_time_s_with_the_fix(tmp_path: Path) -> None:
+    f = tmp_path / "m.csv"
+    f.write_text((LAB_FORMATS / "utf8" / "soil_b3.csv").read_text().replace("time_min,", "time_s,"))
+    msg = cli_error("reduce", str(f), "--out", str(tmp_path / "out"))
+    with pytest.raises(settle.ScenarioError) as e:
+        settle.reduce(f)
+    assert str(e.value) == msg
+    assert "look like minutes" in msg and "time_min" in msg
+    assert not (tmp_path / "out").exists()

@@ -29,8 +29,95 @@ pub struct Slump {
     pub tests: Vec<SlumpTest>,
     /// The mean yield stress of the tests, Pa.
     pub mean_yield_stress_pa: f64,
+    /// Doubtful values (a mould or a density outside the usual ranges), also in `lines` as
+    /// `warning: …`.
+    pub warnings: Vec<String>,
     /// The lines `settle fit slump` prints.
     pub lines: Vec<String>,
+}
+
+/// The tallest standard slump mould, mm: the Abrams cone of ASTM C143 (300 mm high, 100 mm top
+/// and 200 mm base diameters). A taller mould is warned.
+pub const CONE_HEIGHT_MM: f64 = 300.0;
+
+/// The smallest slump mould in use, mm: the mini-slump cone of Kantro (1980) for cement pastes
+/// (57 mm high). A smaller mould is warned; under 1 mm it is a height in metres, refused.
+pub const MINI_CONE_HEIGHT_MM: f64 = 57.0;
+
+/// A paste's density that is not doubtful, kg/m³: more than water's (1000, the liquid of the
+/// paste) and less than its solids' (mineral solids 2650 for quartz, cement 3150). Outside,
+/// warned; under 100 kg/m³ it is a density in t/m³ (g/cm³), refused.
+pub const PASTE_DENSITY_KG_M3: (f64, f64) = (1000.0, 3150.0);
+
+/// The clear unit mistakes of `settle fit slump`, refused naming the value, the likely unit
+/// and the fix; and the doubtful values, returned as warnings.
+fn plausible(height_mm: f64, slumps_mm: &[f64], density: f64) -> Result<Vec<String>, Error> {
+    let refuse =
+        |option: &str, v: f64, m: String| Err(Error::bad_argument(option, Path::new(&short(v)), m));
+    if density > 0.0 && density < 100.0 {
+        return refuse(
+            "--density",
+            density,
+            format!(
+                "a paste of {} kg/m³ is far lighter than water (1000 kg/m³): the density looks like \
+                 t/m³ (g/cm³); fix: give kg/m³, --density {}",
+                short(density),
+                short(density * 1000.0)
+            ),
+        );
+    }
+    if height_mm > 0.0 && height_mm < 1.0 {
+        return refuse(
+            "--height-mm",
+            height_mm,
+            format!(
+                "a mould {} mm high: the height looks like metres; fix: give millimetres, \
+                 --height-mm {}",
+                short(height_mm),
+                short(height_mm * 1000.0)
+            ),
+        );
+    }
+    if height_mm >= MINI_CONE_HEIGHT_MM && slumps_mm.iter().all(|s| *s > 0.0 && *s < 1.0) {
+        return refuse(
+            "--slump-mm",
+            slumps_mm[0],
+            format!(
+                "slumps under 1 mm from a {} mm mould: the slumps look like metres; fix: give \
+                 millimetres, --slump-mm {}",
+                short(height_mm),
+                slumps_mm
+                    .iter()
+                    .map(|s| short(s * 1000.0))
+                    .collect::<Vec<_>>()
+                    .join(",")
+            ),
+        );
+    }
+    let mut w = Vec::new();
+    if height_mm > CONE_HEIGHT_MM {
+        w.push(format!(
+            "--height-mm {}: taller than the ASTM C143 cone (300 mm), the tallest standard \
+             mould: check the unit",
+            short(height_mm)
+        ));
+    } else if height_mm > 0.0 && height_mm < MINI_CONE_HEIGHT_MM {
+        w.push(format!(
+            "--height-mm {}: smaller than the mini-slump cone (57 mm), the smallest mould in \
+             use: in centimetres? {} mm",
+            short(height_mm),
+            short(height_mm * 10.0)
+        ));
+    }
+    let (d0, d1) = PASTE_DENSITY_KG_M3;
+    if density >= 100.0 && !(d0..=d1).contains(&density) {
+        w.push(format!(
+            "--density {}: outside 1000–3150 kg/m³ (water to cement, the densest common \
+             solid of a paste): check it",
+            short(density)
+        ));
+    }
+    Ok(w)
 }
 
 /// `settle fit slump` in memory: τ_y of each slump (mm) of a mould `height_mm` high, for a
@@ -52,6 +139,7 @@ pub fn slump(height_mm: f64, slumps_mm: &[f64], density: f64, g: f64) -> Result<
             "no slump given: allowed one or more slumps 0 < S < height, mm",
         ));
     }
+    let warnings = plausible(height_mm, slumps_mm, density)?;
     let mut tests = Vec::new();
     let mut lines = Vec::new();
     for s in slumps_mm {
@@ -87,7 +175,9 @@ pub fn slump(height_mm: f64, slumps_mm: &[f64], density: f64, g: f64) -> Result<
         fmt(mean),
         tests.len()
     ));
+    lines.extend(warnings.iter().map(|w| format!("warning: {w}")));
     Ok(Slump {
+        warnings,
         height_mm,
         density_kg_m3: density,
         g_m_s2: g,

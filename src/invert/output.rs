@@ -229,6 +229,9 @@ fn record(r: &InvertResult) -> String {
             clean(an.grain_density_kg_m3),
             clean(an.gravity_m_s2),
         ));
+        if let Some((d, _)) = &test.input {
+            t.push_str(&format!("\n[file.input]\n{}", d.toml()));
+        }
     }
     t
 }
@@ -237,7 +240,12 @@ fn record(r: &InvertResult) -> String {
 /// their uncertainty), iterations that did not converge.
 pub fn warnings(r: &InvertResult) -> Vec<String> {
     let m = r.misfit.len() as f64;
-    let mut w = Vec::new();
+    let mut w: Vec<String> = r
+        .tests
+        .iter()
+        .filter_map(|t| t.input.as_ref().map(|(_, w)| (t, w)))
+        .flat_map(|(t, ws)| ws.iter().map(move |x| format!("{}: {x}", t.file.display())))
+        .collect();
     if r.chi2 > 2.0 * m && r.lambda_rule != LambdaRule::Gcv {
         w.push(format!(
             "χ² = {} for {} readings: the model does not explain the readings within their \

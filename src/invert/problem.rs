@@ -139,6 +139,9 @@ pub struct Test {
     pub offsets: Vec<f64>,
     /// Resolution of the readings Δ, in the file's unit.
     pub resolution: f64,
+    /// How the file was read (the format layer's `[input]` keys: format, sheet, encoding,
+    /// delimiter, decimal mark) and its doubtful values, for invert.toml and the warnings.
+    pub input: Option<(crate::io::lab_file::Detected, Vec<String>)>,
 }
 
 impl Test {

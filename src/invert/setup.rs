@@ -35,8 +35,10 @@ pub(crate) fn read_test_of(
             ));
         }
     }
-    let (setup, lab) = crate::reduce::read_readings(readings, &ReduceOptions::default())?;
-    let test = test_of(file, &setup, &lab, resolution)?;
+    let read = crate::reduce::read_checked(readings, &ReduceOptions::default())?;
+    let (setup, lab) = (read.setup, read.readings);
+    let mut test = test_of(file, &setup, &lab, resolution)?;
+    test.input = Some((read.detected, read.warnings));
     Ok((test, reduce(&setup, &lab)))
 }
 
@@ -177,5 +179,6 @@ fn test_of(
         readings: readings.iter().map(|r| r.reading).collect(),
         offsets,
         resolution: resolution.unwrap_or(default_resolution),
+        input: None,
     })
 }

@@ -13,6 +13,7 @@
 mod atomic;
 pub mod chart;
 pub mod fmt;
+pub mod lab_file;
 pub mod metrics;
 pub mod outputs;
 pub mod report;

@@ -5,6 +5,7 @@
 
 use crate::error::Error;
 use crate::instruments::reduction::{HydrometerType, Standard};
+use crate::io::lab_file::{number_hint, Detected, LabFile, Loc};
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -80,12 +81,14 @@ pub(super) fn d7928_keys() -> impl Iterator<Item = &'static str> {
 
 /// Keys of free text a laboratory may add (kept in reduce.toml, not used).
 const TEXT_KEYS: [&str; 6] = ["sample", "source", "date", "operator", "note", "dispersant"];
-/// A readings file split into its figures (key → (value, line)) and its table.
+/// A readings file split into its figures (key → (value, where)) and its table.
 pub(super) struct Parsed {
-    pub(super) figures: BTreeMap<String, (String, usize)>,
+    pub(super) figures: BTreeMap<String, (String, Loc)>,
     pub(super) header: Vec<String>,
-    /// (line number, fields).
-    pub(super) rows: Vec<(usize, Vec<String>)>,
+    /// (where the row is, fields).
+    pub(super) rows: Vec<(Loc, Vec<String>)>,
+    /// What the format layer detected (format, sheet, encoding, delimiter, decimal mark).
+    pub(super) detected: Detected,
 }
 
 /// Bad input in `file`, naming no key.
@@ -93,18 +96,16 @@ pub(super) fn bad(file: &Path, msg: String) -> Error {
     Error::bad_input(file, None, msg)
 }
 
-/// Splits the text of a readings file; refuses duplicate or unknown keys and a missing header.
-pub(super) fn split(file: &Path, text: &str) -> Result<Parsed, Error> {
+/// Splits a readings file read by the format layer ([`LabFile`]); refuses duplicate or unknown
+/// keys and a missing header.
+pub(super) fn split(file: &Path, lab: LabFile) -> Result<Parsed, Error> {
     let mut figures = BTreeMap::new();
     let mut header: Option<Vec<String>> = None;
     let mut rows = Vec::new();
-    for (i, raw) in text.lines().enumerate() {
-        let line = i + 1;
-        let l = raw.trim();
-        if l.is_empty() {
-            continue;
-        }
-        if let Some(c) = l.strip_prefix('#') {
+    for r in lab.rows {
+        let line = r.loc;
+        if r.cells.len() == 1 && r.cells[0].starts_with('#') {
+            let c = &r.cells[0][1..];
             let Some((k, v)) = c.split_once('=').filter(|_| header.is_none()) else {
                 continue;
             };
@@ -114,25 +115,26 @@ pub(super) fn split(file: &Path, text: &str) -> Result<Parsed, Error> {
                     file,
                     Some(&k),
                     format!(
-                        "line {line}: unknown key; allowed: {}, and the free text {}",
+                        "{line}: unknown key; allowed: {}, and the free text {}",
                         figure_keys().collect::<Vec<_>>().join(", "),
                         TEXT_KEYS.join(", ")
                     ),
                 ));
             }
-            if let Some((_, first)) = figures.insert(k.clone(), (v.trim().to_string(), line)) {
+            if let Some((_, first)) =
+                figures.insert(k.clone(), (v.trim().to_string(), line.clone()))
+            {
                 return Err(Error::bad_input(
                     file,
                     Some(&k),
-                    format!("line {line}: given twice (first on line {first})"),
+                    format!("{line}: given twice (first on {first})"),
                 ));
             }
             continue;
         }
-        let fields: Vec<String> = l.split(',').map(|f| f.trim().to_string()).collect();
         match &header {
-            None => header = Some(fields),
-            Some(_) => rows.push((line, fields)),
+            None => header = Some(r.cells),
+            Some(_) => rows.push((line, r.cells)),
         }
     }
     let header = header.ok_or_else(|| {
@@ -147,6 +149,7 @@ pub(super) fn split(file: &Path, text: &str) -> Result<Parsed, Error> {
         figures,
         header,
         rows,
+        detected: lab.detected,
     })
 }
 
@@ -165,14 +168,20 @@ pub(super) fn figure(
         Error::bad_input(
             file,
             Some(key),
-            format!("line {line}: `{v}` is not a number; allowed: {allowed}"),
+            format!(
+                "{line}: `{v}` is not a number{}; allowed: {allowed}",
+                number_hint(v, &p.detected)
+            ),
         )
     })?;
     if !(x.is_finite() && x >= lo && x <= hi) {
         return Err(Error::bad_input(
             file,
             Some(key),
-            format!("line {line}: {v} is out of range; allowed: {allowed}"),
+            format!(
+                "{line}: {v} is out of range; allowed: {allowed}{}",
+                super::checks::figure_hint(key, x)
+            ),
         ));
     }
     Ok(Some(x))
@@ -222,11 +231,10 @@ pub(super) fn choice<T>(
     (key, allowed, example): (&str, &str, &str),
     parse: impl Fn(&str) -> Option<T>,
 ) -> Result<T, Error> {
-    let given = option.clone().map(|v| (v, format!("--{key}"))).or_else(|| {
-        p.figures
-            .get(key)
-            .map(|(v, l)| (v.clone(), format!("line {l}")))
-    });
+    let given = option
+        .clone()
+        .map(|v| (v, format!("--{key}")))
+        .or_else(|| p.figures.get(key).map(|(v, l)| (v.clone(), l.to_string())));
     let Some((v, at)) = given else {
         return Err(Error::bad_input(
             file,

@@ -8,6 +8,7 @@ use super::instrument::{setup, RowRules};
 use crate::error::Error;
 use crate::instruments::reduction::{LabReading, TestSetup};
 use crate::io::fmt::num;
+use crate::io::lab_file::{number_hint, Detected, LabFile, Loc};
 use crate::io::Table;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -60,12 +61,11 @@ impl Readings {
             .unwrap_or_else(|| "readings".into())
     }
 
-    /// The text of the readings file (read from the file, or written from memory).
-    pub(crate) fn text(&self) -> Result<String, Error> {
+    /// The readings file through the format layer (CSV as spreadsheets export it, or a
+    /// workbook; a table in memory as the CSV it stands for).
+    pub(crate) fn lab(&self) -> Result<LabFile, Error> {
         match self {
-            Readings::File(file) => {
-                std::fs::read_to_string(file).map_err(|e| Error::Io(file.clone(), e))
-            }
+            Readings::File(file) => LabFile::read(file),
             Readings::Table { figures, table } => {
                 let mut t = String::new();
                 for (k, v) in figures {
@@ -77,7 +77,7 @@ impl Readings {
                     t.push_str(&r.join(","));
                     t.push('\n');
                 }
-                Ok(t)
+                LabFile::from_text(&self.path(), &t)
             }
         }
     }
@@ -112,18 +112,35 @@ const COLUMNS: [&str; 7] = [
     "blank_reading",
 ];
 
-/// Reads and checks readings (a file or in memory): the test's figures and its readings.
-pub(crate) fn read_readings(
-    readings: &Readings,
-    req: &ReduceOptions,
-) -> Result<(TestSetup, Vec<LabReading>), Error> {
-    let text = readings.text()?;
+/// Readings read and checked: the test's figures, its readings, what the format layer
+/// detected, and the doubtful values (warnings).
+pub(crate) struct ReadOut {
+    /// The test's figures.
+    pub setup: TestSetup,
+    /// The readings, in order.
+    pub readings: Vec<LabReading>,
+    /// What was detected (format, sheet, encoding, delimiter, decimal mark).
+    pub detected: Detected,
+    /// Doubtful values, one sentence each (the console's and the record's warnings).
+    pub warnings: Vec<String>,
+}
+
+/// Reads and checks readings (a file or in memory) through the format layer, then their
+/// plausibility ([`super::checks`]): a clear mistake (a wrong unit) is bad input, a doubtful
+/// value a warning.
+pub(crate) fn read_checked(readings: &Readings, req: &ReduceOptions) -> Result<ReadOut, Error> {
+    let lab = readings.lab()?;
     let file = &readings.path();
-    // A spreadsheet's UTF-8 byte-order mark is not part of the first key or column name.
-    let p = split(file, text.trim_start_matches('\u{feff}'))?;
+    let p = split(file, lab)?;
     let (s, rules) = setup(file, &p, req)?;
-    let readings = rows(file, &p, &rules)?;
-    Ok((s, readings))
+    let (lab_readings, locs, time_col) = rows(file, &p, &rules)?;
+    let warnings = super::checks::check(file, &p, &s, &lab_readings, &locs, time_col)?;
+    Ok(ReadOut {
+        setup: s,
+        readings: lab_readings,
+        detected: p.detected,
+        warnings,
+    })
 }
 
 /// The column index of each known column; refuses unknown, duplicate and missing ones, and
@@ -178,8 +195,16 @@ fn columns(
     Ok(at)
 }
 
-/// The readings of the table, each value checked by `rules`.
-fn rows(file: &Path, p: &Parsed, rules: &RowRules) -> Result<Vec<LabReading>, Error> {
+/// The readings, where each row is, and the time column's name and index.
+type Rows = (Vec<LabReading>, Vec<Loc>, (&'static str, usize));
+
+/// The readings of the table, each value checked by `rules`, with where each row is and the
+/// time column's name and index.
+fn rows(
+    file: &Path,
+    p: &Parsed,
+    rules: &RowRules,
+) -> Result<Rows, Error> {
     let at = columns(file, &p.header, rules.reading, &rules.optional_columns())?;
     let (temperature, blank) = rules.check_columns(file, &at)?;
     if p.rows.is_empty() {
@@ -189,13 +214,21 @@ fn rows(file: &Path, p: &Parsed, rules: &RowRules) -> Result<Vec<LabReading>, Er
         ));
     }
     let mut out: Vec<LabReading> = Vec::new();
+    let mut locs = Vec::new();
     for (n, (line, fields)) in p.rows.iter().enumerate() {
         let row = n + 1;
         if fields.len() != p.header.len() {
+            let hint = if p.detected.delimiter == Some(',') && fields.len() > p.header.len() {
+                " (a comma inside a number, a decimal comma or a thousands separator, splits it \
+                 in two: write numbers with a decimal point, or save the sheet as CSV with \
+                 semicolons)"
+            } else {
+                ""
+            };
             return Err(bad(
                 file,
                 format!(
-                    "row {row} (line {line}): {} fields, the header has {}",
+                    "row {row} ({line}): {} fields, the header has {}{hint}",
                     fields.len(),
                     p.header.len()
                 ),
@@ -204,17 +237,26 @@ fn rows(file: &Path, p: &Parsed, rules: &RowRules) -> Result<Vec<LabReading>, Er
         let value = |c: &str, (lo, hi): (f64, f64), allowed: &str| -> Result<f64, Error> {
             let j = at[c];
             let v = &fields[j];
-            let where_ = format!("row {row} (line {line}), column {} `{c}`", j + 1);
+            let where_ = format!("row {row} ({}), column {} `{c}`", line.at(j), j + 1);
+            if v.is_empty() {
+                return Err(bad(file, format!("{where_}: empty; allowed: {allowed}")));
+            }
             let x: f64 = v.parse().map_err(|_| {
                 bad(
                     file,
-                    format!("{where_}: `{v}` is not a number; allowed: {allowed}"),
+                    format!(
+                        "{where_}: `{v}` is not a number{}; allowed: {allowed}",
+                        number_hint(v, &p.detected)
+                    ),
                 )
             })?;
             if !(x.is_finite() && x >= lo && x <= hi) {
                 return Err(bad(
                     file,
-                    format!("{where_}: {v} is out of range; allowed: {allowed}"),
+                    format!(
+                        "{where_}: {v} is out of range; allowed: {allowed}{}",
+                        super::checks::out_of_range_hint(c, x, rules)
+                    ),
                 ));
             }
             Ok(x)
@@ -246,8 +288,9 @@ fn rows(file: &Path, p: &Parsed, rules: &RowRules) -> Result<Vec<LabReading>, Er
             return Err(bad(
                 file,
                 format!(
-                    "row {row} (line {line}), column {} `{c}`: {} is not after the previous \
+                    "row {row} ({}), column {} `{c}`: {} is not after the previous \
                      reading's {}; times must increase strictly",
+                    line.at(at[c]),
                     at[c] + 1,
                     fields[at[c]],
                     if c == "time_s" {
@@ -264,6 +307,12 @@ fn rows(file: &Path, p: &Parsed, rules: &RowRules) -> Result<Vec<LabReading>, Er
             temperature_c: temp,
             blank_reading,
         });
+        locs.push(line.clone());
     }
-    Ok(out)
+    let time = if at.contains_key("time_s") {
+        "time_s"
+    } else {
+        "time_min"
+    };
+    Ok((out, locs, (time, at[time])))
 }

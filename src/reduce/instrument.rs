@@ -132,7 +132,7 @@ pub(super) fn setup(
                 return Err(Error::bad_input(
                     file,
                     Some("instrument"),
-                    format!("line {line}: unknown instrument `{v}`; allowed: {INSTRUMENTS}"),
+                    format!("{line}: unknown instrument `{v}`; allowed: {INSTRUMENTS}"),
                 ));
             }
             k
@@ -203,7 +203,7 @@ fn refuse_foreign(file: &Path, p: &Parsed, kind: &str) -> Result<(), Error> {
         .filter(|o| *o != kind)
     {
         if let Some(k) = keys_of(owner).find(|k| p.figures.contains_key(*k)) {
-            let line = p.figures[k].1;
+            let line = &p.figures[k].1;
             let what = if d7928_keys().any(|d| d == k) {
                 "a D7928 hydrometer dimension"
             } else {
@@ -213,7 +213,7 @@ fn refuse_foreign(file: &Path, p: &Parsed, kind: &str) -> Result<(), Error> {
                 file,
                 Some(k),
                 format!(
-                    "line {line}: {what}, not used by a {kind} (the file's `instrument`): \
+                    "{line}: {what}, not used by a {kind} (the file's `instrument`): \
                      remove it, or set `# instrument = {owner}`"
                 ),
             ));
@@ -326,7 +326,7 @@ fn pipette(file: &Path, p: &Parsed, height_m: f64, s: &mut TestSetup) -> Result<
             return Err(Error::bad_input(
                 file,
                 Some("pipette_region"),
-                format!("line {l}: unknown region `{v}`; allowed: sphere, disc"),
+                format!("{l}: unknown region `{v}`; allowed: sphere, disc"),
             ))
         }
     };
@@ -410,7 +410,7 @@ fn sphere(file: &Path, p: &Parsed, height_m: f64, s: &mut TestSetup) -> Result<R
             file,
             Some("blank_reading"),
             format!(
-                "line {line}: not used by a buoyancy-sphere (its clear-fluid apparent mass is \
+                "{line}: not used by a buoyancy-sphere (its clear-fluid apparent mass is \
                  m_air − ρ_f V_sp): give the dispersant solution's `fluid_density_kg_m3` instead"
             ),
         ));
@@ -437,7 +437,7 @@ fn sphere(file: &Path, p: &Parsed, height_m: f64, s: &mut TestSetup) -> Result<R
             file,
             Some("sphere_mass_g"),
             format!(
-                "line {}: a sphere of {mass_g} g and Ø {d_mm} mm floats (it displaces {} g of \
+                "{}: a sphere of {mass_g} g and Ø {d_mm} mm floats (it displaces {} g of \
                  the fluid); allowed: more than {} g",
                 p.figures["sphere_mass_g"].1,
                 sig_trim(displaced_g, 4),

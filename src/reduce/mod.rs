@@ -2,7 +2,7 @@
 //! (ASTM D422 or D7928), pipette draws and buoyancy-sphere weighings (seed 000 eqs. 16–18, 22;
 //! `# instrument = pipette | buoyancy-sphere`, [`crate::instruments::reduction`]) into
 //! `OUT/<stem>_reduced/`: `percent_finer.csv`, `percent_finer.svg` and `reduce.toml`.
-//! `read_readings` is the one place that reads readings, for every instrument (`settle invert`
+//! `read_checked` is the one place that reads readings, for every instrument (`settle invert`
 //! reads through it too).
 //!
 //! # From Rust
@@ -26,7 +26,8 @@
 //!
 //! # The readings file
 //!
-//! A plain CSV (no quoted fields) whose first lines are the test's figures as `# key = value`
+//! A CSV (or an `.xlsx` / `.ods` sheet laid out the same way, read by [`crate::io::lab_file`])
+//! whose first lines are the test's figures as `# key = value`
 //! comments, then a header and one row per reading (see `docs/commands/reduce.md`):
 //!
 //! ```text
@@ -48,13 +49,17 @@
 //! is one error naming the file, the key or the row and column (1-based), and what is allowed;
 //! exit 2, nothing written.
 
+mod checks;
 mod figures;
 mod input;
 mod instrument;
+mod template;
 
+pub use crate::io::lab_file::{Detected, Format};
 pub use figures::ReduceOptions;
-pub(crate) use input::read_readings;
+pub(crate) use input::read_checked;
 pub use input::Readings;
+pub use template::template;
 
 use crate::error::Error;
 use crate::instruments::reduction::{
@@ -77,8 +82,12 @@ pub struct ReduceResult {
     pub setup: TestSetup,
     /// Every reading reduced.
     pub reduced: Vec<Reduced>,
-    /// Validity warnings (percent finer outside 0–100 %).
+    /// Validity warnings: doubtful inputs (specific gravity, temperature, a virtual test's
+    /// schedule), percent finer outside 0–100 %, diameters above the 75 µm sieve.
     pub warnings: Vec<String>,
+    /// What the format layer detected in the readings file: format, sheet, encoding,
+    /// delimiter, decimal mark (also in `reduce.toml`'s `[input]` table).
+    pub detected: Detected,
     /// The tables and files of `OUT/<stem>_reduced/`.
     pub outputs: Outputs,
 }
@@ -97,8 +106,14 @@ impl ReduceResult {
     }
 
     /// The console summary of `settle reduce`, the results written to `out`.
+    /// A file that is not a plain UTF-8, comma-separated CSV with decimal points gets a second
+    /// line saying how it was read (`  read as: CSV, Windows-1252, semicolon-separated, …`).
     pub fn lines(&self, out: &Path) -> Vec<String> {
-        summary(&self.input, out, &self.setup, &self.reduced)
+        let mut l = summary(&self.input, out, &self.setup, &self.reduced);
+        if let Some(s) = read_as(&self.detected) {
+            l.insert(1, s);
+        }
+        l
     }
 }
 
@@ -115,7 +130,8 @@ impl ReduceResult {
 /// ```
 pub fn reduce(readings: impl Into<Readings>, opts: &ReduceOptions) -> Result<ReduceResult, Error> {
     let readings = readings.into();
-    let (setup, lab) = read_readings(&readings, opts)?;
+    let read = read_checked(&readings, opts)?;
+    let (setup, lab) = (read.setup, read.readings);
     let file = readings.path();
     let stem = readings.stem();
     let reduced = reduce_readings(&setup, &lab);
@@ -126,27 +142,50 @@ pub fn reduce(readings: impl Into<Readings>, opts: &ReduceOptions) -> Result<Red
         "percent_finer.svg",
         chart(&stem, &setup, &reduced).map_err(ioe)?,
     );
-    outputs.file("reduce.toml", record(&file, &setup, &lab));
-    let warnings = reduced
-        .iter()
-        .filter(|r| !(0.0..=100.0).contains(&r.percent_finer))
-        .map(|r| {
-            format!(
-                "percent finer {} % at t = {} min is outside 0–100 %: check dry_mass_g, \
-                 specific_gravity and the blank reading",
-                sig_plain(r.percent_finer, 3),
-                sig_plain(r.reading.time_s / 60.0, 4)
-            )
-        })
-        .collect();
+    let mut warnings = read.warnings;
+    warnings.extend(
+        reduced
+            .iter()
+            .filter(|r| !(0.0..=100.0).contains(&r.percent_finer))
+            .map(|r| {
+                format!(
+                    "percent finer {} % at t = {} min is outside 0–100 %: check dry_mass_g, \
+                     specific_gravity and the blank reading",
+                    sig_plain(r.percent_finer, 3),
+                    sig_plain(r.reading.time_s / 60.0, 4)
+                )
+            }),
+    );
+    let diameters: Vec<f64> = reduced.iter().map(|r| r.diameter_m).collect();
+    warnings.extend(checks::result_warnings(&diameters));
+    outputs.file(
+        "reduce.toml",
+        record(&file, &setup, &lab) + &input_record(&read.detected, &warnings),
+    );
     Ok(ReduceResult {
         name: format!("{stem}_reduced"),
         input: file,
         setup,
         reduced,
         warnings,
+        detected: read.detected,
         outputs,
     })
+}
+
+/// `  read as: …` for a file that is not a plain UTF-8 comma-separated CSV (None for one).
+pub(crate) fn read_as(d: &Detected) -> Option<String> {
+    let plain = d.format == crate::io::lab_file::Format::Csv
+        && d.encoding.as_deref() == Some("UTF-8")
+        && d.delimiter == Some(',')
+        && d.decimal_mark == '.';
+    (!plain).then(|| format!("  read as: {}", d.summary()))
+}
+
+/// reduce.toml's `[input]` table: what the format layer detected in the readings file, and
+/// the warnings.
+pub(crate) fn input_record(d: &Detected, warnings: &[String]) -> String {
+    format!("\n[input]\n{}warnings = {:?}\n", d.toml(), warnings)
 }
 
 /// How the readings were reduced, for the console and the chart: `ASTM D7928, 152H`,

@@ -7,6 +7,7 @@
 
 use super::schema::{ReferenceSpec, SampleSpec, Scenario, SphereSpec};
 use crate::error::BadInput;
+use crate::io::lab_file::{LabFile, Loc};
 use crate::sample::Distribution;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -93,38 +94,53 @@ impl CsvInput<'_> {
         )
     }
 
-    /// Opens the CSV (`#` comments, spaces around fields trimmed) and returns its header.
-    fn open(&self) -> Result<(csv::Reader<std::fs::File>, Vec<String>), BadInput> {
-        let mut rdr = csv::ReaderBuilder::new()
-            .comment(Some(b'#'))
-            .trim(csv::Trim::All)
-            .from_path(&self.csv_path)
-            .map_err(|e| {
-                BadInput::new(
-                    self.scenario_path,
-                    Some(self.key),
-                    format!(
-                        "cannot read `{}` (the path is relative to the scenario file's folder): {e}",
-                        self.csv_path.display()
-                    ),
-                )
-            })?;
-        let header = rdr
-            .headers()
-            .map_err(|e| self.err(format!("header: {e}")))?
-            .iter()
-            .map(str::to_string)
-            .collect();
-        Ok((rdr, header))
+    /// Reads the input table through the lab format layer ([`crate::io::lab_file`]: CSV with
+    /// commas or semicolons, decimal points or commas, UTF-8 or Windows-1252, or an `.xlsx` /
+    /// `.ods` sheet; `#` rows skipped, spaces around fields trimmed) and returns its data rows
+    /// (each as wide as the header) and its header.
+    fn open(&self) -> Result<(Vec<Rec>, Vec<String>), BadInput> {
+        let bytes = std::fs::read(&self.csv_path).map_err(|e| {
+            BadInput::new(
+                self.scenario_path,
+                Some(self.key),
+                format!(
+                    "cannot read `{}` (the path is relative to the scenario file's folder): {e}",
+                    self.csv_path.display()
+                ),
+            )
+        })?;
+        let lab = LabFile::from_bytes(&self.csv_path, &bytes).map_err(|e| match e {
+            crate::error::Error::BadInput(b) => self.err(b.message),
+            other => self.err(other),
+        })?;
+        let mut rows = lab.rows.into_iter().filter(|r| !r.is_comment());
+        let header = rows
+            .next()
+            .map(|r| r.cells)
+            .ok_or_else(|| self.err("header: the file has no header line"))?;
+        let mut recs = Vec::new();
+        for (i, r) in rows.enumerate() {
+            let rec = Rec {
+                loc: r.loc,
+                row: i + 1,
+                cells: r.cells,
+            };
+            if rec.cells.len() != header.len() {
+                return Err(self.err(format!(
+                    "{}: {} fields where the header has {}: allowed one field per column (an \
+                     empty field for an absent value)",
+                    row_of(&rec),
+                    rec.cells.len(),
+                    header.len()
+                )));
+            }
+            recs.push(rec);
+        }
+        Ok((recs, header))
     }
 
     /// The number in `rec`'s column `col` (0-based), `None` if the field is empty.
-    fn number(
-        &self,
-        rec: &csv::StringRecord,
-        header: &[String],
-        col: usize,
-    ) -> Result<Option<f64>, BadInput> {
+    fn number(&self, rec: &Rec, header: &[String], col: usize) -> Result<Option<f64>, BadInput> {
         let raw = rec.get(col).unwrap_or("");
         if raw.is_empty() {
             return Ok(None);
@@ -140,12 +156,7 @@ impl CsvInput<'_> {
     }
 
     /// As [`Self::number`], required.
-    fn required(
-        &self,
-        rec: &csv::StringRecord,
-        header: &[String],
-        col: usize,
-    ) -> Result<f64, BadInput> {
+    fn required(&self, rec: &Rec, header: &[String], col: usize) -> Result<f64, BadInput> {
         self.number(rec, header, col)?.ok_or_else(|| {
             self.err(format!(
                 "{}, column {} (`{}`): empty: a number is required",
@@ -157,37 +168,25 @@ impl CsvInput<'_> {
     }
 }
 
-/// Where a record is, both 1-based: `line L (data row R)`, L the line of the file as an editor
-/// numbers it (line 1 is the header; comment lines count), R the record among the data rows
-/// (row 1 is the first line of data). Every error about a row of an input CSV names it so.
-fn row_of(rec: &csv::StringRecord) -> String {
-    match rec.position() {
-        // The csv reader counts the header as record 0, so the data rows count from 1.
-        Some(p) => format!("line {} (data row {})", p.line(), p.record()),
-        None => "an unknown line".to_string(),
+/// One data row of an input table: where it is, its place among the data rows (1-based) and
+/// its cells.
+struct Rec {
+    loc: Loc,
+    row: usize,
+    cells: Vec<String>,
+}
+
+impl Rec {
+    fn get(&self, col: usize) -> Option<&str> {
+        self.cells.get(col).map(String::as_str)
     }
 }
 
-/// An error of the csv reader on a row (a row with more or fewer fields than the header, a
-/// field that is not UTF-8), worded as the other row errors: line and data row 1-based.
-fn read_error(input: &CsvInput, e: csv::Error) -> BadInput {
-    let at = |p: &csv::Position| format!("line {} (data row {})", p.line(), p.record());
-    match e.kind() {
-        csv::ErrorKind::UnequalLengths {
-            pos: Some(p),
-            expected_len,
-            len,
-        } => input.err(format!(
-            "{}: {len} fields where the header has {expected_len}: allowed one field per column (an empty field for an absent value)",
-            at(p)
-        )),
-        csv::ErrorKind::Utf8 { pos: Some(p), err } => input.err(format!(
-            "{}, column {}: not UTF-8 text",
-            at(p),
-            err.field() + 1
-        )),
-        _ => input.err(e),
-    }
+/// Where a record is, both 1-based: `line L (data row R)`, L the line of the file as an editor
+/// numbers it (line 1 is the header; comment lines count), R the record among the data rows
+/// (row 1 is the first line of data). Every error about a row of an input CSV names it so.
+fn row_of(rec: &Rec) -> String {
+    format!("{} (data row {})", rec.loc, rec.row)
 }
 
 /// The column of each field of the spheres CSV, from its header; refuses an unknown or
@@ -241,7 +240,7 @@ fn sphere_row(
     input: &CsvInput,
     header: &[String],
     cols: &HashMap<Field, usize>,
-    rec: &csv::StringRecord,
+    rec: &Rec,
 ) -> Result<(String, SphereSpec, String), BadInput> {
     let opt = |f: Field| match cols.get(&f) {
         Some(&c) => input.number(rec, header, c),
@@ -347,13 +346,12 @@ pub fn spheres(scenario: &Scenario, scenario_path: &Path) -> Result<Vec<SphereCa
             key: "spheres_csv.path",
             csv_path: base.join(&src.path),
         };
-        let (mut rdr, header) = input.open()?;
+        let (recs, header) = input.open()?;
         let cols = sphere_columns(&input, &header)?;
         let mut seen: HashMap<String, String> = HashMap::new();
         let mut kept = 0;
-        for rec in rdr.records() {
-            let rec = rec.map_err(|e| read_error(&input, e))?;
-            let (id, spec, row) = sphere_row(&input, &header, &cols, &rec)?;
+        for rec in &recs {
+            let (id, spec, row) = sphere_row(&input, &header, &cols, rec)?;
             if let Some(first) = seen.insert(id.clone(), row.clone()) {
                 return Err(input.err(format!(
                     "{row}: sphere id `{id}` is already the id of {first}: allowed one row per id"
@@ -466,7 +464,7 @@ pub fn read_reference(
 
 /// The (time_s, `column`) pairs of a measured curve's CSV (see [`read_reference`]).
 fn curve(input: &CsvInput, column: &str) -> Result<Vec<(f64, f64)>, BadInput> {
-    let (mut rdr, header) = input.open()?;
+    let (recs, header) = input.open()?;
     let find = |name: &str| {
         header.iter().position(|h| h == name).ok_or_else(|| {
             input.err(format!(
@@ -476,15 +474,14 @@ fn curve(input: &CsvInput, column: &str) -> Result<Vec<(f64, f64)>, BadInput> {
     };
     let (ct, cv) = (find("time_s")?, find(column)?);
     let mut out = Vec::new();
-    for rec in rdr.records() {
-        let rec = rec.map_err(|e| read_error(input, e))?;
+    for rec in &recs {
         let mut pair = [0.0; 2];
         for (k, c) in [ct, cv].into_iter().enumerate() {
-            let x = input.required(&rec, &header, c)?;
+            let x = input.required(rec, &header, c)?;
             if !x.is_finite() {
                 return Err(input.err(format!(
                     "{}, column {} (`{}`): {x} is out of range: allowed a finite number",
-                    row_of(&rec),
+                    row_of(rec),
                     c + 1,
                     header[c]
                 )));
@@ -516,7 +513,7 @@ pub fn read_sample(sample: &SampleSpec, scenario_path: &Path) -> Result<Distribu
         key: "sample.csv",
         csv_path: base.join(&sample.csv),
     };
-    let (mut rdr, header) = input.open()?;
+    let (recs, header) = input.open()?;
     let mut cols = [usize::MAX; 3];
     for (i, name) in header.iter().enumerate() {
         match SAMPLE_COLUMNS.iter().position(|k| k == name) {
@@ -538,9 +535,8 @@ pub fn read_sample(sample: &SampleSpec, scenario_path: &Path) -> Result<Distribu
         )));
     }
     let mut points: Vec<(f64, f64, String)> = Vec::new();
-    for rec in rdr.records() {
-        let rec = rec.map_err(|e| read_error(&input, e))?;
-        let row = row_of(&rec);
+    for rec in &recs {
+        let row = row_of(rec);
         let bad = |k: usize, x: f64, allowed: &str| {
             input.err(format!(
                 "{row}, column {} (`{}`): {x} is out of range: allowed {allowed}",
@@ -548,15 +544,15 @@ pub fn read_sample(sample: &SampleSpec, scenario_path: &Path) -> Result<Distribu
                 SAMPLE_COLUMNS[k]
             ))
         };
-        let n = input.required(&rec, &header, cols[0])?;
+        let n = input.required(rec, &header, cols[0])?;
         if !(n >= 0.0 && n.fract() == 0.0 && n <= u32::MAX as f64) {
             return Err(bad(0, n, "a whole sample number ≥ 0"));
         }
-        let d = input.required(&rec, &header, cols[1])?;
+        let d = input.required(rec, &header, cols[1])?;
         if !(d.is_finite() && d > 0.0) {
             return Err(bad(1, d, "0 < diameter_m (m)"));
         }
-        let f = input.required(&rec, &header, cols[2])?;
+        let f = input.required(rec, &header, cols[2])?;
         if !(0.0..=100.0).contains(&f) {
             return Err(bad(2, f, "0 ≤ percent_finer ≤ 100 (%)"));
         }
@@ -593,4 +589,65 @@ pub fn read_sample(sample: &SampleSpec, scenario_path: &Path) -> Result<Distribu
     Ok(Distribution {
         points: points.into_iter().map(|(d, f, _)| (d, f)).collect(),
     })
+}
+
+#[cfg(test)]
+mod lab_file_tests {
+    use super::*;
+
+    /// A scenario's sample table saved by a spreadsheet (semicolons, decimal commas,
+    /// Windows-1252, CRLF) reads as the CSV does; a bad cell names the line and the column.
+    #[test]
+    fn a_sample_table_saved_by_a_spreadsheet_reads_as_the_csv() {
+        let text = std::fs::read_to_string("data/sedimentation_samples.csv").unwrap();
+        let sheet: String = text
+            .lines()
+            .map(|l| {
+                if l.starts_with('#') {
+                    l.replace("log10", "log₁₀ °").replace(',', " ")
+                } else {
+                    l.split(',')
+                        .map(|c| {
+                            if c.parse::<f64>().is_ok() {
+                                c.replace('.', ",")
+                            } else {
+                                c.to_string()
+                            }
+                        })
+                        .collect::<Vec<_>>()
+                        .join(";")
+                }
+            })
+            .collect::<Vec<_>>()
+            .join("\r\n");
+        let (latin1, _, bad) = encoding_rs::WINDOWS_1252.encode(&sheet);
+        assert!(!bad || sheet.contains('₁'));
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join("samples.csv"), &latin1).unwrap();
+        std::fs::copy(
+            "data/sedimentation_samples.csv",
+            dir.path().join("plain.csv"),
+        )
+        .unwrap();
+        let spec = |csv: &str| -> SampleSpec {
+            toml::from_str(&format!(
+                "csv = \"{csv}\"\nsample = 2\nmass_kg = 0.06\ndensity_kg_m3 = 2500.0\n"
+            ))
+            .unwrap()
+        };
+        let scenario = dir.path().join("s.toml");
+        let plain = read_sample(&spec("plain.csv"), &scenario).unwrap();
+        let sheet = read_sample(&spec("samples.csv"), &scenario).unwrap();
+        assert_eq!(plain, sheet);
+        let broken = String::from_utf8_lossy(&latin1).replacen("\r\n2;", "\r\nzero;", 1);
+        std::fs::write(dir.path().join("broken.csv"), broken.as_bytes()).unwrap();
+        let e = read_sample(&spec("broken.csv"), &scenario).unwrap_err();
+        assert!(
+            e.message.contains("`zero` is not a number"),
+            "{}",
+            e.message
+        );
+        assert!(e.message.contains("line "), "{}", e.message);
+        assert!(e.message.contains("(data row "), "{}", e.message);
+    }
 }

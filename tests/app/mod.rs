@@ -1,6 +1,7 @@
 //! The application layer: `src/run.rs`, `src/checkpoint.rs`, `src/interrupt.rs`, `src/sweep/`,
 //! `src/reduce/`, `src/invert/`, `src/laws/`, `src/fit/`.
 
+mod bad_lab_inputs;
 #[cfg(unix)]
 mod checkpoint;
 pub(crate) mod console;
@@ -8,6 +9,7 @@ mod doc_links;
 mod fit;
 mod interrupt;
 mod invert;
+mod lab_files;
 mod laws;
 mod readings;
 mod reduce;
