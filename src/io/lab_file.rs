@@ -572,9 +572,7 @@ fn csv_file(path: &Path, bytes: &[u8]) -> Result<LabFile, Error> {
             // A `#` line as written (its commas are text), without a spreadsheet's trailing
             // delimiters; a quoted one as its cells.
             let text = if raw.trim_start().starts_with('#') {
-                raw.trim()
-                    .trim_end_matches([delimiter, ' '])
-                    .to_string()
+                raw.trim().trim_end_matches([delimiter, ' ']).to_string()
             } else {
                 comment_text(&cells)
             };

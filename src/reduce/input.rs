@@ -200,11 +200,7 @@ type Rows = (Vec<LabReading>, Vec<Loc>, (&'static str, usize));
 
 /// The readings of the table, each value checked by `rules`, with where each row is and the
 /// time column's name and index.
-fn rows(
-    file: &Path,
-    p: &Parsed,
-    rules: &RowRules,
-) -> Result<Rows, Error> {
+fn rows(file: &Path, p: &Parsed, rules: &RowRules) -> Result<Rows, Error> {
     let at = columns(file, &p.header, rules.reading, &rules.optional_columns())?;
     let (temperature, blank) = rules.check_columns(file, &at)?;
     if p.rows.is_empty() {
