@@ -58,6 +58,70 @@ pub(super) fn check(
         .is_some_and(|(v, _)| v.starts_with("settle "));
     let n = readings.len();
     let first = &readings[0];
+    let schedule = schedule_problems(readings, locs, (time_col, j));
+    for m in schedule {
+        if virtual_test {
+            warnings.push(format!("{m} (a settle run's virtual test: warned only)"));
+        } else {
+            return Err(bad(file, m));
+        }
+    }
+    if let Instrument::Hydrometer(HydrometerType::H152) = s.instrument {
+        let like_151 = readings.iter().all(|r| (0.99..=1.06).contains(&r.reading));
+        if like_151 && n >= 2 {
+            return Err(Error::bad_input(
+                file,
+                Some("hydrometer"),
+                format!(
+                    "every reading lies between 0.99 and 1.06 (row 1: {}): these are 151H \
+                     readings (specific gravity of the suspension), not the 152H's g/L; fix: \
+                     set `# hydrometer = 151H` (or --hydrometer 151H)",
+                    sig_trim(first.reading, 6)
+                ),
+            ));
+        }
+    }
+    let (g0, g1) = SPECIFIC_GRAVITY_OK;
+    if !(g0..=g1).contains(&s.specific_gravity) {
+        let at = p
+            .figures
+            .get("specific_gravity")
+            .map(|(_, l)| format!("{l}: "))
+            .unwrap_or_default();
+        warnings.push(format!(
+            "{at}specific_gravity {} is outside 2.0–3.5 (mineral soils 2.6–2.8): check it \
+             (organic soils lie lower, iron-rich ones higher)",
+            sig_trim(s.specific_gravity, 4)
+        ));
+    }
+    if !matches!(s.instrument, Instrument::Hydrometer(_)) {
+        let (t0, t1) = TEMPERATURE_OK_C;
+        if let Some((k, r)) = readings
+            .iter()
+            .enumerate()
+            .find(|(_, r)| !(t0..=t1).contains(&r.temperature_c))
+        {
+            warnings.push(format!(
+                "row {} ({}): temperature {} °C is outside 10–40 °C, where the water's \
+                 viscosity is known to 0.1 %: the diameters are less certain",
+                k + 1,
+                locs[k],
+                sig_trim(r.temperature_c, 4)
+            ));
+        }
+    }
+    Ok(warnings)
+}
+
+/// What is wrong with the reading schedule (a first reading under 20 s, a last one after
+/// 3 days): the messages, each naming the row, the column, the likely unit and the fix.
+fn schedule_problems(
+    readings: &[LabReading],
+    locs: &[Loc],
+    (time_col, j): (&str, usize),
+) -> Vec<String> {
+    let n = readings.len();
+    let first = &readings[0];
     let last = &readings[n - 1];
     let in_min = time_col == "time_min";
     let shown = |t: f64| {
@@ -117,58 +181,7 @@ pub(super) fn check(
             sig_trim(last.time_s / 86_400.0, 3)
         ));
     }
-    for m in schedule {
-        if virtual_test {
-            warnings.push(format!("{m} (a settle run's virtual test: warned only)"));
-        } else {
-            return Err(bad(file, m));
-        }
-    }
-    if let Instrument::Hydrometer(HydrometerType::H152) = s.instrument {
-        let like_151 = readings.iter().all(|r| (0.99..=1.06).contains(&r.reading));
-        if like_151 && n >= 2 {
-            return Err(Error::bad_input(
-                file,
-                Some("hydrometer"),
-                format!(
-                    "every reading lies between 0.99 and 1.06 (row 1: {}): these are 151H \
-                     readings (specific gravity of the suspension), not the 152H's g/L; fix: \
-                     set `# hydrometer = 151H` (or --hydrometer 151H)",
-                    sig_trim(first.reading, 6)
-                ),
-            ));
-        }
-    }
-    let (g0, g1) = SPECIFIC_GRAVITY_OK;
-    if !(g0..=g1).contains(&s.specific_gravity) {
-        let at = p
-            .figures
-            .get("specific_gravity")
-            .map(|(_, l)| format!("{l}: "))
-            .unwrap_or_default();
-        warnings.push(format!(
-            "{at}specific_gravity {} is outside 2.0–3.5 (mineral soils 2.6–2.8): check it \
-             (organic soils lie lower, iron-rich ones higher)",
-            sig_trim(s.specific_gravity, 4)
-        ));
-    }
-    if !matches!(s.instrument, Instrument::Hydrometer(_)) {
-        let (t0, t1) = TEMPERATURE_OK_C;
-        if let Some((k, r)) = readings
-            .iter()
-            .enumerate()
-            .find(|(_, r)| !(t0..=t1).contains(&r.temperature_c))
-        {
-            warnings.push(format!(
-                "row {} ({}): temperature {} °C is outside 10–40 °C, where the water's \
-                 viscosity is known to 0.1 %: the diameters are less certain",
-                k + 1,
-                locs[k],
-                sig_trim(r.temperature_c, 4)
-            ));
-        }
-    }
-    Ok(warnings)
+    schedule
 }
 
 /// The likely cause of a value out of its column's range, for the message (empty when none
@@ -215,49 +228,6 @@ fn rules_time_max(column: &str) -> f64 {
         1e7
     } else {
         1e6
-    }
-}
-
-/// The likely cause of a figure out of its range (empty when none is likely): a density for
-/// G_s, litres for mL, metres for cm, °F for °C.
-pub(super) fn figure_hint(key: &str, x: f64) -> String {
-    let hint = |s: String| format!(" ({s})");
-    match key {
-        "specific_gravity" if (1000.0..=5000.0).contains(&x) => hint(format!(
-            "a density in kg/m³? G_s is the solids' density over water's: give {}",
-            sig_trim(x / 1000.0, 4)
-        )),
-        "suspension_volume_ml" if (0.1..=10.0).contains(&x) => hint(format!(
-            "in litres? give millilitres: {}",
-            sig_trim(x * 1000.0, 4)
-        )),
-        "column_height_cm"
-        | "pipette_depth_cm"
-        | "sphere_depth_cm"
-        | "h_r1_cm"
-        | "h_r2_cm"
-        | "hydrometer_bulb_length_cm"
-            if x > 0.0 && x < 1.0 =>
-        {
-            hint(format!(
-                "in metres? give centimetres: {}",
-                sig_trim(x * 100.0, 4)
-            ))
-        }
-        "temperature_c" if (50.0..=110.0).contains(&x) => hint(format!(
-            "°F? {} °F is {} °C: give degrees Celsius",
-            sig_trim(x, 4),
-            sig_trim((x - 32.0) / 1.8, 3)
-        )),
-        "fluid_density_kg_m3" if (0.5..=3.0).contains(&x) => hint(format!(
-            "in g/cm³ or t/m³? give kg/m³: {}",
-            sig_trim(x * 1000.0, 4)
-        )),
-        "sphere_diameter_mm" if x > 0.0 && x < 1.0 => hint(format!(
-            "in centimetres or metres? give millimetres: {} mm if centimetres",
-            sig_trim(x * 10.0, 4)
-        )),
-        _ => String::new(),
     }
 }
 

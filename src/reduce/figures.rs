@@ -5,6 +5,7 @@
 
 use crate::error::Error;
 use crate::instruments::reduction::{HydrometerType, Standard};
+use crate::io::fmt::sig_trim;
 use crate::io::lab_file::{number_hint, Detected, LabFile, Loc};
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -180,7 +181,7 @@ pub(super) fn figure(
             Some(key),
             format!(
                 "{line}: {v} is out of range; allowed: {allowed}{}",
-                super::checks::figure_hint(key, x)
+                figure_hint(key, x)
             ),
         ));
     }
@@ -252,4 +253,47 @@ pub(super) fn choice<T>(
             format!("{at}: unknown {key} `{v}`; allowed: {allowed}"),
         )
     })
+}
+
+/// The likely cause of a figure out of its range (empty when none is likely): a density for
+/// G_s, litres for mL, metres for cm, °F for °C.
+pub(super) fn figure_hint(key: &str, x: f64) -> String {
+    let hint = |s: String| format!(" ({s})");
+    match key {
+        "specific_gravity" if (1000.0..=5000.0).contains(&x) => hint(format!(
+            "a density in kg/m³? G_s is the solids' density over water's: give {}",
+            sig_trim(x / 1000.0, 4)
+        )),
+        "suspension_volume_ml" if (0.1..=10.0).contains(&x) => hint(format!(
+            "in litres? give millilitres: {}",
+            sig_trim(x * 1000.0, 4)
+        )),
+        "column_height_cm"
+        | "pipette_depth_cm"
+        | "sphere_depth_cm"
+        | "h_r1_cm"
+        | "h_r2_cm"
+        | "hydrometer_bulb_length_cm"
+            if x > 0.0 && x < 1.0 =>
+        {
+            hint(format!(
+                "in metres? give centimetres: {}",
+                sig_trim(x * 100.0, 4)
+            ))
+        }
+        "temperature_c" if (50.0..=110.0).contains(&x) => hint(format!(
+            "°F? {} °F is {} °C: give degrees Celsius",
+            sig_trim(x, 4),
+            sig_trim((x - 32.0) / 1.8, 3)
+        )),
+        "fluid_density_kg_m3" if (0.5..=3.0).contains(&x) => hint(format!(
+            "in g/cm³ or t/m³? give kg/m³: {}",
+            sig_trim(x * 1000.0, 4)
+        )),
+        "sphere_diameter_mm" if x > 0.0 && x < 1.0 => hint(format!(
+            "in centimetres or metres? give millimetres: {} mm if centimetres",
+            sig_trim(x * 10.0, 4)
+        )),
+        _ => String::new(),
+    }
 }

@@ -8,6 +8,7 @@
 //! the combined page) to the runs' pages `../NAME/report.html`.
 
 mod html;
+mod record;
 mod table;
 
 use crate::io::fmt::sig_trim;
@@ -15,6 +16,10 @@ pub use html::{base64, esc};
 
 use crate::io::Outputs;
 use html::{href, inline_svg, scope_ids, svg_title};
+use record::{
+    class_name, record_section, scenario_section, scenario_table, string_list, value_text,
+    warnings_section,
+};
 use std::fmt::Write as _;
 use std::fs;
 use std::io;
@@ -268,131 +273,6 @@ fn read_run_toml(files: &Files) -> Option<toml::Table> {
         .ok()?
         .parse()
         .ok()
-}
-
-/// The effective scenario recorded in `run.toml`: its `[scenario]` table, or (a run.toml written
-/// as a scenario file with a `[run]` record) everything but `[run]` and `[engine_settings]`.
-fn scenario_table(t: &toml::Table) -> toml::Table {
-    if let Some(s) = t.get("scenario").and_then(|s| s.as_table()) {
-        return s.clone();
-    }
-    t.iter()
-        .filter(|(k, _)| !matches!(k.as_str(), "run" | "engine_settings"))
-        .map(|(k, v)| (k.clone(), v.clone()))
-        .collect()
-}
-
-/// A CSS class name from a status word (letters only).
-fn class_name(s: &str) -> String {
-    s.chars().filter(|c| c.is_ascii_alphanumeric()).collect()
-}
-
-/// The run's validity warnings (`[run] warnings`), in a box that stands out, or "none".
-fn warnings_section(run: &toml::Table) -> String {
-    let warnings = string_list(run.get("warnings"));
-    let mut h = String::from("<section id=\"warnings\"><h2>Validity warnings</h2>");
-    if warnings.is_empty() {
-        h.push_str(
-            "<div class=\"box ok\"><strong>none</strong>: every law was used within its \
-             range as far as settle checks.</div>",
-        );
-    } else {
-        let _ = write!(
-            h,
-            "<div class=\"box warn\"><strong>{} warning{}</strong> — read before using the \
-             results:<ul>",
-            warnings.len(),
-            if warnings.len() == 1 { "" } else { "s" }
-        );
-        for w in &warnings {
-            let _ = write!(h, "<li>{}</li>", esc(w));
-        }
-        h.push_str("</ul></div>");
-    }
-    h.push_str("</section>\n");
-    h
-}
-
-/// The strings of a TOML array (other items written as TOML).
-fn string_list(v: Option<&toml::Value>) -> Vec<String> {
-    v.and_then(|v| v.as_array())
-        .map(|a| {
-            a.iter()
-                .map(|x| x.as_str().map_or_else(|| x.to_string(), str::to_string))
-                .collect()
-        })
-        .unwrap_or_default()
-}
-
-/// A TOML value as a person reads it: floats to 4 significant digits, lists joined.
-fn value_text(v: &toml::Value) -> String {
-    match v {
-        toml::Value::String(s) => s.clone(),
-        toml::Value::Float(f) => sig_trim(*f, 4),
-        toml::Value::Integer(i) => i.to_string(),
-        toml::Value::Boolean(b) => if *b { "yes" } else { "no" }.to_string(),
-        toml::Value::Array(a) if a.is_empty() => "none".to_string(),
-        toml::Value::Array(a) => a.iter().map(value_text).collect::<Vec<_>>().join(", "),
-        toml::Value::Table(t) if t.is_empty() => "none".to_string(),
-        toml::Value::Table(t) => t
-            .iter()
-            .map(|(k, v)| format!("{k}: {}", value_text(v)))
-            .collect::<Vec<_>>()
-            .join("; "),
-        other => other.to_string(),
-    }
-}
-
-/// The run's record (`[run]` of run.toml but its warnings): status, engine, integrator, time
-/// step, steps, bodies, wall time (the run's cost), settle version, then any other field.
-fn record_section(run: &toml::Table) -> String {
-    const ORDER: &[&str] = &[
-        "status",
-        "engine",
-        "integrator",
-        "dt_s",
-        "steps",
-        "bodies",
-        "wall_time_s",
-        "settle_version",
-        "scenario_file",
-        "resumed",
-    ];
-    let mut keys: Vec<&str> = ORDER
-        .iter()
-        .copied()
-        .filter(|k| run.contains_key(*k))
-        .collect();
-    keys.extend(
-        run.keys()
-            .map(String::as_str)
-            .filter(|k| !ORDER.contains(k) && *k != "warnings"),
-    );
-    let mut h = String::from(
-        "<section id=\"record\"><h2>Run record</h2>\
-         <p class=\"note\">From <a href=\"run.toml\">run.toml</a>.</p><div class=\"kv\">",
-    );
-    for k in keys {
-        let v = &run[k];
-        let text = match k {
-            "wall_time_s" => format!("{} s (the run's cost)", value_text(v)),
-            "dt_s" => format!("{} s", value_text(v)),
-            _ => value_text(v),
-        };
-        let _ = write!(
-            h,
-            "<div{}><span class=\"k\">{}</span><span class=\"v\">{}</span></div>",
-            if text.chars().count() > 24 {
-                " class=\"long\""
-            } else {
-                ""
-            },
-            esc(k),
-            esc(&text)
-        );
-    }
-    h.push_str("</div></section>\n");
-    h
 }
 
 /// The combined page's list of runs: each linked to its own page, with its kind, status,
@@ -688,137 +568,5 @@ fn files_section(source: &Files, files: &[String]) -> io::Result<String> {
     Ok(h)
 }
 
-/// The effective scenario as TOML, folded.
-fn scenario_section(s: &toml::Table) -> String {
-    let text = toml::to_string(s).unwrap_or_default();
-    format!(
-        "<section id=\"scenario\"><h2>Scenario</h2><details><summary>Effective scenario \
-         (TOML, every default filled in)</summary><pre>{}</pre></details></section>\n",
-        esc(&text)
-    )
-}
-
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A results folder with a run.toml recording two warnings (one with markup), a table and
-    /// a chart, removed when dropped.
-    struct Folder(PathBuf);
-
-    impl Drop for Folder {
-        fn drop(&mut self) {
-            let _ = fs::remove_dir_all(&self.0);
-        }
-    }
-
-    fn folder(test: &str) -> Folder {
-        let dir = std::env::temp_dir().join(format!("settle-report-{test}-{}", std::process::id()));
-        fs::create_dir_all(dir.join("snapshots")).unwrap();
-        fs::write(
-            dir.join("run.toml"),
-            "[run]\nstatus = \"complete\"\nwall_time_s = 2.064213979\n\
-             warnings = [\"Re = 12 > 0.5: Stokes drag <invalid>\", \"second\"]\n\
-             overrides = { set = [\"a.b=1\", \"c=2\"] }\n\
-             [scenario]\nname = \"demo\"\nkind = \"free_settling\"\ndescription = \"a < b\"\n",
-        )
-        .unwrap();
-        fs::write(
-            dir.join("summary.csv"),
-            "id,v_m_s,regime\nS1,0.123456,jump\n",
-        )
-        .unwrap();
-        fs::write(
-            dir.join("snapshots/v.svg"),
-            "<svg width=\"10\" height=\"5\"><text>Title &amp; more</text></svg>",
-        )
-        .unwrap();
-        Folder(dir)
-    }
-
-    #[test]
-    fn warnings_stand_out_escaped_and_every_part_is_there() {
-        let f = folder("warnings");
-        let h = render(&f.0, &Page::run("demo")).unwrap();
-        assert!(
-            h.contains("<div class=\"box warn\"><strong>2 warnings</strong>"),
-            "{h}"
-        );
-        assert!(h.contains("<li>Re = 12 &gt; 0.5: Stokes drag &lt;invalid&gt;</li>"));
-        assert!(h.contains("<p class=\"desc\">a &lt; b</p>"));
-        assert!(h.contains("2.064 s (the run&#39;s cost)"));
-        assert!(h.contains(">set: a.b=1, c=2<"), "{h}");
-        assert!(h.contains("<td class=\"n\" title=\"0.123456\">0.1235</td>"));
-        assert!(h.contains("<figure data-file=\"snapshots/v.svg\"><svg viewBox=\"0 0 10 5\""));
-        assert!(h.contains("Title &amp; more — <a href=\"snapshots/v.svg\">"));
-        assert!(h.contains("[scenario]") || h.contains("name = &quot;demo&quot;"));
-        assert!(!h.contains("report.html\">"), "the page lists itself");
-    }
-
-    #[test]
-    fn no_warnings_reads_none() {
-        let f = folder("none");
-        let t = fs::read_to_string(f.0.join("run.toml")).unwrap();
-        let t = t.replace(
-            "warnings = [\"Re = 12 > 0.5: Stokes drag <invalid>\", \"second\"]",
-            "warnings = []",
-        );
-        fs::write(f.0.join("run.toml"), t).unwrap();
-        let h = render(&f.0, &Page::run("demo")).unwrap();
-        assert!(
-            h.contains("<div class=\"box ok\"><strong>none</strong>"),
-            "{h}"
-        );
-    }
-
-    /// The page of a command's outputs in memory is the page of the folder they are written
-    /// to, byte for byte: the same files in the same order (root files before subfolders, at
-    /// every depth), the same tables, charts and sizes; hidden files and the page itself left
-    /// out in both.
-    #[test]
-    fn outputs_in_memory_render_as_their_folder() {
-        let mut o = Outputs::new();
-        o.table(crate::io::Table::from_csv("sweep.csv", b"dt_s,error\n0.001,0.5\n").unwrap());
-        o.table(crate::io::Table::from_csv("recommended_dt.csv", b"id,dt_s\nS1,1e-3\n").unwrap());
-        o.file(
-            "b/z.svg",
-            "<svg width=\"2\" height=\"1\"><text>Z</text></svg>",
-        );
-        o.file("b/a/deep.txt", "x");
-        o.file(
-            "a.svg",
-            "<svg width=\"3\" height=\"1\"><text>A</text></svg>",
-        );
-        o.file("b/c/d/e/too_deep.txt", "y");
-        o.file("b/.hidden", "h");
-        o.file("ab.png", [137u8, 80, 78, 71]);
-        o.file(
-            "run.toml",
-            "[scenario]\nname = \"s\"\nkind = \"free_settling\"\n",
-        );
-        let dir = std::env::temp_dir().join(format!("settle-report-mem-{}", std::process::id()));
-        let _ = fs::remove_dir_all(&dir);
-        fs::create_dir_all(&dir).unwrap();
-        let f = Folder(dir);
-        o.write_into(&f.0).unwrap();
-        let page = Page::sweep("s");
-        let from_folder = render(&f.0, &page).unwrap();
-        assert_eq!(render_outputs(&o, &page), from_folder);
-        let order: Vec<&str> = [
-            "a.svg",
-            "ab.png",
-            "run.toml",
-            "sweep.csv",
-            "b/z.svg",
-            "b/a/deep.txt",
-        ]
-        .into_iter()
-        .collect();
-        let pos: Vec<usize> = order
-            .iter()
-            .map(|n| from_folder.find(&format!(">{n}</a> <span")).expect(n))
-            .collect();
-        assert!(pos.windows(2).all(|w| w[0] < w[1]), "{order:?} at {pos:?}");
-        assert!(!from_folder.contains("too_deep") && !from_folder.contains(".hidden"));
-    }
-}
+mod tests;
