@@ -9,7 +9,10 @@ ROOT="$PWD"
 VENV="$ROOT/target/py-venv"
 PY="${PYTHON:-python3}"
 
-cargo build --release
+# The binary as `cargo test --release` builds it (dev-dependencies unify some features, e.g.
+# bitflags' std): after scripts/test.sh's Rust tests this is a no-op, where `cargo build
+# --release` would compile rapier, parry and settle a second time with other features.
+cargo test --release --no-run -q
 if [ ! -x "$VENV/bin/python" ]; then
     "$PY" -m venv "$VENV"
 fi
