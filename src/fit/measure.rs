@@ -8,6 +8,7 @@
 //! unweighted).
 
 use crate::error::Error;
+use crate::io::lab_file::LabFile;
 use crate::io::Table;
 use std::path::{Path, PathBuf};
 
@@ -100,16 +101,7 @@ pub fn read(measured: &Measured) -> Result<Vec<Measurement>, Error> {
             .map_err(|e| Error::bad_input(path, None, e.to_string()))?,
     };
     let bad = |key: String, msg: String| Error::bad_input(path, Some(&key), msg);
-    let mut rd = csv::ReaderBuilder::new()
-        .trim(csv::Trim::All)
-        .comment(Some(b'#'))
-        .from_reader(bytes.as_slice());
-    let header: Vec<String> = rd
-        .headers()
-        .map_err(|e| Error::bad_input(path, None, e.to_string()))?
-        .iter()
-        .map(String::from)
-        .collect();
+    let (header, data) = LabFile::from_bytes(path, &bytes)?.table()?;
     let idx = |name: &str| header.iter().position(|h| h == name);
     let [file, column, row, value] = ["file", "column", "row", "value"].map(idx);
     let (Some(file), Some(column), Some(row), Some(value)) = (file, column, row, value) else {
@@ -124,10 +116,9 @@ pub fn read(measured: &Measured) -> Result<Vec<Measurement>, Error> {
     };
     let sigma = idx("sigma");
     let mut out = Vec::new();
-    for (i, rec) in rd.records().enumerate() {
-        let n = i + 1;
-        let rec = rec.map_err(|e| bad(format!("row {n}"), e.to_string()))?;
-        let cell = |j: usize| rec.get(j).unwrap_or("").to_string();
+    for (i, rec) in data.iter().enumerate() {
+        let n = format!("{} ({})", i + 1, rec.loc);
+        let cell = |j: usize| rec.cells.get(j).cloned().unwrap_or_default();
         let v: f64 = cell(value)
             .parse()
             .ok()
@@ -288,5 +279,32 @@ mod tests {
         assert!(extract(&m("nope_m", "0"), &t)
             .unwrap_err()
             .contains("has no column `nope_m`"));
+    }
+
+    /// Issue 26 item 1: a measurements file exported with semicolons and decimal commas reads
+    /// as its CSV, and a bad value names its row and line.
+    #[test]
+    fn an_exported_measurements_file_reads_as_the_csv() {
+        let dir = tempfile::tempdir().unwrap();
+        let (a, b) = (dir.path().join("a.csv"), dir.path().join("b.csv"));
+        std::fs::write(
+            &a,
+            "file,column,row,value,sigma\nsummary.csv,x_m,id=a,0.05063,5e-4\n",
+        )
+        .unwrap();
+        std::fs::write(
+            &b,
+            "file;column;row;value;sigma\r\nsummary.csv;x_m;id=a;0,05063;5e-4\r\n",
+        )
+        .unwrap();
+        let (ra, rb) = (
+            read(&a.as_path().into()).unwrap(),
+            read(&b.as_path().into()).unwrap(),
+        );
+        assert_eq!(ra, rb);
+        assert_eq!(ra[0].value, 0.05063);
+        std::fs::write(&b, "file;column;row;value\nsummary.csv;x_m;id=a;5 mm\n").unwrap();
+        let e = read(&b.as_path().into()).unwrap_err().to_string();
+        assert!(e.contains("row 1 (line 2), column value"), "{e}");
     }
 }

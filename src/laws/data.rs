@@ -10,6 +10,7 @@
 
 use crate::error::{BadInput, Error};
 use crate::fluid::bingham::YieldFluid;
+use crate::io::lab_file::LabFile;
 use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 
@@ -73,9 +74,15 @@ impl DataSet {
     pub fn valentik() -> Self {
         let file = PathBuf::from("data/valentik_whitmore_1965_spheres.csv");
         let ffile = PathBuf::from("data/valentik_whitmore_1965_suspensions.csv");
-        let fluids = parse_fluids(&ffile, VALENTIK_FLUIDS_CSV).expect("built-in fluids parse");
-        let spheres =
-            parse_spheres(&file, VALENTIK_SPHERES_CSV, &fluids).expect("built-in spheres parse");
+        let fluids = parse_fluids(
+            LabFile::from_text(&ffile, VALENTIK_FLUIDS_CSV).expect("built-in fluids read"),
+        )
+        .expect("built-in fluids parse");
+        let spheres = parse_spheres(
+            LabFile::from_text(&file, VALENTIK_SPHERES_CSV).expect("built-in spheres read"),
+            &fluids,
+        )
+        .expect("built-in spheres parse");
         Self {
             source: "Valentik & Whitmore (1965), 121 spheres (f-EDEM Tables 2-3)".into(),
             fluids,
@@ -85,9 +92,8 @@ impl DataSet {
 
     /// Reads a spheres file and its fluids file.
     pub fn read(spheres: &Path, fluids: &Path) -> Result<Self, Error> {
-        let text = |p: &Path| std::fs::read_to_string(p).map_err(|e| Error::Io(p.to_path_buf(), e));
-        let fl = parse_fluids(fluids, &text(fluids)?)?;
-        let sp = parse_spheres(spheres, &text(spheres)?, &fl)?;
+        let fl = parse_fluids(LabFile::read(fluids)?)?;
+        let sp = parse_spheres(LabFile::read(spheres)?, &fl)?;
         Ok(Self {
             source: spheres.display().to_string(),
             fluids: fl,
@@ -99,30 +105,15 @@ impl DataSet {
 /// A CSV's header and its rows as maps column → text.
 type Table = (Vec<String>, Vec<HashMap<String, String>>);
 
-/// Rows of a CSV as maps column → text, with the header; a bad row is a bad input.
-fn rows(file: &Path, text: &str) -> Result<Table, Error> {
-    let bad = |key: Option<&str>, m: String| Error::BadInput(BadInput::new(file, key, m));
-    let mut rd = csv::ReaderBuilder::new()
-        .comment(Some(b'#'))
-        .trim(csv::Trim::All)
-        .from_reader(text.as_bytes());
-    let header: Vec<String> = rd
-        .headers()
-        .map_err(|e| bad(None, format!("cannot read the header: {e}")))?
-        .iter()
-        .map(str::to_string)
+/// The rows of a lab file ([`LabFile`]: CSV with commas, semicolons or tabs, decimal points or
+/// commas, any common encoding, or an `.xlsx` / `.ods` sheet) as maps column → text, with the
+/// header; a row wider than the header is bad input naming its line.
+fn rows(lab: LabFile) -> Result<Table, Error> {
+    let (header, data) = lab.table()?;
+    let out = data
+        .into_iter()
+        .map(|r| header.iter().cloned().zip(r.cells).collect())
         .collect();
-    let mut out = Vec::new();
-    for (i, r) in rd.records().enumerate() {
-        let r = r.map_err(|e| bad(Some(&format!("row {}", i + 1)), format!("{e}")))?;
-        out.push(
-            header
-                .iter()
-                .cloned()
-                .zip(r.iter().map(str::to_string))
-                .collect(),
-        );
-    }
     Ok((header, out))
 }
 
@@ -183,8 +174,9 @@ const NON_NEGATIVE: (fn(f64) -> bool, &str) = (|x| x >= 0.0, "≥ 0");
 const FLOW_INDEX: (fn(f64) -> bool, &str) = (|x| (0.1..=2.0).contains(&x), "0.1 ≤ n ≤ 2");
 
 /// Parses a fluids file.
-pub fn parse_fluids(file: &Path, text: &str) -> Result<Vec<Fluid>, Error> {
-    let (header, rows) = rows(file, text)?;
+pub fn parse_fluids(lab: LabFile) -> Result<Vec<Fluid>, Error> {
+    let file = &lab.path.clone();
+    let (header, rows) = rows(lab)?;
     need_columns(
         file,
         &header,
@@ -242,8 +234,9 @@ pub fn parse_fluids(file: &Path, text: &str) -> Result<Vec<Fluid>, Error> {
 }
 
 /// Parses a spheres file against its fluids.
-pub fn parse_spheres(file: &Path, text: &str, fluids: &[Fluid]) -> Result<Vec<Sphere>, Error> {
-    let (header, rows) = rows(file, text)?;
+pub fn parse_spheres(lab: LabFile, fluids: &[Fluid]) -> Result<Vec<Sphere>, Error> {
+    let file = &lab.path.clone();
+    let (header, rows) = rows(lab)?;
     need_columns(
         file,
         &header,
@@ -320,4 +313,54 @@ pub fn parse_spheres(file: &Path, text: &str, fluids: &[Fluid]) -> Result<Vec<Sp
         return Err(Error::BadInput(BadInput::new(file, None, "no spheres")));
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The CSV `text` as a European spreadsheet exports it: semicolons, decimal commas,
+    /// Windows-1252 (a `°` in a comment line) and CRLF.
+    fn as_exported(text: &str) -> Vec<u8> {
+        let mut out = String::from("# exported \u{b0}C\r\n");
+        for line in text.lines().filter(|l| !l.trim().is_empty()) {
+            if line.starts_with('#') {
+                continue;
+            }
+            let cells: Vec<String> = line.split(',').map(|c| c.replace('.', ",")).collect();
+            out.push_str(&cells.join(";"));
+            out.push_str("\r\n");
+        }
+        let (bytes, _, bad) = encoding_rs::WINDOWS_1252.encode(&out);
+        assert!(!bad);
+        bytes.into_owned()
+    }
+
+    /// Issue 26 item 1: the fluids and spheres of `settle laws --spheres/--fluids` are read as
+    /// labs keep them; the built-in 121 Valentik spheres written as a semicolon, decimal-comma,
+    /// Windows-1252, CRLF export read exactly as the CSVs do.
+    #[test]
+    fn an_exported_sheet_reads_as_the_csv() {
+        let dir = tempfile::tempdir().unwrap();
+        let (s, f) = (dir.path().join("s.csv"), dir.path().join("f.csv"));
+        std::fs::write(&s, as_exported(VALENTIK_SPHERES_CSV)).unwrap();
+        std::fs::write(&f, as_exported(VALENTIK_FLUIDS_CSV)).unwrap();
+        let read = DataSet::read(&s, &f).unwrap();
+        let builtin = DataSet::valentik();
+        assert_eq!(read.fluids, builtin.fluids);
+        assert_eq!(read.spheres.len(), 121);
+        assert_eq!(read.spheres, builtin.spheres);
+    }
+
+    /// A row wider than the header is refused naming its line.
+    #[test]
+    fn a_row_wider_than_the_header_names_its_line() {
+        let lab = LabFile::from_text(
+            Path::new("f.csv"),
+            "suspension,density_kg_m3,yield_stress_pa,plastic_viscosity_pa_s\n1,1280,30.5,0.0131,9\n",
+        )
+        .unwrap();
+        let e = parse_fluids(lab).unwrap_err().to_string();
+        assert!(e.contains("line 2") && e.contains("5 fields"), "{e}");
+    }
 }

@@ -34,7 +34,7 @@ mod tests;
 mod text;
 mod workbook;
 
-pub use rows::{Detected, Format, LabFile, Loc};
+pub use rows::{Detected, Format, LabFile, LabRow, Loc};
 
 use crate::error::Error;
 use std::path::Path;
@@ -66,6 +66,36 @@ impl LabFile {
     /// Reads CSV text (a table in memory written as its CSV); `path` names it in errors.
     pub fn from_text(path: &Path, text: &str) -> Result<Self, Error> {
         csv_file(path, text.as_bytes())
+    }
+
+    /// The file as a plain table: its header (the first row that is not a `#` row) and the
+    /// data rows after it, `#` rows left out. A file without a header, or a data row with more
+    /// fields than the header, is bad input naming the row's line (or cell); a shorter row is
+    /// padded with empty cells (a spreadsheet does not store the empty cells at a row's end).
+    pub fn table(self) -> Result<(Vec<String>, Vec<LabRow>), Error> {
+        let path = self.path;
+        let mut rows = self.rows.into_iter().filter(|r| !r.is_comment());
+        let header = rows.next().map(|r| r.cells).ok_or_else(|| {
+            Error::bad_input(&path, None, "the file has no header line (nor any row)")
+        })?;
+        let mut data = Vec::new();
+        for (i, mut r) in rows.enumerate() {
+            if r.cells.len() > header.len() {
+                return Err(Error::bad_input(
+                    &path,
+                    Some(&format!("row {} ({})", i + 1, r.loc)),
+                    format!(
+                        "{} fields where the header has {}: one field per column (an empty \
+                         field for an absent value)",
+                        r.cells.len(),
+                        header.len()
+                    ),
+                ));
+            }
+            r.cells.resize(header.len(), String::new());
+            data.push(r);
+        }
+        Ok((header, data))
     }
 }
 
