@@ -2,7 +2,8 @@
 # The Python package's tests (issue 25): a virtual environment in target/py-venv, the package
 # built into it by maturin (release), then pytest on python/tests. The tests compare with the
 # command line, so the release binary is built first. Needs a Rust toolchain and Python >= 3.9
-# with venv; reaches PyPI (maturin, pandas, pytest) on its first run only.
+# with venv; reaches PyPI (maturin, pandas, pytest, python-ags4, openpyxl) when a requirement is
+# missing.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT="$PWD"
@@ -16,6 +17,6 @@ cargo test --release --no-run -q
 if [ ! -x "$VENV/bin/python" ]; then
     "$PY" -m venv "$VENV"
 fi
-"$VENV/bin/python" -m pip install -q --disable-pip-version-check "maturin>=1.5,<2" pandas pytest mypy pandas-stubs matplotlib nbformat nbclient ipykernel
+"$VENV/bin/python" -m pip install -q --disable-pip-version-check "maturin>=1.5,<2" pandas pytest mypy pandas-stubs matplotlib nbformat nbclient ipykernel python-ags4 openpyxl
 (cd python && VIRTUAL_ENV="$VENV" PATH="$VENV/bin:$PATH" maturin develop --release -q)
 SETTLE_BIN="$ROOT/target/release/settle" "$VENV/bin/python" -m pytest -q python/tests "$@"

@@ -18,6 +18,7 @@ pub mod metrics;
 pub mod outputs;
 pub mod report;
 pub mod table;
+pub mod xlsx;
 
 pub use atomic::{is_tmp_of, write_atomic, MARKER, TMP_SUFFIX};
 pub use outputs::Outputs;

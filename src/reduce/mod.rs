@@ -1,7 +1,8 @@
 //! `settle reduce READINGS.csv`: the standard data reduction of laboratory hydrometer readings
 //! (ASTM D422 or D7928), pipette draws and buoyancy-sphere weighings (seed 000 eqs. 16–18, 22;
 //! `# instrument = pipette | buoyancy-sphere`, [`crate::instruments::reduction`]) into
-//! `OUT/<stem>_reduced/`: `percent_finer.csv`, `percent_finer.svg` and `reduce.toml`.
+//! `OUT/<stem>_reduced/`: `percent_finer.csv` (also as `.xlsx` and as the AGS4 file
+//! `percent_finer.ags`), `percent_finer.svg` and `reduce.toml`.
 //! `read_checked` is the one place that reads readings, for every instrument (`settle invert`
 //! reads through it too).
 //!
@@ -49,6 +50,7 @@
 //! is one error naming the file, the key or the row and column (1-based), and what is allowed;
 //! exit 2, nothing written.
 
+mod ags;
 mod checks;
 mod figures;
 mod input;
@@ -71,7 +73,8 @@ use crate::io::{Outputs, Table};
 use std::path::{Path, PathBuf};
 
 /// What a reduction produced, in memory: the tables and files `settle reduce` writes
-/// (`percent_finer.csv`, `percent_finer.svg`, `reduce.toml`) and the typed figures.
+/// (`percent_finer.csv`, `.xlsx`, `.ags`, `percent_finer.svg`, `reduce.toml`) and the typed
+/// figures.
 #[derive(Clone, Debug)]
 pub struct ReduceResult {
     /// The results folder's name, `<stem>_reduced`.
@@ -137,7 +140,16 @@ pub fn reduce(readings: impl Into<Readings>, opts: &ReduceOptions) -> Result<Red
     let reduced = reduce_readings(&setup, &lab);
     let ioe = |e: std::io::Error| Error::Io(file.clone(), e);
     let mut outputs = Outputs::new();
-    outputs.table(csv_table(&reduced));
+    let table = csv_table(&reduced);
+    outputs.file(
+        "percent_finer.xlsx",
+        crate::io::xlsx::table_xlsx(&table).map_err(ioe)?,
+    );
+    outputs.file(
+        "percent_finer.ags",
+        ags::ags_text(&file.display().to_string(), &stem, &setup, &reduced),
+    );
+    outputs.table(table);
     outputs.file(
         "percent_finer.svg",
         chart(&stem, &setup, &reduced).map_err(ioe)?,

@@ -633,7 +633,12 @@ fn the_in_memory_reduction_equals_the_files_the_command_writes() {
     )
     .unwrap();
     assert_eq!(r.table("percent_finer"), Some(&on_disk));
-    for f in ["percent_finer.svg", "reduce.toml"] {
+    for f in [
+        "percent_finer.svg",
+        "percent_finer.xlsx",
+        "percent_finer.ags",
+        "reduce.toml",
+    ] {
         assert_eq!(
             r.outputs.bytes(f).unwrap(),
             std::fs::read(dir.join(f)).unwrap(),
