@@ -67,6 +67,13 @@ enum Command {
         /// outputs.
         #[arg(long)]
         force: bool,
+        /// Submit the run to Slurm as one job that checkpoints on the warning signal before its
+        /// time limit, is requeued and resumes (script and log in OUT/; see docs/cluster.md).
+        #[arg(long, conflicts_with = "resume")]
+        slurm: bool,
+        /// Options of the submission (with --slurm).
+        #[command(flatten)]
+        submit: crate::slurm::Submit,
     },
     /// Benchmarks (wall times and ratios) written to OUT/bench.csv.
     Bench {
@@ -230,6 +237,8 @@ pub fn main() -> i32 {
             checkpoint_every,
             resume,
             force,
+            slurm,
+            submit,
         } => {
             if let Some(every) = checkpoint_every.filter(|s| !(s.is_finite() && *s > 0.0)) {
                 eprintln!(
@@ -237,7 +246,7 @@ pub fn main() -> i32 {
                 );
                 return crate::error::EXIT_BAD_INPUT;
             }
-            run(&RunRequest {
+            let req = RunRequest {
                 files: scenarios,
                 out_dir: resume.clone().unwrap_or(out),
                 dt_s: dt,
@@ -246,7 +255,11 @@ pub fn main() -> i32 {
                 resume: resume.is_some(),
                 force,
                 quiet,
-            })
+            };
+            if slurm {
+                return code(crate::slurm::run(&req, &submit));
+            }
+            run(&req)
         }
         Command::Bench {
             out,
@@ -266,6 +279,7 @@ pub fn main() -> i32 {
                 println!("{l}");
             }
         }),
+        Command::Sweep(args) if args.slurm.is_some() => code(crate::slurm::sweep(&args)),
         Command::Sweep(args) => exit_code(crate::sweep::main(&args), |()| {}),
         Command::Reduce {
             readings,
@@ -353,6 +367,17 @@ fn exit_code<T>(result: Result<T, crate::error::Error>, on_ok: impl FnOnce(T)) -
             on_ok(v);
             0
         }
+        Err(e) => {
+            eprintln!("error: {e}");
+            e.exit_code()
+        }
+    }
+}
+
+/// The exit code a command returned, or its error printed and its class.
+fn code(result: Result<i32, crate::error::Error>) -> i32 {
+    match result {
+        Ok(c) => c,
         Err(e) => {
             eprintln!("error: {e}");
             e.exit_code()

@@ -54,7 +54,7 @@
 //! | 2 engine | `engine` | the Rapier worlds |
 //! | 3 scenario | `scenario` | schema, loading, validation, input files, the typed scenario and the registry of kinds |
 //! | 4 scenes | `scenes` | one folder per kind (its scene and its cost), and the scene API (`scenes::Prepared`, `scenes::RunContext`, `scenes::SceneReport`) |
-//! | 5 application | [`api`], `run`, [`sweep`], `bench`, [`reduce`], [`invert`], [`laws`], [`fit`], `cli` | the commands |
+//! | 5 application | [`api`], `run`, [`sweep`], `bench`, [`reduce`], [`invert`], [`laws`], [`fit`], `slurm`, `cli` | the commands (`slurm`: studies submitted to a Slurm cluster) |
 
 // Layer 0: infrastructure.
 pub(crate) mod checkpoint;
@@ -84,6 +84,7 @@ pub mod invert;
 pub mod laws;
 pub mod reduce;
 pub(crate) mod run;
+pub(crate) mod slurm;
 pub mod sweep;
 
 pub use api::{load, run, RunOptions, RunResult, Scenario, Status};

@@ -45,8 +45,10 @@ pub struct Args {
           conflicts_with_all = ["dt", "dt_range", "integrator", "tol"])]
     pub vary: Vec<Axis>,
     /// Merge the partial CSVs (sweep_part_*.csv, or vary_part_*.csv of a --vary sweep) found in
-    /// these folders, then chart.
-    #[arg(long, num_args = 1.., value_name = "DIR",
+    /// folder DIR (repeat for several folders), then chart; a scenario file given beside it
+    /// supplies the title and `[sweep] tol`. Missing or unreadable shards are listed by index
+    /// with the command that reruns them (exit 2, nothing written).
+    #[arg(long, value_name = "DIR",
           conflicts_with_all = ["shard", "dt", "dt_range", "integrator", "vary"])]
     pub merge: Vec<PathBuf>,
     /// Override any scenario key (as for `run`).
@@ -55,6 +57,14 @@ pub struct Args {
     /// Print nothing but errors.
     #[arg(long, short)]
     pub quiet: bool,
+    /// Submit the sweep to Slurm as a job array of N tasks (task i runs `--shard i/N`) and a
+    /// merge job after it; scripts and logs go to the sweep's folder (see docs/cluster.md).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=1_000_000),
+          conflicts_with_all = ["shard", "merge"])]
+    pub slurm: Option<u64>,
+    /// Options of the submission (with --slurm).
+    #[command(flatten)]
+    pub submit: crate::slurm::options::Submit,
 }
 
 /// Integrators on the command line by their scenario-file names.

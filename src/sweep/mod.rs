@@ -44,9 +44,11 @@ mod analysis;
 mod api;
 mod args;
 mod cases;
+pub(crate) mod costs;
 mod page;
 mod plan;
 mod report;
+pub(crate) mod shards;
 mod table;
 mod targets;
 #[cfg(test)]
@@ -67,7 +69,10 @@ pub use vary::{vary, Axis, Level, VaryOptions, VaryResult};
 use analysis::rayleigh_time_of;
 use cases::run;
 use report::{results, Context};
-use table::{read_rows, write_rows};
+use shards::PART_PREFIX;
+#[cfg(test)]
+use table::read_rows;
+use table::write_rows;
 use targets::Target;
 
 use crate::error::Error;
@@ -79,8 +84,9 @@ use std::path::{Path, PathBuf};
 pub(crate) use analysis::summarise;
 #[cfg(test)]
 pub(crate) use plan::{dt_range, shard};
+use table::HEADER;
 #[cfg(test)]
-pub(crate) use table::{from_csv, to_csv, HEADER};
+pub(crate) use table::{from_csv, to_csv};
 #[cfg(test)]
 pub(crate) use values::{parse_dt, parse_dt_range, parse_shard, parse_tol, DtRange};
 
@@ -141,8 +147,9 @@ fn sweep_file(p: &Prepared, plan: &Plan, out: &Path, quiet: bool) -> Result<(), 
     bar.finish_and_clear();
     let dir = out.join(format!("{}_sweep", p.common.name));
     std::fs::create_dir_all(&dir).map_err(|e| Error::Io(dir.clone(), e))?;
-    let file = dir.join(format!("sweep_part_{index}_of_{count}.csv"));
+    let file = dir.join(format!("{PART_PREFIX}{index}_of_{count}.csv"));
     write_rows(&file, &rows).map_err(|e| Error::Io(file.clone(), e))?;
+    shards::ShardCommand::of_this_process(count).record(&dir)?;
     if !quiet {
         println!(
             "{}: shard {index}/{count} ({} rows) -> {}",
@@ -154,66 +161,54 @@ fn sweep_file(p: &Prepared, plan: &Plan, out: &Path, quiet: bool) -> Result<(), 
     Ok(())
 }
 
-/// The part files `sweep_part_*.csv` of the `--merge` folders, each folder's sorted by name.
-fn part_files(dirs: &[PathBuf]) -> Result<Vec<PathBuf>, Error> {
-    let mut all = Vec::new();
-    for dir in dirs {
-        let rd = std::fs::read_dir(dir).map_err(|e| {
-            Error::bad_argument("--merge", dir, format!("cannot read the folder: {e}"))
-        })?;
-        let mut files: Vec<PathBuf> = rd
-            .filter_map(|e| e.ok().map(|e| e.path()))
-            .filter(|p| {
-                p.file_name()
-                    .and_then(|n| n.to_str())
-                    .is_some_and(|n| n.starts_with("sweep_part_") && n.ends_with(".csv"))
-            })
-            .collect();
-        files.sort();
-        all.extend(files);
+/// `--merge DIR` (repeatable): joins the part files, finishes and reports them into `--out`
+/// (default: the first folder). A scenario file, if given, supplies the title, `[sweep] tol` and
+/// the Rayleigh time.
+fn merge(args: &Args) -> Result<(), Error> {
+    let has = |prefix: &str| {
+        args.merge
+            .iter()
+            .any(|d| !shards::Parts::of(d, prefix).files.is_empty())
+    };
+    match (has(PART_PREFIX), has(vary::PART_PREFIX)) {
+        (true, true) => Err(Error::bad_argument(
+            "--merge",
+            &args.merge[0],
+            "these folders hold parts of a dt sweep (sweep_part_*.csv) and of a parameter sweep \
+             (vary_part_*.csv): merge each sweep's folder on its own",
+        )),
+        (false, true) => vary::merge(args),
+        (_, false) => merge_dt(args),
     }
-    if all.is_empty() {
-        let dirs: Vec<String> = dirs.iter().map(|d| d.display().to_string()).collect();
+}
+
+/// `--merge` of a dt sweep: see [`merge`].
+fn merge_dt(args: &Args) -> Result<(), Error> {
+    let prepared = args
+        .scenarios
+        .first()
+        .map(|f| prepare(f, None, &args.set))
+        .transpose()?;
+    let files = shards::read_parts(&args.merge, PART_PREFIX, |f| {
+        let head = std::fs::read_to_string(f).map_err(|e| e.to_string())?;
+        if head.lines().next() != Some(HEADER.join(",").as_str()) {
+            return Err(
+                "not a sweep part table: its first line is not the header of sweep.csv".into(),
+            );
+        }
+        table::from_csv(head.as_bytes()).map_err(|e| format!("not a sweep part table: {e}"))
+    })?;
+    if files.is_empty() {
+        let dirs: Vec<String> = args.merge.iter().map(|d| d.display().to_string()).collect();
         return Err(Error::bad_argument(
             "--merge",
             Path::new(&dirs.join(" ")),
             "no sweep_part_*.csv in the given folders",
         ));
     }
-    Ok(all)
-}
-
-/// `--merge DIR...`: joins the part files, finishes and reports them into `--out` (default:
-/// the first folder). A scenario file, if given, supplies the title, `[sweep] tol` and the
-/// Rayleigh time.
-fn merge(args: &Args) -> Result<(), Error> {
-    let vary_parts = vary::part_files(&args.merge);
-    let files = part_files(&args.merge);
-    match (vary_parts.is_empty(), files) {
-        (false, Ok(_)) => Err(Error::bad_argument(
-            "--merge",
-            &args.merge[0],
-            "these folders hold parts of a dt sweep (sweep_part_*.csv) and of a parameter sweep \
-             (vary_part_*.csv): merge each sweep's folder on its own",
-        )),
-        (false, Err(_)) => vary::merge(args, &vary_parts),
-        (true, files) => merge_dt(args, files?),
-    }
-}
-
-/// `--merge` of a dt sweep's part `files`: see [`merge`].
-fn merge_dt(args: &Args, files: Vec<PathBuf>) -> Result<(), Error> {
-    let prepared = args
-        .scenarios
-        .first()
-        .map(|f| prepare(f, None, &args.set))
-        .transpose()?;
     let mut rows: Vec<Row> = Vec::new();
-    for f in &files {
-        rows.extend(
-            read_rows(f)
-                .map_err(|e| Error::bad_input(f, None, format!("not a sweep part table: {e}")))?,
-        );
+    for (_, part) in &files {
+        rows.extend_from_slice(part);
     }
     finish(&mut rows);
     let dest = args.out.clone().unwrap_or_else(|| args.merge[0].clone());

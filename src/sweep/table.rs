@@ -164,6 +164,7 @@ pub fn write_rows(path: &std::path::Path, rows: &[Row]) -> io::Result<()> {
 }
 
 /// Reads a file written by [`write_rows`].
+#[cfg(test)]
 pub fn read_rows(path: &std::path::Path) -> Result<Vec<Row>, csv::Error> {
     from_csv(std::fs::File::open(path)?)
 }

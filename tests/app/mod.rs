@@ -15,5 +15,6 @@ mod readings;
 mod reduce;
 mod report;
 mod rerun;
+mod sweep_merge;
 mod tutorial;
 mod vary;

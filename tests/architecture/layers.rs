@@ -8,7 +8,7 @@
 //! | 2 engine | `engine` |
 //! | 3 scenario | `scenario` |
 //! | 4 scenes | `scenes` |
-//! | 5 application | `api`, `run`, `sweep`, `bench`, `reduce`, `invert`, `laws`, `fit`, `cli` |
+//! | 5 application | `api`, `run`, `sweep`, `bench`, `reduce`, `invert`, `laws`, `fit`, `slurm`, `cli` |
 //!
 //! Every `crate::X` path in the code of `src/` (comments excluded) is checked against this table.
 //! A module missing from the table fails the test too, so a new top-level module must be placed.
@@ -24,7 +24,8 @@ fn layer(module: &str) -> Option<u8> {
         "engine" => 2,
         "scenario" => 3,
         "scenes" => 4,
-        "api" | "run" | "sweep" | "bench" | "reduce" | "invert" | "laws" | "fit" | "cli" => 5,
+        "api" | "run" | "sweep" | "bench" | "reduce" | "invert" | "laws" | "fit" | "slurm"
+        | "cli" => 5,
         _ => return None,
     })
 }

@@ -24,7 +24,7 @@
 mod api;
 mod chart;
 mod grid;
-mod plan;
+pub(crate) mod plan;
 mod table;
 
 pub use api::{vary, VaryOptions, VaryResult};
@@ -83,6 +83,7 @@ fn sweep_file(plan: VaryPlan, out: &Path, quiet: bool) -> Result<(), Error> {
     std::fs::create_dir_all(&dir).map_err(|e| Error::Io(dir.clone(), e))?;
     let file = dir.join(format!("{PART_PREFIX}{index}_of_{count}.csv"));
     table.write(&file).map_err(|e| Error::Io(file.clone(), e))?;
+    super::shards::ShardCommand::of_this_process(count).record(&dir)?;
     if !quiet {
         println!(
             "{name}: shard {index}/{count} ({} rows) -> {}",
@@ -93,37 +94,18 @@ fn sweep_file(plan: VaryPlan, out: &Path, quiet: bool) -> Result<(), Error> {
     Ok(())
 }
 
-/// The part files `vary_part_*.csv` of `dirs`, each folder's sorted by name (none: empty).
-pub(crate) fn part_files(dirs: &[PathBuf]) -> Vec<PathBuf> {
-    let mut all = Vec::new();
-    for dir in dirs {
-        let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
-            .into_iter()
-            .flatten()
-            .filter_map(|e| e.ok().map(|e| e.path()))
-            .filter(|p| {
-                p.file_name()
-                    .and_then(|n| n.to_str())
-                    .is_some_and(|n| n.starts_with(PART_PREFIX) && n.ends_with(".csv"))
-            })
-            .collect();
-        files.sort();
-        all.extend(files);
-    }
-    all
-}
-
 /// `--merge DIR…` of a sharded parameter sweep: joins the part `files` (same keys) into
 /// `vary.csv` and its charts in `--out` (default: the first folder). The title is the name of
 /// the scenario file if one is given, else the first folder's name without `_vary`.
-pub(crate) fn merge(args: &Args, files: &[PathBuf]) -> Result<(), Error> {
+pub(crate) fn merge(args: &Args) -> Result<(), Error> {
+    let files = super::shards::read_parts(&args.merge, PART_PREFIX, |f| {
+        VaryTable::read(f).map_err(|e| format!("not a vary part table: {e}"))
+    })?;
     let mut table = VaryTable::default();
-    for f in files {
-        let part = VaryTable::read(f)
-            .map_err(|e| Error::bad_input(f, None, format!("not a vary part table: {e}")))?;
+    for (f, part) in files.iter().cloned() {
         table
             .merge(part)
-            .map_err(|e| Error::bad_input(f, None, format!("cannot merge this part: it {e}")))?;
+            .map_err(|e| Error::bad_input(&f, None, format!("cannot merge this part: it {e}")))?;
     }
     table.sort();
     // The scenario's name: from its file if given, else from the folder `<name>_vary`.
