@@ -576,9 +576,9 @@ fn valentik_sweep(ps: &[Prepared], out: &mut Vec<Figure>) -> Result<(), Error> {
     Ok(())
 }
 
-/// Writes figures as `bench.csv` (`benchmark,quantity,value,unit`).
-pub fn write(path: &Path, figs: &[Figure]) -> std::io::Result<()> {
-    let mut w = csv::Writer::from_path(path).map_err(std::io::Error::other)?;
+/// The figures as the bytes of `bench.csv` (`benchmark,quantity,value,unit`).
+pub fn to_csv(figs: &[Figure]) -> std::io::Result<Vec<u8>> {
+    let mut w = csv::Writer::from_writer(Vec::new());
     w.write_record(["benchmark", "quantity", "value", "unit"])
         .map_err(std::io::Error::other)?;
     for f in figs {
@@ -590,5 +590,6 @@ pub fn write(path: &Path, figs: &[Figure]) -> std::io::Result<()> {
         ])
         .map_err(std::io::Error::other)?;
     }
-    w.flush()
+    w.into_inner()
+        .map_err(|e| std::io::Error::other(e.to_string()))
 }

@@ -75,7 +75,7 @@ enum Command {
         #[command(flatten)]
         submit: crate::slurm::Submit,
     },
-    /// Benchmarks (wall times and ratios) written to OUT/bench.csv.
+    /// Benchmarks (wall times and ratios) written to OUT/bench/bench.csv.
     Bench {
         /// Output folder.
         #[arg(long, default_value = "out")]
@@ -385,8 +385,17 @@ fn code(result: Result<i32, crate::error::Error>) -> i32 {
     }
 }
 
-/// `settle bench`: runs the benchmarks, prints them and writes OUT/bench.csv; the exit code.
+/// `settle bench`: runs the benchmarks, prints them and writes OUT/bench/bench.csv (a folder
+/// of its own, checked before the benchmarks run); the exit code.
 fn bench(out: &std::path::Path, opts: crate::bench::Options) -> i32 {
+    let owner = crate::io::Owner::new("bench", "the benchmarks");
+    let checked = crate::io::owner::check_out_dir(out)
+        .and_then(|()| crate::io::owner::check_writable(out))
+        .and_then(|()| crate::io::owner::check_owned(&out.join("bench"), &owner));
+    if let Err(e) = checked {
+        eprintln!("error: {e}");
+        return e.exit_code();
+    }
     let figs = match crate::bench::project_root().and_then(|r| crate::bench::run(&r, opts)) {
         Ok(f) => f,
         Err(e) => {
@@ -403,14 +412,24 @@ fn bench(out: &std::path::Path, opts: crate::bench::Options) -> i32 {
             f.unit
         );
     }
-    let path = out.join("bench.csv");
-    if let Err(e) = std::fs::create_dir_all(out).and_then(|_| crate::bench::write(&path, &figs)) {
-        let e = crate::error::Error::Io(path, e);
-        eprintln!("error: {e}");
-        return e.exit_code();
+    let mut outputs = crate::io::Outputs::new();
+    outputs.set_owner(owner);
+    let written = crate::bench::to_csv(&figs)
+        .map_err(|e| crate::error::Error::Io(out.join("bench"), e))
+        .and_then(|bytes| {
+            outputs.file("bench.csv", bytes);
+            outputs.write_folder(out, "bench")
+        });
+    match written {
+        Ok(dir) => {
+            println!("-> {}", dir.join("bench.csv").display());
+            0
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            e.exit_code()
+        }
     }
-    println!("-> {}", path.display());
-    0
 }
 
 /// `settle laws`: runs and prints the table; the exit code.

@@ -235,7 +235,9 @@ pub fn run_toml(p: &Prepared, done: &Executed) -> Result<String, Error> {
 /// page, staged and moved into place ([`StagedDir`]); returns the folder.
 pub fn write(p: &Prepared, done: &Executed, out_dir: &Path) -> Result<PathBuf, Error> {
     let name = &p.common.name;
-    let stage = StagedDir::new(out_dir, name).map_err(|e| Error::Io(out_dir.join(name), e))?;
+    let stage = StagedDir::new(out_dir, name)
+        .map_err(|e| Error::Io(out_dir.join(name), e))?
+        .owned_by(output::Owner::scenario("run", name));
     let io = |e: std::io::Error| Error::Io(stage.dest().to_path_buf(), e);
     done.outputs.write_into(&stage.path("")).map_err(io)?;
     let text = run_toml(p, done)?;
@@ -250,11 +252,7 @@ fn commit(stage: StagedDir, file: &Path) -> Result<PathBuf, Error> {
     let dest = stage.dest().to_path_buf();
     stage.commit().map_err(|e| {
         if e.kind() == std::io::ErrorKind::AlreadyExists {
-            Error::bad_input(
-                file,
-                Some("name"),
-                format!("{e}; choose another --out or another name"),
-            )
+            Error::bad_input(file, Some("name"), e.to_string())
         } else {
             Error::Io(dest, e)
         }
@@ -382,57 +380,66 @@ fn prepare_all(req: &RunRequest) -> Result<Vec<Prepared>, Error> {
 /// `OUT/NAME/` (or `OUT/combined/`) that settle did not create: settle never deletes or replaces
 /// a folder it did not make.
 pub fn check_destinations(out_dir: &Path, prepared: &[Prepared]) -> Result<(), Error> {
-    if out_dir.exists() && !out_dir.is_dir() {
-        return Err(Error::bad_argument(
-            "--out",
-            out_dir,
-            "exists and is not a folder: give a folder (it is created if absent)",
-        ));
-    }
+    output::owner::check_out_dir(out_dir)?;
     for p in prepared {
-        destination_allowed(&out_dir.join(&p.common.name), &p.path)?;
+        let owner = output::Owner::scenario("run", &p.common.name);
+        destination_allowed(&out_dir.join(&p.common.name), &p.path, &owner)?;
     }
     let combined = out_dir.join("combined");
-    if prepared.len() > 1 && output::check_destination(&combined).is_err() {
-        return Err(Error::bad_argument(
-            "--out",
-            out_dir,
-            format!(
-                "{} (the joint summary of several files) exists and was not created by settle, \
-                 which will not replace it: choose another --out",
-                combined.display()
-            ),
-        ));
+    let owner = combined_owner();
+    if prepared.len() > 1 {
+        if let Err(r) = output::check_destination_for(&combined, Some(&owner)) {
+            return Err(Error::bad_argument(
+                "--out",
+                out_dir,
+                format!(
+                    "the joint summary of several files goes to {}",
+                    output::owner::refusal_text(
+                        &combined,
+                        &r,
+                        Some(&owner),
+                        "choose another --out"
+                    )
+                ),
+            ));
+        }
     }
     Ok(())
 }
 
+/// The owner of `OUT/combined/`: any run of several scenario files.
+fn combined_owner() -> output::Owner {
+    output::Owner::new("run", "several scenario files (their joint summary)")
+}
+
 /// Refuses (bad input naming `file` and its key `name`) an output folder `dest` that settle may
-/// not write: a file, or a folder settle did not create ([`output::check_destination`]).
-pub fn destination_allowed(dest: &Path, file: &Path) -> Result<(), Error> {
-    let why = match output::check_destination(dest) {
-        Ok(()) => return Ok(()),
-        Err(output::Refusal::NotAFolder) => "exists and is not a folder",
-        Err(output::Refusal::NotOurs) => {
-            "is a folder settle did not create (it has no .settle-run marker), so settle will not \
-             delete or replace it"
-        }
-    };
-    Err(Error::bad_input(
-        file,
-        Some("name"),
-        format!(
-            "the output folder {} {why}: choose another --out or another name (if it holds the \
-             outputs of an older settle, delete or rename it)",
-            dest.display()
-        ),
-    ))
+/// not write for `owner`: a file, a folder settle did not create and not empty, or the results
+/// of another command or scenario ([`output::check_destination_for`]).
+pub fn destination_allowed(dest: &Path, file: &Path, owner: &output::Owner) -> Result<(), Error> {
+    match output::check_destination_for(dest, Some(owner)) {
+        Ok(()) => Ok(()),
+        Err(r) => Err(Error::bad_input(
+            file,
+            Some("name"),
+            format!(
+                "the output folder {}",
+                output::owner::refusal_text(
+                    dest,
+                    &r,
+                    Some(owner),
+                    "choose another --out or another name"
+                )
+            ),
+        )),
+    }
 }
 
 fn write_combined(out_dir: &Path, reports: &[FileReport]) -> Result<(), Error> {
     let dest = out_dir.join("combined");
     let io = |e: std::io::Error| Error::Io(dest.clone(), e);
-    let stage = StagedDir::new(out_dir, "combined").map_err(io)?;
+    let stage = StagedDir::new(out_dir, "combined")
+        .map_err(io)?
+        .owned_by(combined_owner());
     let mut rows = Vec::new();
     let mut all = Vec::new();
     for r in reports {

@@ -94,14 +94,9 @@ pub fn main(args: &Args) -> Result<Vec<String>, Error> {
         &measured,
         &FitOptions::default(),
         |folder| {
-            if out.exists() && !out.is_dir() {
-                return Err(Error::bad_argument(
-                    "--out",
-                    out,
-                    "exists and is not a folder: give a folder (it is created if absent)",
-                ));
-            }
-            crate::run::destination_allowed(&out.join(folder), file)
+            crate::io::owner::check_out_dir(out)?;
+            let owner = super::calibrate::owner(folder);
+            crate::run::destination_allowed(&out.join(folder), file, &owner)
         },
     )?;
     let dest = r.write(out)?;

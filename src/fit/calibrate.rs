@@ -68,6 +68,11 @@ pub fn fit(
 /// Grid points of the objective chart (one key).
 const CHART_POINTS: usize = 13;
 
+/// The owner of the results folder `folder` (`<scenario name>_fit`) of a calibration.
+pub(crate) fn owner(folder: &str) -> crate::io::Owner {
+    crate::io::Owner::scenario("fit", folder.strip_suffix("_fit").unwrap_or(folder))
+}
+
 /// [`fit()`], calling `before_runs` with the results folder's name once the input is checked
 /// and before the first run (the command line checks its destination there).
 pub(crate) fn calibrate(
@@ -161,7 +166,8 @@ pub(crate) fn calibrate(
         set: scenario.overrides(),
         dt_s: scenario.dt_override(),
     };
-    let outputs = output::outputs(&request, &fit)?;
+    let mut outputs = output::outputs(&request, &fit)?;
+    outputs.set_owner(owner(&folder));
     Ok(FitResult {
         name: folder,
         warnings: pb.warnings_at(&fit.values),

@@ -316,7 +316,14 @@ pub fn invert(readings: &[Readings], opts: &InvertOptions) -> Result<InvertResul
     r.warnings = output::warnings(&r);
     r.wall_time_s = clock.elapsed().as_secs_f64();
     r.outputs = output::outputs(&r)?;
+    r.outputs.set_owner(owner(readings));
     Ok(r)
+}
+
+/// The owner of the results folder of `readings`: their files, in order.
+fn owner(readings: &[Readings]) -> crate::io::Owner {
+    let inputs: Vec<String> = readings.iter().map(Readings::owner_input).collect();
+    crate::io::Owner::new("invert", inputs.join(" + "))
 }
 
 /// The results folder's name of readings whose first is `first`: `<stem>_inverted`.
@@ -334,15 +341,9 @@ pub fn run(req: &Request) -> Result<Report, Error> {
         .iter()
         .map(|f| Readings::from(f.as_path()))
         .collect();
+    crate::io::owner::check_out_dir(&req.out_dir)?;
     let dest = req.out_dir.join(inverted_name(&readings[0]));
-    if crate::io::check_destination(&dest).is_err() {
-        return Err(Error::bad_argument(
-            "--out",
-            &dest,
-            "exists and was not created by settle (no .settle-run marker), so settle will not \
-             replace it: choose another --out",
-        ));
-    }
+    crate::io::owner::check_owned(&dest, &owner(&readings))?;
     let result = invert(&readings, opts)?;
     let out = result.write(&req.out_dir)?;
     Ok(Report {

@@ -8,7 +8,9 @@
 //! entries settle wrote there, one name a line. A later run into the same folder removes only
 //! those entries and keeps anything the user added (notes, plots). A folder without the marker
 //! was not made by settle (or by a settle before the marker existed) and is never deleted or
-//! replaced: [`check_destination`] refuses it before anything runs.
+//! replaced: [`check_destination_for`] refuses it before anything runs, unless it is empty. The
+//! marker also names the command and input that wrote the folder ([`owner`]): a folder of
+//! another command or input is never replaced either.
 
 mod atomic;
 pub mod chart;
@@ -16,37 +18,19 @@ pub mod fmt;
 pub mod lab_file;
 pub mod metrics;
 pub mod outputs;
+pub mod owner;
 pub mod report;
 pub mod table;
 pub mod xlsx;
 
 pub use atomic::{is_tmp_of, write_atomic, MARKER, TMP_SUFFIX};
 pub use outputs::Outputs;
+pub use owner::{check_destination_for, Owner};
 pub use table::{Column, Table};
 
 use std::fs;
 use std::io;
 use std::path::{Path, PathBuf};
-
-/// Why an output destination cannot be used.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Refusal {
-    /// The destination exists and is not a folder.
-    NotAFolder,
-    /// The destination is a folder that settle did not create (no [`MARKER`]).
-    NotOurs,
-}
-
-/// Checks that `dest` may receive a run's outputs: absent, or a folder settle created (it holds
-/// [`MARKER`]).
-pub fn check_destination(dest: &Path) -> Result<(), Refusal> {
-    match fs::symlink_metadata(dest) {
-        Err(_) => Ok(()),
-        Ok(m) if !m.is_dir() => Err(Refusal::NotAFolder),
-        Ok(_) if dest.join(MARKER).is_file() => Ok(()),
-        Ok(_) => Err(Refusal::NotOurs),
-    }
-}
 
 /// The entries listed in the marker of `dir` (empty if there is none).
 pub fn owned_entries(dir: &Path) -> Vec<String> {
@@ -94,6 +78,7 @@ pub fn clean_stale_staging(out_dir: &Path) {
 pub struct StagedDir {
     tmp: PathBuf,
     dest: PathBuf,
+    owner: Option<Owner>,
     committed: bool,
 }
 
@@ -111,8 +96,16 @@ impl StagedDir {
         Ok(Self {
             tmp,
             dest: out_dir.join(name),
+            owner: None,
             committed: false,
         })
+    }
+
+    /// The same staging, committed only into a destination absent, empty or already
+    /// `owner`'s, and marked as `owner`'s ([`check_destination_for`]).
+    pub fn owned_by(mut self, owner: Owner) -> Self {
+        self.owner = Some(owner);
+        self
     }
 
     /// Path of a file inside the staging folder.
@@ -136,22 +129,20 @@ impl StagedDir {
             .collect();
         names.sort();
         let marker = format!(
-            "# written by settle: a rerun replaces the entries listed here and keeps the others\n{}\n",
+            "# written by settle: a rerun replaces the entries listed here and keeps the others\n{}{}\n",
+            self.owner.as_ref().map(Owner::marker_lines).unwrap_or_default(),
             names.join("\n")
         );
         write_atomic(&self.tmp.join(MARKER), marker.as_bytes())?;
-        match check_destination(&self.dest) {
+        match check_destination_for(&self.dest, self.owner.as_ref()) {
             Err(r) => {
                 return Err(io::Error::new(
                     io::ErrorKind::AlreadyExists,
-                    format!(
-                        "{}: {}; settle never replaces it",
-                        self.dest.display(),
-                        if r == Refusal::NotAFolder {
-                            "exists and is not a folder"
-                        } else {
-                            "this folder was not created by settle"
-                        }
+                    owner::refusal_text(
+                        &self.dest,
+                        &r,
+                        self.owner.as_ref(),
+                        "choose another --out",
                     ),
                 ))
             }
@@ -217,8 +208,9 @@ mod tests;
 // stays a leaf (no import loop between the two).
 impl Outputs {
     /// Writes the folder `out_dir/name/` as a command does (staged, then moved into place):
-    /// refused as bad input on `--out` when that folder exists and was not made by settle (no
-    /// `.settle-run` marker) or is not a folder. Returns the folder.
+    /// refused as bad input on `--out` when that folder is not a folder, is not empty and was
+    /// not made by settle (no `.settle-run` marker), or holds the results of another owner
+    /// ([`Outputs::owner`]). Returns the folder.
     pub fn write_folder(
         &self,
         out_dir: &Path,
@@ -226,16 +218,19 @@ impl Outputs {
     ) -> Result<std::path::PathBuf, crate::error::Error> {
         use crate::error::Error;
         let dest = out_dir.join(name);
-        if check_destination(&dest).is_err() {
+        owner::check_out_dir(out_dir)?;
+        if let Err(r) = check_destination_for(&dest, self.owner()) {
             return Err(Error::bad_argument(
                 "--out",
                 &dest,
-                "exists and was not created by settle (no .settle-run marker), so settle will \
-                 not replace it: choose another --out",
+                owner::refusal_text(&dest, &r, self.owner(), "choose another --out"),
             ));
         }
         let ioe = |e: io::Error| Error::Io(dest.clone(), e);
-        let stage = StagedDir::new(out_dir, name).map_err(ioe)?;
+        let mut stage = StagedDir::new(out_dir, name).map_err(ioe)?;
+        if let Some(o) = self.owner() {
+            stage = stage.owned_by(o.clone());
+        }
         self.write_into(&stage.path("")).map_err(ioe)?;
         stage.commit().map_err(ioe)
     }

@@ -17,12 +17,24 @@ pub struct Outputs {
     tables: Vec<Table>,
     files: Vec<(String, Vec<u8>)>,
     figures: Vec<(String, Figure)>,
+    owner: Option<super::owner::Owner>,
 }
 
 impl Outputs {
     /// No outputs yet.
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// Records the command and input these outputs are the results of: their folder is marked
+    /// as theirs, and never replaces the folder of another owner ([`super::owner`]).
+    pub fn set_owner(&mut self, owner: super::owner::Owner) {
+        self.owner = Some(owner);
+    }
+
+    /// The command and input these outputs are the results of, if recorded.
+    pub fn owner(&self) -> Option<&super::owner::Owner> {
+        self.owner.as_ref()
     }
 
     /// Adds a table (replacing one of the same name).
@@ -93,6 +105,9 @@ impl Outputs {
         }
         for (n, f) in other.figures {
             self.figure(n, f);
+        }
+        if self.owner.is_none() {
+            self.owner = other.owner;
         }
     }
 

@@ -142,6 +142,7 @@ pub fn laws(opts: &LawsOptions) -> Result<LawsResult, Error> {
     let ioe =
         |file: &'static str| move |e: std::io::Error| Error::Io(Path::new("laws").join(file), e);
     let mut outputs = Outputs::new();
+    outputs.set_owner(owner(opts));
     outputs.table(laws_table(&data, &results));
     outputs.table(predictions_table(&data, &results));
     outputs
@@ -171,19 +172,22 @@ pub fn laws(opts: &LawsOptions) -> Result<LawsResult, Error> {
     })
 }
 
+/// The owner of `OUT/laws/` for `opts`: the built-in data or the two files.
+fn owner(opts: &LawsOptions) -> io::Owner {
+    match (&opts.spheres, &opts.fluids) {
+        (Some(s), Some(f)) => io::Owner::of_files("laws", &[s, f]),
+        _ => io::Owner::new("laws", "the built-in data of Valentik & Whitmore (1965)"),
+    }
+}
+
 /// Runs `settle laws`: [`laws`], then [`LawsResult::write`] into `OUT/laws/` (the output folder
 /// checked first).
 pub fn run(req: &Request) -> Result<Report, Error> {
-    let dest = req.out_dir.join("laws");
-    if io::check_destination(&dest).is_err() {
-        return Err(Error::bad_argument(
-            "--out",
-            &dest,
-            "exists and was not created by settle (no .settle-run marker), so settle will not              replace it: choose another --out",
-        ));
-    }
     let (spheres, fluids) = req.files.clone().unzip();
-    let result = laws(&LawsOptions { spheres, fluids })?;
+    let opts = LawsOptions { spheres, fluids };
+    io::owner::check_out_dir(&req.out_dir)?;
+    io::owner::check_owned(&req.out_dir.join("laws"), &owner(&opts))?;
+    let result = laws(&opts)?;
     let out = result.write(&req.out_dir)?;
     Ok(Report {
         lines: result.lines(&out),

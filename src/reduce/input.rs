@@ -53,6 +53,15 @@ impl Readings {
         }
     }
 
+    /// What the results of these readings are of, for the owner of their folder
+    /// ([`crate::io::Owner`]): the file's absolute path, or `table NAME`.
+    pub fn owner_input(&self) -> String {
+        match self {
+            Readings::File(p) => crate::io::owner::absolute(p).display().to_string(),
+            Readings::Table { table, .. } => format!("table {}", table.name()),
+        }
+    }
+
     /// The stem of the results folder's name (`<stem>_reduced`, `<stem>_inverted`).
     pub fn stem(&self) -> String {
         self.path()

@@ -174,6 +174,7 @@ pub fn reduce(readings: impl Into<Readings>, opts: &ReduceOptions) -> Result<Red
         "reduce.toml",
         record(&file, &setup, &lab) + &input_record(&read.detected, &warnings),
     );
+    outputs.set_owner(crate::io::Owner::new("reduce", readings.owner_input()));
     Ok(ReduceResult {
         name: format!("{stem}_reduced"),
         input: file,

@@ -97,6 +97,11 @@ pub fn sweep(scenario: &Scenario, opts: &SweepOptions) -> Result<SweepResult, Er
 
 /// Runs the whole grid of `plan` (not a shard) of `p` with a progress bar (hidden unless
 /// `progress`) and makes every output.
+/// The owner of the folder of the sweep of the scenario named `name`.
+pub(crate) fn owner(name: &str) -> crate::io::Owner {
+    crate::io::Owner::scenario("sweep", name)
+}
+
 pub(crate) fn compute(p: &Prepared, plan: Plan, progress: bool) -> Result<SweepResult, Error> {
     let cases = plan.cases_to_run();
     let bar = crate::progress::bar(
@@ -119,6 +124,7 @@ pub(crate) fn compute(p: &Prepared, plan: Plan, progress: bool) -> Result<SweepR
         lines,
     } = results(&rows, &cx)?;
     add_report(&mut outputs, &name)?;
+    outputs.set_owner(owner(&p.common.name));
     let warnings = recommended.iter().filter_map(|r| caveat(r, &cx)).collect();
     Ok(SweepResult {
         name,

@@ -113,7 +113,7 @@ pub(crate) fn main(args: &Args) -> Result<(), Error> {
     for (p, plan) in &jobs {
         if plan.shard.is_none() {
             let dest = out.join(format!("{}_sweep", p.common.name));
-            crate::run::destination_allowed(&dest, &p.path)?;
+            crate::run::destination_allowed(&dest, &p.path, &api::owner(&p.common.name))?;
         }
     }
     for (p, plan) in &jobs {

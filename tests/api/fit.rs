@@ -151,9 +151,10 @@ fn paste_eta_b_tables_equal_the_files_of_settle_fit() {
             p.display()
         );
     }
-    // A folder settle did not make is refused, naming --out.
+    // A folder settle did not make (and not empty) is refused, naming --out.
     let theirs = dir.path().join("theirs");
     std::fs::create_dir_all(theirs.join("paste_single_ball_fit")).unwrap();
+    std::fs::write(theirs.join("paste_single_ball_fit/notes.txt"), "mine").unwrap();
     let e = r.write(&theirs).unwrap_err().to_string();
     assert!(
         e.contains("key `--out`") && e.contains("not created by settle"),

@@ -83,7 +83,7 @@ fn a_sweep_never_replaces_a_folder_settle_did_not_create() {
         .unwrap();
     assert_exit(&o, 2);
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains("did not create"), "{err}");
+    assert!(err.contains("not created by settle"), "{err}");
     let left: Vec<_> = std::fs::read_dir(&mine)
         .unwrap()
         .map(|e| e.unwrap().file_name())

@@ -47,6 +47,6 @@ fn bench_works_from_another_directory() {
         .output()
         .unwrap();
     assert_exit(&o, 0);
-    let csv = std::fs::read_to_string(Path::new(dir.path()).join("b/bench.csv")).unwrap();
+    let csv = std::fs::read_to_string(Path::new(dir.path()).join("b/bench/bench.csv")).unwrap();
     assert!(csv.contains("valentik_121"), "{csv}");
 }

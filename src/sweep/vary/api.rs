@@ -105,6 +105,7 @@ pub(crate) fn compute(plan: VaryPlan, progress: bool) -> Result<VaryResult, Erro
     let name = plan.folder();
     let (mut outputs, lines) = results(&title, &data)?;
     add_report(&mut outputs, &name)?;
+    outputs.set_owner(plan.owner());
     let warnings = unstable_cases(&data);
     Ok(VaryResult {
         name,

@@ -53,7 +53,7 @@ pub(crate) fn main(args: &Args) -> Result<(), Error> {
         plans.push(VaryPlan::new(f, &args.set, &args.vary, args.shard)?);
     }
     for plan in plans.iter().filter(|p| p.shard.is_none()) {
-        crate::run::destination_allowed(&out.join(plan.folder()), &plan.base.path)?;
+        crate::run::destination_allowed(&out.join(plan.folder()), &plan.base.path, &plan.owner())?;
     }
     for plan in plans {
         sweep_file(plan, &out, args.quiet)?;

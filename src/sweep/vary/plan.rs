@@ -120,6 +120,11 @@ impl VaryPlan {
     pub fn folder(&self) -> String {
         format!("{}_vary", self.base.common.name)
     }
+
+    /// The owner of [`VaryPlan::folder`] ([`crate::io::Owner`]).
+    pub fn owner(&self) -> crate::io::Owner {
+        crate::io::Owner::scenario("sweep --vary", &self.base.common.name)
+    }
 }
 
 /// Runs the plan's cases (in parallel; `done` after each) into a table. Ctrl-C/SIGTERM: no new
