@@ -287,29 +287,7 @@ pub fn main() -> i32 {
             standard,
             hydrometer,
             out,
-        } => {
-            let Some(readings) = readings else {
-                return match crate::reduce::template(template.as_deref().unwrap_or_default()) {
-                    Ok(t) => {
-                        print!("{t}");
-                        0
-                    }
-                    Err(e) => {
-                        eprintln!("error: {e}");
-                        e.exit_code()
-                    }
-                };
-            };
-            let opts = crate::reduce::ReduceOptions {
-                standard,
-                hydrometer,
-            };
-            let done = crate::reduce::reduce(readings, &opts).and_then(|r| {
-                let dest = r.write(&out)?;
-                Ok((r.lines(&dest), r.warnings))
-            });
-            outcome(done, |(lines, warnings)| (lines, warnings))
-        }
+        } => reduce(readings, template.as_deref(), standard, hydrometer, &out),
         Command::Laws {
             spheres,
             fluids,
@@ -344,6 +322,38 @@ pub fn main() -> i32 {
             out_dir: out,
         }),
     }
+}
+
+/// `settle reduce`: prints the readings template (no readings file), or reduces the readings
+/// and writes the results into OUT; the exit code.
+fn reduce(
+    readings: Option<std::path::PathBuf>,
+    template: Option<&str>,
+    standard: Option<String>,
+    hydrometer: Option<String>,
+    out: &std::path::Path,
+) -> i32 {
+    let Some(readings) = readings else {
+        return match crate::reduce::template(template.unwrap_or_default()) {
+            Ok(t) => {
+                print!("{t}");
+                0
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                e.exit_code()
+            }
+        };
+    };
+    let opts = crate::reduce::ReduceOptions {
+        standard,
+        hydrometer,
+    };
+    let done = crate::reduce::reduce(readings, &opts).and_then(|r| {
+        let dest = r.write(out)?;
+        Ok((r.lines(&dest), r.warnings))
+    });
+    outcome(done, |(lines, warnings)| (lines, warnings))
 }
 
 /// `settle run`: runs the scenario files, prints their reports; the exit code.
