@@ -27,7 +27,7 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 /// Version of the checkpoint format; bumped whenever a checkpointed state changes layout.
-pub const FORMAT_VERSION: u32 = 2;
+pub const FORMAT_VERSION: u32 = 3;
 
 /// Name of the checkpoint folder inside the output folder.
 pub const DIR_NAME: &str = "checkpoint";

@@ -23,6 +23,7 @@
 //! disc).
 
 pub mod buoyancy;
+pub mod counting;
 pub mod forward;
 pub mod hydrometer;
 pub mod pipette;

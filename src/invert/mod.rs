@@ -33,6 +33,7 @@
 //!    prior, and chooses λ again), re-solving the last linear problem; the 5th and 95th
 //!    percentiles of the cumulative curve at each diameter.
 
+mod diagnose;
 mod options;
 mod output;
 pub mod problem;
@@ -217,7 +218,7 @@ fn linearise(
                 j[(row, k)] = *x;
             }
             b[row] = t.readings[i] - p + jw;
-            sigma[row] = t.sigma();
+            sigma[row] = t.sigma_at(i);
             pred.push(p);
             row += 1;
         }
@@ -288,7 +289,7 @@ pub fn invert(readings: &[Readings], opts: &InvertOptions) -> Result<InvertResul
                 time_s: t.times_s[i],
                 reading: t.readings[i],
                 predicted: fit.predicted[row],
-                sigma: t.sigma(),
+                sigma: t.sigma_at(i),
             });
             row += 1;
         }
@@ -480,7 +481,12 @@ fn iterate(
     let (linear, predicted) = linearise(tests, &units, &w)?;
     let chi2 = tests
         .iter()
-        .flat_map(|t| t.readings.iter().map(move |r| (r, t.sigma())))
+        .flat_map(|t| {
+            t.readings
+                .iter()
+                .enumerate()
+                .map(move |(i, r)| (r, t.sigma_at(i)))
+        })
         .zip(&predicted)
         .map(|((r, s), p)| ((r - p) / s).powi(2))
         .sum();
@@ -513,7 +519,8 @@ fn percentile(sorted: &[f64], p: f64) -> f64 {
 }
 
 /// The recovered curve at the resolved edges with its 5–95 % Monte Carlo band: each repeat adds
-/// to every reading a rounding error U(−Δ/2, Δ/2) and a reading error N(0, Δ/√6), draws the
+/// to every reading a rounding error U(−Δ/2, Δ/2), a reading error N(0, Δ/√6) and its counting
+/// error N(0, σ_count) (a run's readings files, [`Test::counting_sigma`]), draws the
 /// penalty's target η = z/√λ (z standard normal: the Gaussian prior of the Tikhonov term) and
 /// solves the last linear problem again with λ chosen by the same rule: a draw of the
 /// constrained posterior, λ's own uncertainty included. None when a stop was requested
@@ -530,17 +537,20 @@ fn band(
     let w = &inv.solution.w;
     let mut samples: Vec<Vec<f64>> = vec![Vec::with_capacity(repeats); edges.len()];
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
-    let res: Vec<f64> = tests
+    let res: Vec<(f64, f64)> = tests
         .iter()
-        .flat_map(|t| t.readings.iter().map(move |_| t.resolution))
+        .flat_map(|t| (0..t.readings.len()).map(move |i| (t.resolution, t.counting_sigma[i])))
         .collect();
     for _ in 0..repeats {
         if crate::interrupt::requested() {
             return None;
         }
         let mut lin = inv.linear.clone();
-        for (i, d) in res.iter().enumerate() {
+        for (i, (d, c)) in res.iter().enumerate() {
             lin.b[i] += d * (rng.random::<f64>() - 0.5) + d / 6f64.sqrt() * normal(&mut rng);
+            if *c > 0.0 {
+                lin.b[i] += c * normal(&mut rng);
+            }
         }
         let z: Vec<f64> = (0..w.len()).map(|_| normal(&mut rng)).collect();
         let s = lin.solve_drawn(rule, Some(&z));

@@ -214,13 +214,14 @@ fn record(r: &InvertResult) -> String {
         let an = &test.col.analysis;
         t.push_str(&format!(
             "\n[[file]]\npath = {:?}\ninstrument = \"{}\"\nreadings = {}\nresolution = {}\n\
-             sigma = {}\ncolumn_height_m = {}\nlayers = {}\nc0_kg_m3 = {}\nviscosity_pa_s = {}\n\
+             sigma = {}\ncounting_sigma_max = {}\ncolumn_height_m = {}\nlayers = {}\nc0_kg_m3 = {}\nviscosity_pa_s = {}\n\
              fluid_density_kg_m3 = {}\ngrain_density_kg_m3 = {}\ngravity_m_s2 = {}\n",
             test.file.display().to_string(),
             test.probe.name(),
             test.readings.len(),
             clean(test.resolution),
             clean(test.sigma()),
+            clean(test.counting_sigma.iter().copied().fold(0.0, f64::max)),
             clean(test.col.height_m),
             test.col.layers,
             clean(an.c0_kg_m3),
@@ -247,11 +248,8 @@ pub fn warnings(r: &InvertResult) -> Vec<String> {
         .flat_map(|(t, ws)| ws.iter().map(move |x| format!("{}: {x}", t.file.display())))
         .collect();
     if r.chi2 > 2.0 * m && r.lambda_rule != LambdaRule::Gcv {
-        w.push(format!(
-            "χ² = {} for {} readings: the model does not explain the readings within their \
-             uncertainty (check the figures, the model or --resolution)",
-            g(r.chi2),
-            r.misfit.len()
+        w.extend(super::diagnose::chi2_warning(
+            &r.tests, &r.misfit, r.chi2, r.model,
         ));
     }
     if !r.converged {

@@ -139,6 +139,10 @@ pub struct Test {
     pub offsets: Vec<f64>,
     /// Resolution of the readings Δ, in the file's unit.
     pub resolution: f64,
+    /// Counting σ of each reading, in the file's unit: the file's `counting_sigma` column (a
+    /// run's readings: the noise of its representative grains,
+    /// [`crate::instruments::counting`]), 0 for a laboratory's readings.
+    pub counting_sigma: Vec<f64>,
     /// How the file was read (the format layer's `[input]` keys: format, sheet, encoding,
     /// delimiter, decimal mark) and its doubtful values, for invert.toml and the warnings.
     pub input: Option<(crate::io::lab_file::Detected, Vec<String>)>,
@@ -149,6 +153,13 @@ impl Test {
     /// resolution (uniform, Δ/√12) and a reading error of Δ/√6 (σ² = Δ²/12 + Δ²/6 = Δ²/4).
     pub fn sigma(&self) -> f64 {
         0.5 * self.resolution
+    }
+
+    /// Standard deviation of reading `i`: the resolution's σ and the reading's counting σ
+    /// together, independent errors: σ_i² = σ_res² + σ_count,i².
+    pub fn sigma_at(&self, i: usize) -> f64 {
+        let c = self.counting_sigma.get(i).copied().unwrap_or(0.0);
+        self.sigma().hypot(c)
     }
 
     /// The predicted reading `i` in the suspension of distribution `w` (unit fields `unit` of

@@ -39,6 +39,9 @@ pub(crate) fn read_test_of(
     let (setup, lab) = (read.setup, read.readings);
     let mut test = test_of(file, &setup, &lab, resolution)?;
     test.input = Some((read.detected, read.warnings));
+    if let Some(c) = read.counting_sigma {
+        test.counting_sigma = c;
+    }
     Ok((test, reduce(&setup, &lab)))
 }
 
@@ -179,6 +182,7 @@ fn test_of(
         readings: readings.iter().map(|r| r.reading).collect(),
         offsets,
         resolution: resolution.unwrap_or(default_resolution),
+        counting_sigma: vec![0.0; readings.len()],
         input: None,
     })
 }

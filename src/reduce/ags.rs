@@ -127,31 +127,9 @@ fn test_type(i: &Instrument) -> (&'static str, &'static str) {
     }
 }
 
-/// The text of `percent_finer.ags` for the readings `file` (its stem `stem`) reduced to `red`.
-pub(crate) fn ags_text(file: &str, stem: &str, s: &TestSetup, red: &[Reduced]) -> String {
-    let id = stem.to_string();
-    let key = |spec: bool| {
-        let mut k = vec![
-            id.clone(),
-            String::new(),
-            String::new(),
-            String::new(),
-            id.clone(),
-        ];
-        if spec {
-            k.extend(["1".to_string(), String::new()]);
-        }
-        k
-    };
-    const KEYS: [(&str, &str, &str); 7] = [
-        ("LOCA_ID", "", "ID"),
-        ("SAMP_TOP", "m", "2DP"),
-        ("SAMP_REF", "", "X"),
-        ("SAMP_TYPE", "", "PA"),
-        ("SAMP_ID", "", "ID"),
-        ("SPEC_REF", "", "X"),
-        ("SPEC_DPTH", "m", "2DP"),
-    ];
+/// PROJ, TRAN and LOCA: the project and location `id`, the file's date and producer.
+fn header_groups(file: &str, id: &str) -> [Group; 3] {
+    let id = id.to_string();
     let mut proj = Group::new(
         "PROJ",
         &[
@@ -188,6 +166,82 @@ pub(crate) fn ags_text(file: &str, stem: &str, s: &TestSetup, red: &[Reduced]) -
     ]);
     let mut loca = Group::new("LOCA", &[("LOCA_ID", "", "ID")]);
     loca.rows.push(vec![id.clone()]);
+    [proj, tran, loca]
+}
+
+/// ABBR, UNIT and TYPE: the test type `code` (`desc`), the units, and the data types with the
+/// size's `size_type` (`n` significant figures).
+fn dictionary_groups(code: &str, desc: &str, size_type: &str, n: usize) -> [Group; 3] {
+    let mut abbr = Group::new(
+        "ABBR",
+        &[
+            ("ABBR_HDNG", "", "X"),
+            ("ABBR_CODE", "", "X"),
+            ("ABBR_DESC", "", "X"),
+            ("ABBR_LIST", "", "X"),
+        ],
+    );
+    abbr.rows.push(vec![
+        "GRAT_TYPE".into(),
+        code.into(),
+        desc.into(),
+        "settle".into(),
+    ]);
+    let mut unit = Group::new("UNIT", &[("UNIT_UNIT", "", "X"), ("UNIT_DESC", "", "X")]);
+    for (u, d) in [
+        ("%", "percentage"),
+        ("m", "metre"),
+        ("mm", "millimetre"),
+        ("Mg/m3", "megagrams per cubic metre"),
+        ("yyyy-mm-dd", "year month day"),
+    ] {
+        unit.rows.push(vec![u.into(), d.into()]);
+    }
+    let mut types = Group::new("TYPE", &[("TYPE_TYPE", "", "X"), ("TYPE_DESC", "", "X")]);
+    for (t, d) in [
+        ("1DP".to_string(), "Value; 1 decimal place".to_string()),
+        ("2DP".into(), "Value; 2 decimal places".into()),
+        (
+            size_type.to_string(),
+            format!("Value; {n} significant figures"),
+        ),
+        ("DT".into(), "Date time in international format".into()),
+        ("ID".into(), "Unique identifier".into()),
+        ("PA".into(), "Text listed in ABBR Group".into()),
+        ("X".into(), "Text".into()),
+        ("XN".into(), "Text / numeric".into()),
+    ] {
+        types.rows.push(vec![t, d]);
+    }
+    [abbr, unit, types]
+}
+
+/// The text of `percent_finer.ags` for the readings `file` (its stem `stem`) reduced to `red`.
+pub(crate) fn ags_text(file: &str, stem: &str, s: &TestSetup, red: &[Reduced]) -> String {
+    let id = stem.to_string();
+    let key = |spec: bool| {
+        let mut k = vec![
+            id.clone(),
+            String::new(),
+            String::new(),
+            String::new(),
+            id.clone(),
+        ];
+        if spec {
+            k.extend(["1".to_string(), String::new()]);
+        }
+        k
+    };
+    const KEYS: [(&str, &str, &str); 7] = [
+        ("LOCA_ID", "", "ID"),
+        ("SAMP_TOP", "m", "2DP"),
+        ("SAMP_REF", "", "X"),
+        ("SAMP_TYPE", "", "PA"),
+        ("SAMP_ID", "", "ID"),
+        ("SPEC_REF", "", "X"),
+        ("SPEC_DPTH", "m", "2DP"),
+    ];
+    let [proj, tran, loca] = header_groups(file, &id);
     let mut samp = Group::new("SAMP", &KEYS[..5]);
     samp.rows.push(key(false));
     let mut grag_cols = KEYS.to_vec();
@@ -232,44 +286,7 @@ pub(crate) fn ags_text(file: &str, stem: &str, s: &TestSetup, red: &[Reduced]) -
         ]);
         grat.rows.push(row);
     }
-    let mut abbr = Group::new(
-        "ABBR",
-        &[
-            ("ABBR_HDNG", "", "X"),
-            ("ABBR_CODE", "", "X"),
-            ("ABBR_DESC", "", "X"),
-            ("ABBR_LIST", "", "X"),
-        ],
-    );
-    abbr.rows.push(vec![
-        "GRAT_TYPE".into(),
-        code.into(),
-        desc.into(),
-        "settle".into(),
-    ]);
-    let mut unit = Group::new("UNIT", &[("UNIT_UNIT", "", "X"), ("UNIT_DESC", "", "X")]);
-    for (u, d) in [
-        ("%", "percentage"),
-        ("m", "metre"),
-        ("mm", "millimetre"),
-        ("Mg/m3", "megagrams per cubic metre"),
-        ("yyyy-mm-dd", "year month day"),
-    ] {
-        unit.rows.push(vec![u.into(), d.into()]);
-    }
-    let mut types = Group::new("TYPE", &[("TYPE_TYPE", "", "X"), ("TYPE_DESC", "", "X")]);
-    for (t, d) in [
-        ("1DP".to_string(), "Value; 1 decimal place".to_string()),
-        ("2DP".into(), "Value; 2 decimal places".into()),
-        (size_type.clone(), format!("Value; {n} significant figures")),
-        ("DT".into(), "Date time in international format".into()),
-        ("ID".into(), "Unique identifier".into()),
-        ("PA".into(), "Text listed in ABBR Group".into()),
-        ("X".into(), "Text".into()),
-        ("XN".into(), "Text / numeric".into()),
-    ] {
-        types.rows.push(vec![t, d]);
-    }
+    let [abbr, unit, types] = dictionary_groups(code, desc, &size_type, n);
     [proj, tran, loca, samp, grag, grat, abbr, unit, types]
         .iter()
         .map(Group::text)

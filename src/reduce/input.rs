@@ -111,7 +111,7 @@ impl From<&str> for Readings {
 }
 
 /// The columns a readings file may have (which apply to which instrument: [`columns`]).
-const COLUMNS: [&str; 7] = [
+const COLUMNS: [&str; 8] = [
     "time_s",
     "time_min",
     "reading",
@@ -119,6 +119,7 @@ const COLUMNS: [&str; 7] = [
     "apparent_mass_g",
     "temperature_c",
     "blank_reading",
+    "counting_sigma",
 ];
 
 /// Readings read and checked: the test's figures, its readings, what the format layer
@@ -132,6 +133,10 @@ pub(crate) struct ReadOut {
     pub detected: Detected,
     /// Doubtful values, one sentence each (the console's and the record's warnings).
     pub warnings: Vec<String>,
+    /// The `counting_sigma` column when the file has one (a run's readings files: the counting
+    /// noise of its representative grains, in the reading's unit), one value per reading;
+    /// `settle invert` adds it to the resolution, the reduction does not use it.
+    pub counting_sigma: Option<Vec<f64>>,
 }
 
 /// Reads and checks readings (a file or in memory) through the format layer, then their
@@ -142,13 +147,14 @@ pub(crate) fn read_checked(readings: &Readings, req: &ReduceOptions) -> Result<R
     let file = &readings.path();
     let p = split(file, lab)?;
     let (s, rules) = setup(file, &p, req)?;
-    let (lab_readings, locs, time_col) = rows(file, &p, &rules)?;
+    let (lab_readings, locs, time_col, counting_sigma) = rows(file, &p, &rules)?;
     let warnings = super::checks::check(file, &p, &s, &lab_readings, &locs, time_col)?;
     Ok(ReadOut {
         setup: s,
         readings: lab_readings,
         detected: p.detected,
         warnings,
+        counting_sigma,
     })
 }
 
@@ -162,7 +168,7 @@ fn columns(
     optional: &[&str],
 ) -> Result<BTreeMap<&'static str, usize>, Error> {
     let mut at = BTreeMap::new();
-    let allowed: Vec<&str> = ["time_min", "time_s", reading]
+    let allowed: Vec<&str> = ["time_min", "time_s", reading, "counting_sigma"]
         .into_iter()
         .chain(optional.iter().copied())
         .collect();
@@ -204,8 +210,14 @@ fn columns(
     Ok(at)
 }
 
-/// The readings, where each row is, and the time column's name and index.
-type Rows = (Vec<LabReading>, Vec<Loc>, (&'static str, usize));
+/// The readings, where each row is, the time column's name and index, and the
+/// `counting_sigma` column if there is one.
+type Rows = (
+    Vec<LabReading>,
+    Vec<Loc>,
+    (&'static str, usize),
+    Option<Vec<f64>>,
+);
 
 /// The readings of the table, each value checked by `rules`, with where each row is and the
 /// time column's name and index.
@@ -220,6 +232,7 @@ fn rows(file: &Path, p: &Parsed, rules: &RowRules) -> Result<Rows, Error> {
     }
     let mut out: Vec<LabReading> = Vec::new();
     let mut locs = Vec::new();
+    let mut sigma = at.contains_key("counting_sigma").then(Vec::new);
     for (n, (line, fields)) in p.rows.iter().enumerate() {
         let row = n + 1;
         if fields.len() != p.header.len() {
@@ -306,6 +319,13 @@ fn rows(file: &Path, p: &Parsed, rules: &RowRules) -> Result<Rows, Error> {
                 ),
             ));
         }
+        if let Some(s) = sigma.as_mut() {
+            s.push(value(
+                "counting_sigma",
+                (0.0, f64::MAX),
+                "a standard deviation >= 0, in the reading's unit",
+            )?);
+        }
         out.push(LabReading {
             time_s,
             reading,
@@ -319,5 +339,5 @@ fn rows(file: &Path, p: &Parsed, rules: &RowRules) -> Result<Rows, Error> {
     } else {
         "time_min"
     };
-    Ok((out, locs, (time, at[time])))
+    Ok((out, locs, (time, at[time]), sigma))
 }

@@ -4,6 +4,7 @@
 mod bingham_laws;
 mod hindered;
 mod invert;
+mod invert_counting;
 mod sedimentation_reference;
 mod slump;
 mod sphere_drag;

@@ -5,6 +5,7 @@ use super::setup::Setup;
 use super::state::{concentration, profile, Profile, State};
 use crate::fluid::sphere_mass_kg;
 use crate::instruments::buoyancy::{BuoyancyReading, BuoyancySphere};
+use crate::instruments::counting::{effective_count, with_one_more_grain};
 use crate::instruments::hydrometer::{Hydrometer, HydrometerReading};
 use crate::instruments::pipette::{GrainSample, Pipette, PipetteReading};
 use crate::instruments::{Analysis, LayeredField, Point};
@@ -110,6 +111,96 @@ pub fn layered_field(pr: &Profile, setup: &Setup, rho_p: f64, rho_f: f64) -> Lay
     }
 }
 
+/// [`layered_field`] with, as each layer's grain count, its effective count (Σv)²/Σv²
+/// ([`effective_count`]): the field's per-layer noise ([`LayeredField::excess_sd`]) is then the
+/// compound-Poisson counting noise Σ (a_i m_i)² of the grains
+/// ([`crate::instruments::counting`]).
+pub fn counting_field(pr: &Profile, setup: &Setup, rho_p: f64, rho_f: f64) -> LayeredField {
+    let mut f = layered_field(pr, setup, rho_p, rho_f);
+    f.grains = Some(
+        pr.solid_m3
+            .iter()
+            .zip(&pr.solid_sq_m6)
+            .map(|(&v, &v2)| effective_count(v, v2))
+            .collect(),
+    );
+    f
+}
+
+/// The solid volume of the mean representative grain, m³: the modelled mass over the number
+/// of grains, over ρ_p.
+fn mean_grain_m3(setup: &Setup, rho_p: f64) -> f64 {
+    setup.model_mass_kg / setup.grains.len().max(1) as f64 / rho_p
+}
+
+/// `pr` with one mean representative grain more in the layer at `depth_m`.
+fn with_one_grain(pr: &Profile, setup: &Setup, rho_p: f64, depth_m: f64) -> Profile {
+    let mut p = pr.clone();
+    let n = p.solid_m3.len();
+    let k = ((depth_m.max(0.0) / (setup.height_m / n as f64)) as usize).min(n - 1);
+    p.solid_m3[k] += mean_grain_m3(setup, rho_p);
+    p
+}
+
+/// The counting σ of the hydrometer's reading on the profile `pr`, g/L of its scale: the
+/// compound-Poisson σ of the grains ([`counting_field`]; σ_R = 1000 σ_ρ/(ρ_f (1 − 1/G)), the
+/// reading being 1000 (ρ_s/ρ_f − 1)/(1 − 1/G) with ρ_s the mean density of the submerged volume)
+/// with one mean grain more at the bulb's centre ([`with_one_more_grain`]). 0 if it does not
+/// float.
+pub fn hydrometer_counting_sd(
+    h: &Hydrometer,
+    pr: &Profile,
+    setup: &Setup,
+    rho_p: f64,
+    rho_f: f64,
+) -> f64 {
+    let Some(base) = h.read(&layered_field(pr, setup, rho_p, rho_f)) else {
+        return 0.0;
+    };
+    let sd = h
+        .read(&counting_field(pr, setup, rho_p, rho_f))
+        .map_or(0.0, |r| {
+            1000.0 * r.density_sd_kg_m3
+                / h.fluid_density_kg_m3
+                / (1.0 - 1.0 / h.spec.calibration_specific_gravity)
+        });
+    let one = with_one_grain(pr, setup, rho_p, base.centre_depth_m);
+    let one = h
+        .read(&layered_field(&one, setup, rho_p, rho_f))
+        .map_or(0.0, |r| r.reading - base.reading);
+    with_one_more_grain(sd, one)
+}
+
+/// The counting σ of the sphere's apparent mass on the profile `pr`, g: the σ of the displaced
+/// mass, σ_ρ V_sp ([`counting_field`]), with one mean grain more at its centre.
+pub fn sphere_counting_sd(
+    s: &BuoyancySphere,
+    pr: &Profile,
+    setup: &Setup,
+    rho_p: f64,
+    rho_f: f64,
+) -> f64 {
+    let sd = s
+        .read(&counting_field(pr, setup, rho_p, rho_f))
+        .density_sd_kg_m3
+        * s.volume_m3();
+    let base = s.read(&layered_field(pr, setup, rho_p, rho_f));
+    let one = s.read(&layered_field(
+        &with_one_grain(pr, setup, rho_p, s.depth_m),
+        setup,
+        rho_p,
+        rho_f,
+    ));
+    1e3 * with_one_more_grain(sd, base.apparent_mass_kg - one.apparent_mass_kg)
+}
+
+/// The counting σ of the pipette's real drawn mass, g: √Σ m_i² of the grains in the draw
+/// (`concentration_sd_kg_m3` V), with one mean grain more (its mass over the wedge fraction f).
+fn pipette_counting_sd(p: &Pipette, r: &PipetteReading, setup: &Setup) -> f64 {
+    let one = setup.model_mass_kg / setup.grains.len().max(1) as f64 / p.wedge_fraction;
+    1e3 * with_one_more_grain(r.concentration_sd_kg_m3 * p.volume_m3, one)
+}
+
 /// Which instrument a reading comes from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum InstrumentKind {
@@ -151,6 +242,10 @@ pub struct InstrumentReading {
     pub pipette: Option<PipetteReading>,
     /// Suspension density the instrument measured, kg/m³.
     pub density_kg_m3: f64,
+    /// The reading's counting noise (1σ of the representative grains, compound Poisson,
+    /// [`crate::instruments::counting`]) in the readings file's unit: g/L of the hydrometer's
+    /// scale, g drawn (pipette, the real draw), g of apparent mass (sphere).
+    pub counting_sd: f64,
 }
 
 /// Suspension density along the hydrometer bulb at one time (seed Fig. 13): (time, distance
@@ -184,7 +279,8 @@ pub fn read_instruments(
     let finer = |d: f64| input.percent_finer(d) / 100.0;
     let ideal = crate::instruments::ideal_field(an, setup.height_m, layers, t, finer);
     if hyd || buo {
-        let field = layered_field(&profile(st, setup, layers, rho_p), setup, rho_p, rho_f);
+        let pr = profile(st, setup, layers, rho_p);
+        let field = layered_field(&pr, setup, rho_p, rho_f);
         if hyd {
             if let Some(r) = set.hydrometer.read(&field) {
                 bulb.extend(
@@ -204,6 +300,7 @@ pub fn read_instruments(
                     buoyancy: None,
                     pipette: None,
                     density_kg_m3: r.density_kg_m3,
+                    counting_sd: hydrometer_counting_sd(&set.hydrometer, &pr, setup, rho_p, rho_f),
                 });
             }
         }
@@ -218,6 +315,7 @@ pub fn read_instruments(
                 buoyancy: Some(r),
                 pipette: None,
                 density_kg_m3: r.density_kg_m3,
+                counting_sd: sphere_counting_sd(&set.sphere, &pr, setup, rho_p, rho_f),
             });
         }
     }
@@ -245,6 +343,7 @@ pub fn read_instruments(
             buoyancy: None,
             pipette: Some(r),
             density_kg_m3: an.density_of_concentration(r.concentration_kg_m3),
+            counting_sd: pipette_counting_sd(&set.pipette, &r, setup),
         });
     }
     out

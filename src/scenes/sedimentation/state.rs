@@ -15,6 +15,10 @@ pub struct Profile {
     pub solid_m3: Vec<f64>,
     /// Representative grains per layer.
     pub count: Vec<usize>,
+    /// Sum over the representative grains of each layer of their squared solid volume, m⁶
+    /// (real grains: (weight · volume)²), for the counting noise of the instruments
+    /// ([`crate::instruments::counting`]).
+    pub solid_sq_m6: Vec<f64>,
     /// Largest diameter per layer, m (0 if empty).
     pub d_max_m: Vec<f64>,
     /// Smallest diameter per layer, m (∞ if empty).
@@ -178,6 +182,7 @@ pub fn profile(st: &State, setup: &Setup, layers: usize, rho_p: f64) -> Profile 
         time_s: st.time_s,
         solid_m3: vec![0.0; layers],
         count: vec![0; layers],
+        solid_sq_m6: vec![0.0; layers],
         d_max_m: vec![0.0; layers],
         d_min_m: vec![f64::INFINITY; layers],
         bed_height_m: st.bed_height_m,
@@ -193,6 +198,7 @@ pub fn profile(st: &State, setup: &Setup, layers: usize, rho_p: f64) -> Profile 
         let k = ((depth / h_ly) as usize).min(layers - 1);
         p.solid_m3[k] += v;
         p.count[k] += 1;
+        p.solid_sq_m6[k] += v * v;
         p.d_max_m[k] = p.d_max_m[k].max(g.diameter_m);
         p.d_min_m[k] = p.d_min_m[k].min(g.diameter_m);
     }

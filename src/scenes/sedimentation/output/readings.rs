@@ -1,6 +1,9 @@
 //! `readings.csv` and `readings_d7928.csv`: the run's virtual 152H hydrometer readings in the
 //! laboratory's format, the one `settle reduce` reads (docs/commands/reduce.md): `# key = value`
-//! figures of the test, then `time_min, reading, temperature_c` rows; `readings_pipette.csv`
+//! figures of the test, then `time_min, reading, temperature_c, counting_sigma` rows
+//! (`counting_sigma`: the reading's counting noise, 1σ of the representative grains in the
+//! reading's unit, [`crate::instruments::counting`]; `settle invert` adds it to the
+//! instrument's resolution, `settle reduce` ignores it); `readings_pipette.csv`
 //! and `readings_sphere.csv`: its pipette's and buoyancy sphere's readings in the same format
 //! (`direct_text`). All four carry the model figures `fluid_density_kg_m3`, `gravity_m_s2`
 //! and `column_height_cm` (the run's ρ_f, g and H) for `settle invert`'s forward model.
@@ -41,7 +44,7 @@ use crate::io::fmt::{clean_reading, num};
 use crate::io::{Outputs, Table};
 use crate::numerics::{bisect, Bisection};
 use crate::scenes::sedimentation::instruments::{
-    layered_field, InstrumentKind, InstrumentReading, InstrumentSet,
+    hydrometer_counting_sd, layered_field, InstrumentKind, InstrumentReading, InstrumentSet,
 };
 use crate::scenes::sedimentation::setup::Setup;
 use crate::scenes::sedimentation::state::{profile, Profile};
@@ -77,10 +80,10 @@ pub fn write_all(
     let set = InstrumentSet::new(setup);
     let spec = set.hydrometer.spec;
     let is_152h = spec.full_scale == 60.0 && spec.calibration_specific_gravity == 2.65;
-    let hyd: Vec<(f64, HydrometerReading)> = readings
+    let hyd: Vec<Read> = readings
         .iter()
         .filter(|r| r.kind == InstrumentKind::Hydrometer)
-        .filter_map(|r| r.hydrometer.map(|h| (r.point.time_s, h)))
+        .filter_map(|r| r.hydrometer.map(|h| (r.point.time_s, h, r.counting_sd)))
         .collect();
     let Some(t_c) = water_temperature_c(setup.viscosity_pa_s) else {
         return;
@@ -200,7 +203,7 @@ fn direct_text(
         }
     };
     t.push_str(&head.model_lines(num));
-    t.push_str(&format!("time_min,{column},temperature_c\n"));
+    t.push_str(&format!("time_min,{column},temperature_c,counting_sigma\n"));
     for r in rows {
         let reading_kg = match (r.pipette, r.buoyancy) {
             (Some(p), _) => p.mass_kg,
@@ -208,32 +211,44 @@ fn direct_text(
             _ => continue,
         };
         t.push_str(&format!(
-            "{},{},{}\n",
+            "{},{},{},{}\n",
             num(r.point.time_s / 60.0),
             num(reading_kg * 1e3),
-            num(head.t_c)
+            num(head.t_c),
+            num(r.counting_sd)
         ));
     }
     t
 }
 
+/// A hydrometer reading of a readings file: time (s), the reading, its counting σ (g/L).
+type Read = (f64, HydrometerReading, f64);
+
 /// The hydrometer at D7928's times within `end_s`: its reading at that time if the run took
-/// one, else read on the record profile or the snapshot of that time; and the times (min) at
-/// which the run kept nothing.
+/// one, else read on the record profile or the snapshot of that time (with its counting σ);
+/// and the times (min) at which the run kept nothing.
 fn d7928_readings(
     set: &InstrumentSet,
     setup: &Setup,
     end_s: f64,
-    hyd: &[(f64, HydrometerReading)],
+    hyd: &[Read],
     profiles: &[Profile],
     snapshots: &[super::Snapshot],
-) -> (Vec<(f64, HydrometerReading)>, Vec<f64>) {
+) -> (Vec<Read>, Vec<f64>) {
     let (rho_p, rho_f) = (
         set.analysis.grain_density_kg_m3,
         set.analysis.fluid_density_kg_m3,
     );
     let same = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.max(1.0);
-    let read = |pr: &Profile| set.hydrometer.read(&layered_field(pr, setup, rho_p, rho_f));
+    let read = |pr: &Profile| {
+        let r = set
+            .hydrometer
+            .read(&layered_field(pr, setup, rho_p, rho_f))?;
+        Some((
+            r,
+            hydrometer_counting_sd(&set.hydrometer, pr, setup, rho_p, rho_f),
+        ))
+    };
     let (mut at, mut missing) = (Vec::new(), Vec::new());
     for t_min in d7928::TIMES_MIN {
         let t = t_min * 60.0;
@@ -242,8 +257,8 @@ fn d7928_readings(
         }
         let r = hyd
             .iter()
-            .find(|(x, _)| same(*x, t))
-            .map(|(_, h)| *h)
+            .find(|(x, _, _)| same(*x, t))
+            .map(|(_, h, sd)| (*h, *sd))
             .or_else(|| {
                 let pr = profiles
                     .iter()
@@ -255,7 +270,7 @@ fn d7928_readings(
                 read(&profile(&sn.state(setup), setup, set.layers, rho_p))
             });
         match r {
-            Some(r) => at.push((t, r)),
+            Some((r, sd)) => at.push((t, r, sd)),
             None => missing.push(t_min),
         }
     }
@@ -293,7 +308,7 @@ impl Head<'_> {
         &self,
         standard: &str,
         measured: Option<&Hydrometer>,
-        rows: &[(f64, HydrometerReading)],
+        rows: &[Read],
         missing: &[f64],
     ) -> String {
         let schedule = match standard {
@@ -339,13 +354,14 @@ impl Head<'_> {
                     .join(", ")
             ));
         }
-        t.push_str("time_min,reading,temperature_c\n");
-        for (time_s, r) in rows {
+        t.push_str("time_min,reading,temperature_c,counting_sigma\n");
+        for (time_s, r, sd) in rows {
             t.push_str(&format!(
-                "{},{},{}\n",
+                "{},{},{},{}\n",
                 clean_reading(time_s / 60.0),
                 clean_reading(r.reading),
-                clean_reading(self.t_c)
+                clean_reading(self.t_c),
+                clean_reading(*sd)
             ));
         }
         t
