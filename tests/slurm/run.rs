@@ -86,13 +86,14 @@ fn a_sedimentation_run_signalled_before_its_limit_is_requeued_and_resumed_identi
         "{said}{}",
         String::from_utf8_lossy(&o.stderr)
     );
+    // The first line ends with `job ID`.
     let id = said
-        .split_whitespace()
-        .skip_while(|w| *w != "job")
-        .nth(1)
+        .lines()
+        .next()
+        .and_then(|l| l.split_whitespace().last())
         .unwrap_or_else(|| panic!("no job id in {said}"))
-        .trim_end_matches(':')
         .to_string();
+    assert!(id.chars().all(|c| c.is_ascii_digit()), "{said}");
     let script = std::fs::read_to_string(out.join("slurm_run_sedimentation_sample2.sh")).unwrap();
     assert!(script.contains("#SBATCH --requeue\n"), "{script}");
     assert!(script.contains("#SBATCH --signal=B:USR1@10\n"), "{script}");
@@ -103,25 +104,20 @@ fn a_sedimentation_run_signalled_before_its_limit_is_requeued_and_resumed_identi
         out.join("checkpoint/sedimentation_sample2.state.bin")
             .is_file()
     });
-    let sent = Command::new("scancel")
+    // (Slurm's own warning may come first: the job is then requeued already and scancel,
+    // finding no batch shell, fails; either way the job restarts.)
+    let _ = Command::new("scancel")
         .args(["--batch", "--signal=USR1", &id])
-        .status()
-        .unwrap();
-    assert!(sent.success());
-    // Requeued jobs wait 2 min before they are eligible again (Slurm's rule): start it now.
-    until("the requeue", || {
-        let j = job(&id);
-        field(&j, "Restarts") == "1" || field(&j, "JobState") == "COMPLETED"
-    });
-    let j = job(&id);
-    if field(&j, "JobState") == "PENDING" {
-        Command::new("scontrol")
-            .args(["update", &format!("JobId={id}"), "StartTime=now"])
-            .status()
-            .unwrap();
-    }
+        .status();
+    // Requeued jobs wait 2 min before they are eligible again (Slurm's rule): each restart
+    // (this warning's, and Slurm's own at --time=1 with @10) is started at once.
     until("the end of the job", || {
         let s = job(&id);
+        if field(&s, "JobState") == "PENDING" && field(&s, "Reason") == "BeginTime" {
+            let _ = Command::new("scontrol")
+                .args(["update", &format!("JobId={id}"), "StartTime=now"])
+                .status();
+        }
         ![
             "PENDING",
             "RUNNING",
@@ -134,7 +130,9 @@ fn a_sedimentation_run_signalled_before_its_limit_is_requeued_and_resumed_identi
     let j = job(&id);
     let log = std::fs::read_to_string(out.join("slurm_run_sedimentation_sample2.out")).unwrap();
     assert_eq!(field(&j, "JobState"), "COMPLETED", "{j}\n{log}");
-    assert_eq!(field(&j, "Restarts"), "1", "{j}\n{log}");
+    let restarts: u32 = field(&j, "Restarts").parse().unwrap_or(0);
+    assert!(restarts >= 1, "never requeued: {j}\n{log}");
+    eprintln!("requeued {restarts} times");
     assert!(
         log.contains("requeueing job") && log.contains("run --resume"),
         "{log}"
