@@ -2,7 +2,16 @@
 # Every test of settle: the Rust crate's (unit, integration, doc tests), then the Python
 # package's (scripts/test_python.sh: its own virtual environment in target/py-venv, the package
 # built by maturin, pytest and mypy). Needs a Rust toolchain and Python >= 3.9 with venv.
+# The tests of tests/slurm/ need a Slurm: a one-node Slurm on localhost is started first
+# (scripts/slurm_local.sh, as root, with Debian's slurm-wlm and munge installed; .ci/run installs
+# them) and stopped at the end, also when a test fails. Without it those tests fail, saying so.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+if [[ $(id -u) == 0 ]] && command -v slurmctld >/dev/null; then
+    scripts/slurm_local.sh start
+    trap 'scripts/slurm_local.sh stop' EXIT
+else
+    echo "test.sh: not root or no slurm-wlm: the tests of tests/slurm/ will fail (see scripts/slurm_local.sh)" >&2
+fi
 cargo test --release
 scripts/test_python.sh

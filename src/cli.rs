@@ -240,12 +240,6 @@ pub fn main() -> i32 {
             slurm,
             submit,
         } => {
-            if let Some(every) = checkpoint_every.filter(|s| !(s.is_finite() && *s > 0.0)) {
-                eprintln!(
-                    "error: --checkpoint-every {every} is out of range: allowed > 0 s of wall time"
-                );
-                return crate::error::EXIT_BAD_INPUT;
-            }
             let req = RunRequest {
                 files: scenarios,
                 out_dir: resume.clone().unwrap_or(out),
@@ -256,10 +250,7 @@ pub fn main() -> i32 {
                 force,
                 quiet,
             };
-            if slurm {
-                return code(crate::slurm::run(&req, &submit));
-            }
-            run(&req)
+            run_command(&req, slurm.then_some(&submit))
         }
         Command::Bench {
             out,
@@ -354,6 +345,22 @@ fn reduce(
         Ok((r.lines(&dest), r.warnings))
     });
     outcome(done, |(lines, warnings)| (lines, warnings))
+}
+
+/// `settle run` (or with `--slurm`, its submission): checks `--checkpoint-every`, then runs; the
+/// exit code.
+fn run_command(req: &RunRequest, slurm: Option<&crate::slurm::Submit>) -> i32 {
+    if let Some(every) = req
+        .checkpoint_every_s
+        .filter(|s| !(s.is_finite() && *s > 0.0))
+    {
+        eprintln!("error: --checkpoint-every {every} is out of range: allowed > 0 s of wall time");
+        return crate::error::EXIT_BAD_INPUT;
+    }
+    match slurm {
+        Some(submit) => code(crate::slurm::run(req, submit)),
+        None => run(req),
+    }
 }
 
 /// `settle run`: runs the scenario files, prints their reports; the exit code.

@@ -11,6 +11,7 @@
 //! | `app` | `src/run.rs`, `src/checkpoint.rs`, `src/interrupt.rs`, `src/sweep/` |
 //! | `validation` | validation cases: scenario + reference data + test with a stated tolerance |
 //! | `architecture` | the crate's shape: import layers, file and function lengths |
+//! | `slurm` | `src/slurm/` on a real one-node Slurm (`scripts/slurm_local.sh`): job arrays, requeue |
 //! | `regression` | one file `issue_<N>_<slug>.rs` per fixed item, opening with its symptom |
 //!
 //! Run everything with `cargo test --release`; one area with `cargo test --release --test main
@@ -32,4 +33,5 @@ mod instruments;
 mod regression;
 mod scenario;
 mod scenes;
+mod slurm;
 mod validation;

@@ -110,8 +110,8 @@ pub fn run(req: &RunRequest, submit: &Submit) -> Result<i32, Error> {
         return Ok(0);
     }
     let say = |id: &str| {
+        println!("{what}: job {id}");
         if !req.quiet {
-            println!("{what}: job {id}");
             println!("  script: {}", script.display());
             println!("  log: {}", log.display());
             println!(
@@ -123,7 +123,14 @@ pub fn run(req: &RunRequest, submit: &Submit) -> Result<i32, Error> {
     if submit.wait {
         let (id, child) = sbatch_wait(&[], &script)?;
         say(&id);
-        return finish(child, &script);
+        let (state, code) = finish(child, &id, &script)?;
+        if code != 0 {
+            eprintln!(
+                "error: job {id} ended {state} with exit code {code}; see {}",
+                log.display()
+            );
+        }
+        return Ok(code);
     }
     let id = sbatch(&[], &script)?;
     say(&id);

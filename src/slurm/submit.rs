@@ -111,11 +111,33 @@ pub fn sbatch_wait(extra: &[String], script: &Path) -> Result<(String, Child), E
     }
 }
 
-/// Waits for a `sbatch --wait` to end; its exit code (the job's; 1 for a job cancelled or
-/// failed without one).
-pub fn finish(mut child: Child, script: &Path) -> Result<i32, Error> {
+/// Waits for the `sbatch --wait` of job `id` to end; the job's final state (`COMPLETED`,
+/// `FAILED`, `CANCELLED`…, as `scontrol show job` gives it; `UNKNOWN` once Slurm forgot the job)
+/// and exit code: the job's, or 1 for a job that did not complete (sbatch exits 0 for a job
+/// cancelled before it started, e.g. by a dependency that can no longer be met).
+pub fn finish(mut child: Child, id: &str, script: &Path) -> Result<(String, i32), Error> {
     let status = child
         .wait()
         .map_err(|e| Error::Io(script.to_path_buf(), e))?;
-    Ok(status.code().unwrap_or(1))
+    let waited = status.code().unwrap_or(1);
+    let shown = Command::new("scontrol")
+        .args(["show", "job", "-o", id])
+        .output()
+        .map(|o| String::from_utf8_lossy(&o.stdout).into_owned())
+        .unwrap_or_default();
+    let field = |key: &str| {
+        shown
+            .split_whitespace()
+            .find_map(|w| w.strip_prefix(key).map(str::to_string))
+    };
+    let Some(state) = field("JobState=") else {
+        return Ok(("UNKNOWN".into(), waited));
+    };
+    let code: i32 = field("ExitCode=")
+        .and_then(|c| c.split(':').next()?.parse().ok())
+        .unwrap_or(waited);
+    Ok(match state.as_str() {
+        "COMPLETED" => (state, code),
+        _ => (state, code.max(waited).max(1)),
+    })
 }

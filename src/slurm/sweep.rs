@@ -102,13 +102,13 @@ pub fn sweep(args: &Args) -> Result<i32, Error> {
         "sweep.csv"
     });
     let say = |merge_id: &str| {
+        println!(
+            "{}: job array {array_id} ({count} tasks: --shard i/{count}, each {}), merge job \
+             {merge_id} after it",
+            study.name,
+            describe(&task)
+        );
         if !quiet {
-            println!(
-                "{}: job array {array_id} ({count} tasks: --shard i/{count}, each {}), merge job \
-                 {merge_id} after it",
-                study.name,
-                describe(&task)
-            );
             println!("  scripts: {} and {}", array.display(), merge.display());
             println!("  logs: {}/", logs.display());
             println!(
@@ -120,11 +120,12 @@ pub fn sweep(args: &Args) -> Result<i32, Error> {
     if args.submit.wait {
         let (merge_id, child) = sbatch_wait(&dep(&array_id), &merge)?;
         say(&merge_id);
-        let code = finish(child, &merge)?;
+        let (state, code) = finish(child, &merge_id, &merge)?;
         if code != 0 {
             eprintln!(
-                "error: merge job {merge_id} ended with exit code {code} (a failed task cancels it: \
-                 `settle sweep --merge {}` lists the missing shards and how to rerun them)",
+                "error: merge job {merge_id} ended {state} with exit code {code} (a failed task \
+                 cancels it: `settle sweep --merge {}` lists the missing shards and how to rerun \
+                 them)",
                 quote(&dir.display().to_string())
             );
         }
@@ -180,11 +181,15 @@ fn array_script(
     cwd: &Path,
     logs: &Path,
 ) -> String {
-    let mut d = vec![
-        format!("--job-name=settle-{}", study.name),
-        format!("--array=1-{count}"),
-        format!("--output={}/shard_%a.out", logs.display()),
-    ];
+    let mut d = vec![format!("--job-name=settle-{}", study.name)];
+    // The user's --array (a throttle `1-N%K`, or a subset) replaces the whole range.
+    if !user
+        .iter()
+        .any(|a| a.starts_with("--array") || a.starts_with("-a"))
+    {
+        d.push(format!("--array=1-{count}"));
+    }
+    d.push(format!("--output={}/shard_%a.out", logs.display()));
     d.extend(directives(task, user));
     let args: Vec<String> = this_command(&[WITH_VALUE, &["--shard"]].concat(), FLAGS)
         .iter()
@@ -236,7 +241,11 @@ fn merge_script(
     // The user's time and memory are for the tasks; the merge keeps its own.
     let own: Vec<String> = user
         .iter()
-        .filter(|a| !(a.starts_with("--time") || a.starts_with("-t") || a.starts_with("--mem")))
+        .filter(|a| {
+            !["--time", "-t", "--mem", "--array", "-a"]
+                .iter()
+                .any(|o| a.starts_with(o))
+        })
         .cloned()
         .collect();
     d.extend(directives(&MERGE, &own));

@@ -69,7 +69,9 @@ impl ShardCommand {
 /// This process's command line (the program as the path of this binary), without the options
 /// `with_value` (each with its value, as `--opt V` or `--opt=V`) and the flags `flags`.
 pub fn this_command(with_value: &[&str], flags: &[&str]) -> Vec<String> {
-    let mut args: Vec<String> = std::env::args().collect();
+    let mut args: Vec<String> = std::env::args_os()
+        .map(|a| a.to_string_lossy().into_owned())
+        .collect();
     if let Ok(exe) = std::env::current_exe() {
         if let Some(a) = args.first_mut() {
             *a = exe.display().to_string();
