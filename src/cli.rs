@@ -6,9 +6,12 @@ use std::path::PathBuf;
 
 /// Simulate solid particles settling in Newtonian and Bingham fluids.
 ///
-/// Exit codes: 0 success; 2 bad input (a scenario, an input file or a command-line argument;
-/// nothing was run or written); 3 unstable run (nothing was written); 4 I/O or environment (a
-/// file or folder could not be read or written); 130 interrupted by Ctrl-C or SIGTERM (a
+/// Exit codes, the same in every command: 0 success; 2 bad input, found before any work and
+/// nothing written (an argument, an input file that is missing, a folder, given twice or wrong,
+/// or an output folder settle may not write: --out a file, a non-empty folder settle did not
+/// create, the results of another command or input); 3 unstable run (nothing was written); 4
+/// the machine refused (a file could not be read or written: disk, permissions, a read-only
+/// --out); 130 interrupted by Ctrl-C or SIGTERM (a
 /// sedimentation or funnel-pour run keeps what it simulated, marked interrupted in run.toml; other
 /// kinds write nothing of the unfinished run).
 #[derive(Parser, Debug)]
@@ -47,7 +50,7 @@ enum Command {
         #[arg(long, default_value = "out")]
         out: PathBuf,
         /// Time step in seconds, overriding time.dt_s of every scenario.
-        #[arg(long, allow_negative_numbers = true)]
+        #[arg(long, allow_hyphen_values = true, value_parser = crate::io::arg::seconds)]
         dt: Option<f64>,
         /// Override any scenario key, e.g. --set fluid.viscosity_pa_s=0.002 --set physics=ideal-stokes
         /// or --set 'spheres[0].diameter_m=2e-4'. Repeatable.
@@ -57,7 +60,8 @@ enum Command {
         #[arg(long, short)]
         quiet: bool,
         /// Write a checkpoint every SECONDS of wall time (and always when interrupted).
-        #[arg(long, value_name = "SECONDS")]
+        #[arg(long, value_name = "SECONDS", allow_hyphen_values = true,
+              value_parser = crate::io::arg::seconds)]
         checkpoint_every: Option<f64>,
         /// Continue the interrupted or killed run whose output folder is DIR (its scenario files
         /// and options come from DIR/checkpoint/request.toml).
@@ -85,7 +89,7 @@ enum Command {
         quick: bool,
         /// Representative grains of the sedimentation benchmarks (default 20000 with --quick,
         /// else 100000).
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true, value_parser = crate::io::arg::count1_usize)]
         grains: Option<usize>,
         /// Only the sedimentation benchmarks (grain-steps per second, stage wall times, peak
         /// memory per grain).
@@ -194,23 +198,26 @@ enum Command {
         #[arg(long, default_value = "ideal-stokes")]
         model: String,
         /// Diameter bins over the resolved range (default: twice the readings, 8–30).
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true, value_parser = crate::io::arg::count1_usize)]
         bins: Option<usize>,
         /// Resolved diameter range LO:HI in µm (default: from the readings' times and depths).
-        #[arg(long, value_name = "LO:HI")]
+        #[arg(long, value_name = "LO:HI", allow_hyphen_values = true)]
         diameters_um: Option<String>,
         /// Smoothing weight λ: discrepancy, gcv or a number ≥ 0.
         #[arg(long, default_value = "discrepancy", allow_negative_numbers = true)]
         lambda: String,
         /// Resolution of the readings in their unit: one for every file or one per file,
         /// comma-separated (default 0.5 g/L hydrometer, 0.001 g pipette, 0.01 g sphere).
-        #[arg(long, allow_negative_numbers = true, value_delimiter = ',')]
+        #[arg(long, allow_negative_numbers = true, value_delimiter = ',',
+              value_parser = crate::io::arg::reading_unit)]
         resolution: Vec<f64>,
         /// Monte Carlo repeats of the uncertainty band (0: none).
-        #[arg(long, default_value_t = 100)]
+        #[arg(long, default_value_t = 100, allow_negative_numbers = true,
+              value_parser = crate::io::arg::count_usize)]
         repeats: usize,
         /// Seed of the Monte Carlo.
-        #[arg(long, default_value_t = 1)]
+        #[arg(long, default_value_t = 1, allow_negative_numbers = true,
+              value_parser = crate::io::arg::count)]
         seed: u64,
         /// Also the strict bounds of the curve at each diameter: its smallest and largest value
         /// over every distribution of the bins, without smoothing, whose χ² is at most the
@@ -227,6 +234,10 @@ enum Command {
 pub fn main() -> i32 {
     let cli = Cli::parse();
     crate::interrupt::install();
+    if let Err(e) = preflight(&cli.command) {
+        eprintln!("error: {e}");
+        return e.exit_code();
+    }
     match cli.command {
         Command::Run {
             scenarios,
@@ -361,6 +372,54 @@ fn run_command(req: &RunRequest, slurm: Option<&crate::slurm::Submit>) -> i32 {
         Some(submit) => code(crate::slurm::run(req, submit)),
         None => run(req),
     }
+}
+
+/// The checks of every command before any work ([`crate::io::arg::preflight`]): its input
+/// files exist, are files and are given once; its `--out` is a folder one can write in.
+fn preflight(command: &Command) -> Result<(), crate::error::Error> {
+    use std::path::Path;
+    let each = |what: &'static str, files: &'_ [PathBuf]| -> Vec<(&'static str, PathBuf)> {
+        files.iter().map(|f| (what, f.clone())).collect()
+    };
+    let (inputs, out): (Vec<(&str, PathBuf)>, Option<&Path>) = match command {
+        Command::Run {
+            scenarios,
+            out,
+            resume,
+            ..
+        } => (
+            each("scenario", scenarios),
+            resume.is_none().then_some(out.as_path()),
+        ),
+        Command::Bench { out, .. } => (Vec::new(), Some(out)),
+        Command::Fit(a) => {
+            let mut v = each("scenario", a.scenario.as_slice());
+            v.extend(each("measurements", a.measured.as_slice()));
+            let calibration = a.scenario.is_some();
+            (v, calibration.then_some(a.out.as_path()))
+        }
+        Command::Sweep(a) if a.merge.is_empty() => (
+            each("scenario", &a.scenarios),
+            Some(a.out.as_deref().unwrap_or(Path::new("out"))),
+        ),
+        Command::Sweep(_) => (Vec::new(), None),
+        Command::Reduce { readings, out, .. } => match readings {
+            Some(r) => (each("readings", std::slice::from_ref(r)), Some(out)),
+            None => (Vec::new(), None),
+        },
+        Command::Laws {
+            spheres,
+            fluids,
+            out,
+        } => {
+            let mut v = each("spheres", spheres.as_slice());
+            v.extend(each("fluids", fluids.as_slice()));
+            (v, Some(out))
+        }
+        Command::Invert { readings, out, .. } => (each("readings", readings), Some(out)),
+    };
+    let inputs: Vec<(&str, &Path)> = inputs.iter().map(|(w, p)| (*w, p.as_path())).collect();
+    crate::io::arg::preflight(&inputs, out)
 }
 
 /// `settle run`: runs the scenario files, prints their reports; the exit code.

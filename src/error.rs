@@ -5,9 +5,9 @@
 //! | class | exit | what |
 //! |---|---|---|
 //! | success | 0 | |
-//! | bad input | 2 | a scenario file, an input file or a command-line argument is wrong: the message names the file (or argument), the key or row, and what is allowed; nothing was run or written |
+//! | bad input | 2 | a scenario file, an input file (missing, a folder, given twice) or a command-line argument is wrong, or the output folder may not be written (`--out` a file, a non-empty folder settle did not create, another command's or input's results): the message names the file (or argument), the key or row, and what is allowed; found before any work, nothing was run or written |
 //! | unstable run | 3 | the simulation went numerically unstable: the message names the body, the time and a step that would hold; nothing was written |
-//! | I/O or environment | 4 | a file could not be read or written, a folder is missing or not a folder, or the machine refused (disk, permissions, `/proc`) |
+//! | I/O or environment | 4 | the machine refused: a file could not be read or written (disk, permissions, a read-only `--out`, `/proc`) |
 //! | interrupted | 130 | Ctrl-C or SIGTERM: a sedimentation or funnel-pour run keeps what it simulated in its output folder, marked `interrupted` ([`Error::Interrupted`]); the other kinds, and files not yet started, write nothing ([`Error::InterruptedUnwritten`]); files that finished before stay |
 
 use std::fmt;
@@ -40,7 +40,7 @@ impl BadInput {
         Self {
             file: file.to_path_buf(),
             key: key.map(|k| k.replace('\n', " ")),
-            message: message.into().replace('\n', " "),
+            message: plain(&message.into().replace('\n', " ")),
         }
     }
 }
@@ -67,7 +67,7 @@ pub enum Error {
     #[error("{path}: {report}; nothing was written", path = .0.display(), report = .1)]
     Unstable(PathBuf, Unstable),
     /// A file or folder could not be read or written (exit 4).
-    #[error("{path}: {cause}", path = .0.display(), cause = .1)]
+    #[error("{path}: {cause}", path = .0.display(), cause = plain_io(.1))]
     Io(PathBuf, std::io::Error),
     /// Stopped by Ctrl-C/SIGTERM; what was simulated so far is in the output folder, marked
     /// `interrupted` in its `run.toml` (exit 130).
@@ -116,6 +116,83 @@ impl From<BadInput> for Error {
     fn from(e: BadInput) -> Self {
         Self::BadInput(e)
     }
+}
+
+/// The operating system's words for `e`, without Rust's `(os error N)`.
+pub fn plain_io(e: &std::io::Error) -> String {
+    strip_os_error(&e.to_string())
+}
+
+/// `text` without the ` (os error N)` Rust appends to the system's words.
+fn strip_os_error(text: &str) -> String {
+    let mut out = String::new();
+    let mut rest = text;
+    while let Some(i) = rest.find(" (os error ") {
+        out.push_str(&rest[..i]);
+        let tail = &rest[i..];
+        rest = tail.find(')').map_or("", |j| &tail[j + 1..]);
+    }
+    out.push_str(rest);
+    out
+}
+
+/// A message in a lab engineer's words: the `(os error N)` of the system's messages dropped,
+/// and the type names of the TOML reader (`invalid type: string "abc", expected f64`) said as
+/// what was given and what is needed (`"abc" is not a number`).
+pub fn plain(message: &str) -> String {
+    let message = strip_os_error(message);
+    let Some(i) = message.find("invalid type: ") else {
+        return message;
+    };
+    let rest = &message[i + "invalid type: ".len()..];
+    let Some(j) = rest.find(", expected ") else {
+        return message;
+    };
+    let given = &rest[..j];
+    let tail = &rest[j + ", expected ".len()..];
+    let end = tail.find([';', '\n']).unwrap_or(tail.len());
+    let (wanted, after) = (&tail[..end], &tail[end..]);
+    let needed = if ["f64", "f32", "float"].iter().any(|w| wanted.contains(w)) {
+        "a number"
+    } else if ["u64", "u32", "usize", "i64", "i32", "integer"]
+        .iter()
+        .any(|w| wanted.contains(w))
+    {
+        "a whole number"
+    } else if wanted.contains("bool") {
+        "true or false"
+    } else if wanted.contains("sequence") {
+        "a list [ … ]"
+    } else if wanted.contains("map") || wanted.contains("struct") {
+        "a table"
+    } else {
+        "a word in quotes"
+    };
+    let said = match given.strip_prefix("string ") {
+        Some(q) => {
+            let v = q.trim_matches('"');
+            if v.trim().parse::<f64>().is_ok_and(f64::is_infinite)
+                && v.trim_start_matches(['+', '-'])
+                    .starts_with(|c: char| c.is_ascii_digit())
+            {
+                format!("{v} is out of range: a number must lie within ±1.8e308")
+            } else if needed == "a number" && v.starts_with(|c: char| c.is_ascii_digit()) {
+                format!(
+                    "\"{v}\" is not a number: give the number alone, without a unit (the key's \
+                     name carries it)"
+                )
+            } else {
+                format!("\"{v}\" is not {needed}")
+            }
+        }
+        None => {
+            let v = given
+                .split_once('`')
+                .map_or("this value", |(_, v)| v.trim_end_matches('`'));
+            format!("{v} is not {needed}")
+        }
+    };
+    format!("{}{said}{after}", &message[..i])
 }
 
 /// A run that went unstable: which body, when, what quantity, and a step that would be stable.
@@ -185,6 +262,24 @@ impl std::error::Error for Unstable {}
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// No type names or system codes reach a message.
+    #[test]
+    fn messages_in_plain_words() {
+        assert_eq!(
+            plain("invalid type: string \"abc\", expected f64"),
+            "\"abc\" is not a number"
+        );
+        assert!(plain("invalid type: string \"1e400\", expected f64").contains("out of range"));
+        assert_eq!(
+            plain("x: invalid type: unit variant, expected string only"),
+            "x: this value is not a word in quotes"
+        );
+        assert_eq!(
+            plain("a: No such file or directory (os error 2); b"),
+            "a: No such file or directory; b"
+        );
+    }
 
     /// The interrupted message says whether anything was kept, and both exit 130.
     #[test]

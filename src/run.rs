@@ -125,6 +125,9 @@ struct RunMeta<'a> {
     wall_time_s: f64,
     /// Continued from a checkpoint (`--resume`).
     resumed: bool,
+    /// The simulated time an interrupted run reached, s (absent when complete).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    reached_s: Option<f64>,
     /// Validity warnings of the run ([`crate::scenes::SceneReport::warnings`]); empty when none.
     warnings: &'a [String],
     /// The overrides as given (`set`: the `--set` list; `dt_s`: `--dt`), already applied to
@@ -220,6 +223,7 @@ pub fn run_toml(p: &Prepared, done: &Executed) -> Result<String, Error> {
             bodies: report.bodies,
             wall_time_s: done.wall_time_s,
             resumed: done.resumed,
+            reached_s: report.reached_s,
             warnings: &report.warnings,
             overrides: &p.overrides,
         },

@@ -44,16 +44,18 @@ pub enum Calc {
     /// Appendix I, eqs. A1-A3): prints τ_y per slump and their mean. Writes nothing.
     Slump {
         /// Height H of the cylinder mould, mm.
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true, value_parser = crate::io::arg::millimetres)]
         height_mm: f64,
         /// Slump S of each test, mm (comma-separated or repeated), 0 < S < H.
-        #[arg(long, value_delimiter = ',', required = true)]
+        #[arg(long, value_delimiter = ',', required = true, allow_negative_numbers = true,
+              value_parser = crate::io::arg::millimetres)]
         slump_mm: Vec<f64>,
         /// Density of the paste, kg/m³.
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true, value_parser = crate::io::arg::kg_per_m3)]
         density: f64,
         /// Gravitational acceleration, m/s².
-        #[arg(long, default_value_t = crate::fluid::slump::G_M_S2)]
+        #[arg(long, default_value_t = crate::fluid::slump::G_M_S2, allow_negative_numbers = true,
+              value_parser = crate::io::arg::m_per_s2)]
         g: f64,
     },
 }
@@ -86,6 +88,9 @@ pub fn main(args: &Args) -> Result<Vec<String>, Error> {
         ));
     };
     let out = &args.out;
+    for b in &args.fit {
+        crate::scenario::refuse_set_of(&args.set, &b.key, "--fit")?;
+    }
     let scenario = Scenario::load_with(file, &args.set)?;
     let measured = Measured::File(measured.clone());
     let r = calibrate(

@@ -28,6 +28,14 @@ pub(crate) fn bound_from(s: &str) -> Result<Bound, String> {
         return Err(format!("`{key}` is not a scenario key: {ALLOWED}"));
     }
     let num = |t: &str| t.trim().parse::<f64>().ok().filter(|x| x.is_finite());
+    if let Some((a, b)) = range.split_once(':') {
+        if let Some(p) = [a, b]
+            .iter()
+            .find_map(|t| crate::io::arg::number_problem(t, "the key's unit"))
+        {
+            return Err(format!("{p}: {ALLOWED}"));
+        }
+    }
     let (lo, hi) = range
         .split_once(':')
         .and_then(|(a, b)| Some((num(a)?, num(b)?)))

@@ -139,6 +139,19 @@ pub fn slump(height_mm: f64, slumps_mm: &[f64], density: f64, g: f64) -> Result<
             "no slump given: allowed one or more slumps 0 < S < height, mm",
         ));
     }
+    for (option, v, unit) in [
+        ("--height-mm", height_mm, "mm"),
+        ("--density", density, "kg/m³"),
+        ("--g", g, "m/s²"),
+    ] {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(Error::bad_argument(
+                option,
+                Path::new(&short(v)),
+                format!("out of range: allowed > 0 {unit}"),
+            ));
+        }
+    }
     let warnings = plausible(height_mm, slumps_mm, density)?;
     let mut tests = Vec::new();
     let mut lines = Vec::new();

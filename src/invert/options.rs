@@ -125,11 +125,14 @@ pub(super) fn options(opts: &InvertOptions, files: usize) -> Result<Options, Err
         s => match s.parse::<f64>() {
             Ok(x) if x.is_finite() && x >= 0.0 => LambdaRule::Fixed(x),
             _ => {
+                let why = crate::io::arg::number_problem(s, "")
+                    .map(|p| format!("{p}; "))
+                    .unwrap_or_default();
                 return Err(Error::bad_argument(
                     "--lambda",
                     Path::new(&opts.lambda),
-                    "allowed: discrepancy, gcv or a number ≥ 0",
-                ))
+                    format!("{why}allowed: discrepancy, gcv or a number ≥ 0"),
+                ));
             }
         },
     };
@@ -140,10 +143,17 @@ pub(super) fn options(opts: &InvertOptions, files: usize) -> Result<Options, Err
             let (a, b) = s
                 .split_once(':')
                 .ok_or_else(|| bad("expected LO:HI in µm, e.g. 2:75"))?;
-            let (a, b): (f64, f64) = match (a.trim().parse(), b.trim().parse()) {
-                (Ok(a), Ok(b)) => (a, b),
-                _ => return Err(bad("LO and HI must be numbers (µm), e.g. 2:75")),
-            };
+            for t in [a, b] {
+                if let Some(p) = crate::io::arg::number_problem(t, "µm") {
+                    return Err(bad(&format!(
+                        "{p}; allowed LO:HI in µm, 0 < LO < HI, e.g. 2:75"
+                    )));
+                }
+            }
+            let (a, b): (f64, f64) = (
+                a.trim().parse().unwrap_or_default(),
+                b.trim().parse().unwrap_or_default(),
+            );
             if !(a.is_finite() && b.is_finite() && a > 0.0) {
                 return Err(bad("allowed: 0 < LO < HI (µm)"));
             }
@@ -163,8 +173,20 @@ pub(super) fn options(opts: &InvertOptions, files: usize) -> Result<Options, Err
     if !(opts.resolution.len() <= 1 || opts.resolution.len() == files) {
         return Err(Error::bad_argument(
             "--resolution",
-            Path::new(&format!("{:?}", opts.resolution)),
-            format!("give one resolution for every file or one per file ({files} files)"),
+            Path::new(
+                &opts
+                    .resolution
+                    .iter()
+                    .map(|r| crate::io::fmt::short(*r))
+                    .collect::<Vec<_>>()
+                    .join(","),
+            ),
+            format!(
+                "{} values for {files} readings file{}: give one resolution for every file or \
+                 one per file",
+                opts.resolution.len(),
+                if files == 1 { "" } else { "s" }
+            ),
         ));
     }
     if let Some(r) = opts

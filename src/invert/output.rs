@@ -258,6 +258,18 @@ pub fn warnings(r: &InvertResult) -> Vec<String> {
             r.iterations
         ));
     }
+    let empty = r.curve.iter().filter(|c| c.bounds.is_none()).count();
+    if r.options.bounds && empty > 0 {
+        w.push(format!(
+            "--bounds: no distribution of the bins has χ² ≤ {} (the number of readings) at {} \
+             of {} diameters, so the strict bounds there are empty (— in the table): the \
+             readings scatter more than their resolution allows for this model. Check the \
+             readings, give a larger --resolution, or try another --model",
+            r.misfit.len(),
+            empty,
+            r.curve.len()
+        ));
+    }
     w
 }
 

@@ -12,6 +12,7 @@
 //! marker also names the command and input that wrote the folder ([`owner`]): a folder of
 //! another command or input is never replaced either.
 
+pub mod arg;
 mod atomic;
 pub mod chart;
 pub mod fmt;

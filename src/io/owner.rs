@@ -204,18 +204,9 @@ pub fn check_writable(out_dir: &Path) -> Result<(), Error> {
                 format!(
                     "cannot write in {} ({}): choose an --out you can write to",
                     dir.display(),
-                    plain_io(&e)
+                    crate::error::plain_io(&e)
                 ),
             ),
         )),
-    }
-}
-
-/// The operating system's words for `e`, without Rust's `(os error N)`.
-pub fn plain_io(e: &std::io::Error) -> String {
-    let s = e.to_string();
-    match s.find(" (os error") {
-        Some(i) => s[..i].to_string(),
-        None => s,
     }
 }

@@ -332,10 +332,26 @@ fn console(
             "stat", "jump", "LOSO mean", WATCHED_SPHERE
         ),
         ];
-    let p = |x: f64| pct(x, 3);
-    let u = |x: f64| format!("{}%", sig(100.0 * x, 3));
+    // A law with no sphere to judge (a Bingham law on Herschel–Bulkley fluids) has no figures:
+    // `-`, explained below the table, rather than `NaN%`.
+    let p = |x: f64| if x.is_finite() { pct(x, 3) } else { "-".into() };
+    let u = |x: f64| {
+        if x.is_finite() {
+            format!("{}%", sig(100.0 * x, 3))
+        } else {
+            "-".into()
+        }
+    };
+    let no_figures: Vec<String> = results
+        .iter()
+        .filter(|r| r.velocity.n == 0 || !r.velocity.mean_abs.is_finite())
+        .map(|r| r.law.key())
+        .collect();
     for r in results {
         let v = &r.velocity;
+        let none = v.n == 0;
+        let u = |x: f64| if none { "-".into() } else { u(x) };
+        let p = |x: f64| if none { "-".into() } else { p(x) };
         let w = r
             .for_sphere(data, WATCHED_SPHERE)
             .map(|p| match p.state {
@@ -368,6 +384,13 @@ fn console(
          suspensions, predicting the held-out one"
             .into(),
     );
+    if !no_figures.is_empty() {
+        lines.push(format!(
+            "  -: no figure for {}: no sphere of these fluids has a prediction by that law (a \
+             law for Bingham fluids is not applied to a Herschel–Bulkley fluid, flow_index ≠ 1)",
+            no_figures.join(", ")
+        ));
+    }
     if let Some((a, b)) = refit_all {
         lines.push(format!(
             "  eq. 19 refitted to all (Re′, C_d) points with 1 ≤ Re′ ≤ 150 (least squares in C_d): \

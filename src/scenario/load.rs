@@ -170,6 +170,17 @@ pub fn parse_str(text: &str, path: &Path, overrides: &[String]) -> Result<Parsed
             }
             _ => key,
         };
+        // A key of a --set: say which (`--set no.such.key=1` fails at `no`).
+        let given = overrides.iter().find(|o| {
+            o.split_once('=').is_some_and(|(k, _)| {
+                let k = k.trim();
+                k == key || k.starts_with(&format!("{key}.")) || k.starts_with(&format!("{key}["))
+            })
+        });
+        let msg = match given {
+            Some(o) if key != "." => format!("{msg} (from --set {o})"),
+            _ => msg,
+        };
         let key = if key == "." { None } else { Some(key) };
         BadInput::new(path, key.as_deref(), msg)
     })?;
@@ -273,7 +284,10 @@ pub fn apply_override(
             None => (*part, None),
         };
         if name.is_empty() {
-            return Err(bad(format!("--set `{key}`: empty key segment")));
+            return Err(bad(format!(
+                "--set `{key}`: a part of the key is empty: allowed KEY=VALUE with KEY a scenario \
+                 key such as fluid.viscosity_pa_s"
+            )));
         }
         match index {
             None if last => {
@@ -310,4 +324,29 @@ pub fn apply_override(
         }
     }
     Ok(())
+}
+
+/// Refuses a `--set KEY=…` of the list `set` whose key is `key`, which `option` (`--fit`,
+/// `--vary`) also names: the `--set` value would be overridden, or override, without a word.
+pub fn refuse_set_of(set: &[String], key: &str, option: &str) -> Result<(), crate::error::Error> {
+    let same = set.iter().find(|s| {
+        s.split_once('=')
+            .is_some_and(|(k, _)| k.trim() == key.trim())
+    });
+    match same {
+        Some(s) => Err(crate::error::Error::bad_argument(
+            "--set",
+            std::path::Path::new(s),
+            format!(
+                "{option} also names `{key}`: one key cannot be both set and {}; drop the \
+                 --set or the {option}",
+                if option == "--fit" {
+                    "fitted"
+                } else {
+                    "varied"
+                }
+            ),
+        )),
+        None => Ok(()),
+    }
 }

@@ -30,7 +30,7 @@ mod validate;
 
 pub use common::Common;
 pub use kinds::{info, sweepable_names, SceneSpec};
-pub use load::{is_key_path, parse_str, Overrides, Parsed, Record};
+pub use load::{is_key_path, parse_str, refuse_set_of, Overrides, Parsed, Record};
 pub(crate) use schema::check_sphere;
 pub use schema::*;
 // Re-exported for the unit tests only.

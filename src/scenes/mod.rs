@@ -125,6 +125,9 @@ pub struct SceneReport {
     pub lines: Vec<String>,
     /// The run stopped early on Ctrl-C/SIGTERM (outputs hold what was done).
     pub interrupted: bool,
+    /// The simulated time an interrupted run reached, s (`run.toml`'s `reached_s`; None when
+    /// complete, or for a kind without one clock).
+    pub reached_s: Option<f64>,
     /// Validity warnings (a law used outside its range, a Reynolds number too high for Stokes
     /// drag, …): printed after the run and written to run.toml's `[run] warnings` (issue 13).
     pub warnings: Vec<String>,

@@ -149,6 +149,17 @@ fn sedimentation_interrupted_and_resumed_matches_an_uninterrupted_run() {
     assert_eq!(o.code, Some(130), "{}", o.stderr);
     let partial = std::fs::read_to_string(stopped.join("sedimentation_sample2/run.toml")).unwrap();
     assert!(partial.contains("status = \"interrupted\""), "{partial}");
+    // The record says which simulated time the run reached (issue 26); a complete run's does not.
+    let reached: f64 = partial
+        .lines()
+        .find_map(|l| l.strip_prefix("reached_s = "))
+        .unwrap_or_else(|| panic!("no reached_s in {partial}"))
+        .parse()
+        .unwrap();
+    assert!(reached > 0.0 && reached < 86_400.0, "{partial}");
+    let complete =
+        std::fs::read_to_string(reference.join("sedimentation_sample2/run.toml")).unwrap();
+    assert!(!complete.contains("reached_s"), "{complete}");
     assert!(stopped
         .join("checkpoint/sedimentation_sample2.state.bin")
         .is_file());

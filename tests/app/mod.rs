@@ -1,6 +1,7 @@
 //! The application layer: `src/run.rs`, `src/checkpoint.rs`, `src/interrupt.rs`, `src/sweep/`,
 //! `src/reduce/`, `src/invert/`, `src/laws/`, `src/fit/`.
 
+mod bad_input;
 mod bad_lab_inputs;
 #[cfg(unix)]
 mod checkpoint;

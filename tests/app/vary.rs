@@ -329,7 +329,7 @@ fn a_categorical_value_the_key_does_not_take_is_refused() {
         ),
         (
             "transient.added_mass=false,maybe",
-            &["transient.added_mass", "maybe", "expected a boolean"],
+            &["transient.added_mass", "maybe", "true or false"],
         ),
     ];
     for (vary, words) in cases {

@@ -19,5 +19,9 @@ mod issue_12_sweep_unsweepable_kind;
 mod issue_13_console_tables;
 mod issue_13_run_toml_rerun;
 mod issue_13_vary_any_key;
+#[cfg(unix)]
+mod issue_26_bench_keeps_user_csv;
 mod issue_26_invert_ctrl_c;
+mod issue_26_readings_collision;
+mod issue_26_run_keeps_sweep_folder;
 mod issue_8_concurrent_checkpoint_saves;

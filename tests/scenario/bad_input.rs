@@ -235,7 +235,7 @@ case!(
     string_for_number,
     "string_for_number.toml",
     Some("spheres[0].diameter_m"),
-    ["string", "f64"]
+    ["\"0.1 mm\" is not a number", "without a unit"]
 );
 case!(
     unknown_integrator,

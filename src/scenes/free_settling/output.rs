@@ -125,6 +125,7 @@ pub fn fill(
         engine_settings,
         lines: Vec::new(),
         interrupted: false,
+        reached_s: None,
     })
 }
 

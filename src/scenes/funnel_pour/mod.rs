@@ -122,5 +122,6 @@ pub fn run(
         engine_settings: Some(report::engine_settings(p, f)),
         lines: report::lines(p, f, &results, wall_s),
         interrupted,
+        reached_s: None,
     })
 }

@@ -162,6 +162,7 @@ pub fn run(p: &Prepared, rd: &RestitutionSpec, out: &mut Outputs) -> Result<Scen
         engine_settings: Some(settings),
         lines,
         interrupted: false,
+        reached_s: None,
     })
 }
 

@@ -133,6 +133,7 @@ pub fn run(p: &Prepared, tf: &TiltFrictionSpec, out: &mut Outputs) -> Result<Sce
         engine_settings: Some(setup.settings),
         lines: lines(&runs, bracket, setup.friction, expected),
         interrupted: false,
+        reached_s: None,
     })
 }
 

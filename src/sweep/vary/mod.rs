@@ -48,6 +48,9 @@ pub const PART_PREFIX: &str = "vary_part_";
 /// folders, then sweeps each into `OUT/<name>_vary/` (or its shard's part file).
 pub(crate) fn main(args: &Args) -> Result<(), Error> {
     let out = args.out.clone().unwrap_or_else(|| PathBuf::from("out"));
+    for axis in &args.vary {
+        crate::scenario::refuse_set_of(&args.set, &axis.key, "--vary")?;
+    }
     let mut plans = Vec::new();
     for f in &args.scenarios {
         plans.push(VaryPlan::new(f, &args.set, &args.vary, args.shard)?);

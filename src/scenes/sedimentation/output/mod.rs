@@ -473,6 +473,7 @@ fn report(
         engine_settings: None,
         lines,
         interrupted: st.interrupted,
+        reached_s: st.interrupted.then_some(st.time_s),
     }
 }
 
