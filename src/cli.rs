@@ -121,7 +121,8 @@ enum Command {
     /// `instrument = pipette | buoyancy-sphere` with its own figures), then the columns
     /// time_min (or time_s), reading (drawn_mass_g, apparent_mass_g), temperature_c
     /// [, blank_reading]. Writes
-    /// OUT/<stem>_reduced/percent_finer.csv, percent_finer.svg and reduce.toml. Bad input (a
+    /// OUT/<stem>_reduced/percent_finer.csv (also as .xlsx and as AGS4 .ags), percent_finer.svg
+    /// and reduce.toml. Bad input (a
     /// missing figure, a reading off the scale, times out of order, a temperature outside the
     /// standard's range) exits 2 naming the file, row and column; nothing is written.
     /// See docs/commands/reduce.md.
