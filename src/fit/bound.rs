@@ -94,7 +94,8 @@ mod tests {
             ("fluid.yield_stress_pa", "allowed KEY=LO:HI"),
             ("fluid yield=1:2", "is not a scenario key"),
             ("fluid.yield_stress_pa=1", "is not LO:HI"),
-            ("fluid.yield_stress_pa=1:inf", "is not LO:HI"),
+            ("fluid.yield_stress_pa=1:inf", "is not a finite number"),
+            ("fluid.yield_stress_pa=1:1e400", "out of range"),
             (
                 "fluid.yield_stress_pa=3:0.1",
                 "bounds 3:0.1 are reversed or empty",
