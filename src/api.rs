@@ -42,8 +42,9 @@ impl Scenario {
     /// effective scenario again).
     pub fn load(path: impl AsRef<Path>) -> Result<Self, Error> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| Error::bad_input(path, None, format!("cannot read the file: {e}")))?;
+        let text = std::fs::read_to_string(path).map_err(|e| {
+            Error::bad_input(path, None, crate::io::arg::unreadable("scenario", &e))
+        })?;
         Self::from_toml_at(&text, path)
     }
 
@@ -91,8 +92,9 @@ impl Scenario {
     /// The scenario file `path` with the overrides `set` (`KEY=VALUE`, as `--set` gives them)
     /// applied in one step, as a command line loads it.
     pub(crate) fn load_with(path: &Path, set: &[String]) -> Result<Self, Error> {
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| Error::bad_input(path, None, format!("cannot read the file: {e}")))?;
+        let text = std::fs::read_to_string(path).map_err(|e| {
+            Error::bad_input(path, None, crate::io::arg::unreadable("scenario", &e))
+        })?;
         Self::make(text, path.to_path_buf(), set.to_vec(), None)
     }
 

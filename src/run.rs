@@ -77,7 +77,7 @@ fn check_name(s: &Common, path: &Path) -> Result<(), BadInput> {
 /// record (`OUT/NAME/run.toml`): its effective scenario runs again, the overrides on top.
 pub fn prepare(path: &Path, dt_s: Option<f64>, overrides: &[String]) -> Result<Prepared, BadInput> {
     let text = std::fs::read_to_string(path)
-        .map_err(|e| BadInput::new(path, None, format!("cannot read the file: {e}")))?;
+        .map_err(|e| BadInput::new(path, None, crate::io::arg::unreadable("scenario", &e)))?;
     prepare_str(&text, path, dt_s, overrides)
 }
 

@@ -55,7 +55,12 @@ def files(folder: Path) -> List[str]:
 
 
 def without_wall_time(b: bytes) -> List[str]:
-    return [line for line in b.decode().splitlines() if not line.startswith("wall_time_s")]
+    """The lines of a text file but its wall time; a binary file (the .xlsx) as its bytes."""
+    try:
+        text = b.decode()
+    except UnicodeDecodeError:
+        return [b.hex()]
+    return [line for line in text.splitlines() if not line.startswith("wall_time_s")]
 
 
 def assert_same_as_folder(r: settle.Output, folder: Path) -> None:

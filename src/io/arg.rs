@@ -132,6 +132,16 @@ fn to_usize(text: &str) -> impl Fn(u64) -> Result<usize, String> + '_ {
     move |n| usize::try_from(n).map_err(|_| format!("{} is out of range", text.trim()))
 }
 
+/// Why an input file (`what`: "scenario", "readings", …) could not be read, in the words of
+/// every command and of the library alike: a missing file, a folder, or the system's reason.
+pub fn unreadable(what: &str, e: &std::io::Error) -> String {
+    match e.kind() {
+        std::io::ErrorKind::NotFound => format!("no such {what} file: check the path"),
+        std::io::ErrorKind::IsADirectory => format!("is a folder: give the {what} file itself"),
+        _ => format!("cannot read the file: {e}"),
+    }
+}
+
 /// The checks of a command's files before any work: every input exists and is a file (else
 /// bad input, exit 2), no file is given twice (exit 2), `--out` is not a file nor under one
 /// (exit 2), and something can be written there (else I/O, exit 4).
@@ -139,13 +149,7 @@ pub fn preflight(inputs: &[(&str, &Path)], out: Option<&Path>) -> Result<(), Err
     let mut seen: Vec<(PathBuf, &Path)> = Vec::new();
     for (what, path) in inputs {
         match std::fs::metadata(path) {
-            Err(_) => {
-                return Err(Error::bad_input(
-                    path,
-                    None,
-                    format!("no such {what} file: check the path"),
-                ))
-            }
+            Err(e) => return Err(Error::bad_input(path, None, unreadable(what, &e))),
             Ok(m) if m.is_dir() => {
                 return Err(Error::bad_input(
                     path,

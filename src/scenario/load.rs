@@ -118,7 +118,7 @@ pub fn load_str(text: &str, path: &Path, overrides: &[String]) -> Result<Scenari
 #[cfg(test)]
 pub fn parse(path: &Path, overrides: &[String]) -> Result<Parsed, BadInput> {
     let text = std::fs::read_to_string(path)
-        .map_err(|e| BadInput::new(path, None, format!("cannot read the file: {e}")))?;
+        .map_err(|e| BadInput::new(path, None, crate::io::arg::unreadable("scenario", &e)))?;
     parse_str(&text, path, overrides)
 }
 
