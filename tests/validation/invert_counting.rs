@@ -32,10 +32,9 @@ fn at(curve: &[(f64, f64)], d: f64) -> f64 {
     curve[curve.len() - 1].1
 }
 
-/// Runs sample `k` (N = 10 000, contacts off) and inverts its three instruments' readings
-/// together; checks χ² ≤ m, strict bounds at every resolved diameter, and the input curve
-/// within them below `checked_below_m`. Returns χ² and the number of readings.
-fn three_instruments(k: u32, checked_below_m: f64) -> (f64, usize) {
+/// Runs sample `k` at N = 10 000 with contacts off into a temporary folder; the folder and the
+/// run's output folder in it.
+fn run_sample(k: u32) -> (tempfile::TempDir, std::path::PathBuf) {
     let out = tmp();
     let o = settle()
         .args(["run", &format!("scenarios/sedimentation_sample{k}.toml")])
@@ -52,6 +51,14 @@ fn three_instruments(k: u32, checked_below_m: f64) -> (f64, usize) {
         .expect("spawn settle");
     assert_exit(&o, 0);
     let run = out.path().join(format!("sedimentation_sample{k}"));
+    (out, run)
+}
+
+/// Runs sample `k` (N = 10 000, contacts off) and inverts its three instruments' readings
+/// together; checks χ² ≤ m, strict bounds at every resolved diameter, and the input curve
+/// within them below `checked_below_m`. Returns χ² and the number of readings.
+fn three_instruments(k: u32, checked_below_m: f64) -> (f64, usize) {
+    let (out, run) = run_sample(k);
     let files = [
         "readings.csv",
         "readings_pipette.csv",
@@ -134,22 +141,7 @@ fn three_instruments_together_sample4() {
 /// warning names the files and readings that the model misses and what to change.
 #[test]
 fn without_counting_sigma_the_misfit_is_named() {
-    let out = tmp();
-    let o = settle()
-        .args(["run", "scenarios/sedimentation_sample2.toml"])
-        .args(["--set", "sample.particles=10000"])
-        .args([
-            "--set",
-            "sample.contacts=false",
-            "--set",
-            "sample.lubrication=false",
-        ])
-        .args(["-q", "--out"])
-        .arg(out.path())
-        .output()
-        .expect("spawn settle");
-    assert_exit(&o, 0);
-    let run = out.path().join("sedimentation_sample2");
+    let (out, run) = run_sample(2);
     let lab = out.path().join("lab");
     std::fs::create_dir(&lab).unwrap();
     for f in [
