@@ -21,6 +21,7 @@ mod issue_13_run_toml_rerun;
 mod issue_13_vary_any_key;
 #[cfg(unix)]
 mod issue_26_bench_keeps_user_csv;
+mod issue_26_fit_ctrl_c;
 mod issue_26_invert_ctrl_c;
 mod issue_26_readings_collision;
 mod issue_26_run_keeps_sweep_folder;

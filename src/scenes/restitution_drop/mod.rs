@@ -86,6 +86,7 @@ fn simulate_all(
         .map(|&h| {
             simulate_drop(&p.common, setup, h, settings).map_err(|err| match err {
                 DropError::Unstable(u) => Error::Unstable(p.path.clone(), u),
+                DropError::Interrupted => Error::InterruptedUnwritten(p.path.clone()),
                 other @ DropError::NoApex { .. } => {
                     Error::bad_input(&p.path, Some("time.end_s"), other.to_string())
                 }

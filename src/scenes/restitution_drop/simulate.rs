@@ -61,6 +61,10 @@ pub fn simulate_drop(
     let mut last_rising = (0.0f64, 0.0f64);
     let mut landed = false;
     while steps < max_steps {
+        // Ctrl-C within about a second: a check every 4096 steps (a few ms of Rapier).
+        if steps % 4096 == 0 && crate::interrupt::requested() {
+            return Err(DropError::Interrupted);
+        }
         let (z0, vz0) = (world.position_m(id)[2] - r, world.velocity_m_s(id)[2]);
         world.step(dt, s.time.integrator)?;
         steps += 1;
@@ -133,6 +137,8 @@ pub enum DropError {
         /// The scenario's `time.end_s`, s.
         end_s: f64,
     },
+    /// Ctrl-C or SIGTERM ([`crate::interrupt::requested`]) during the drop: no result.
+    Interrupted,
 }
 
 impl From<Unstable> for DropError {
@@ -153,6 +159,7 @@ impl std::fmt::Display for DropError {
                 "the ball dropped from {drop_height_m} m reached no rebound apex within \
                  time.end_s = {end_s} s: raise time.end_s"
             ),
+            Self::Interrupted => write!(f, "interrupted"),
         }
     }
 }
