@@ -62,7 +62,7 @@ pub fn simulate_drop(
     let mut landed = false;
     while steps < max_steps {
         // Ctrl-C within about a second: a check every 4096 steps (a few ms of Rapier).
-        if steps % 4096 == 0 && crate::interrupt::requested() {
+        if steps.is_multiple_of(4096) && crate::interrupt::requested() {
             return Err(DropError::Interrupted);
         }
         let (z0, vz0) = (world.position_m(id)[2] - r, world.velocity_m_s(id)[2]);
