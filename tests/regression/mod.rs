@@ -25,4 +25,5 @@ mod issue_26_fit_ctrl_c;
 mod issue_26_invert_ctrl_c;
 mod issue_26_readings_collision;
 mod issue_26_run_keeps_sweep_folder;
+mod issue_26_tilt_ctrl_c;
 mod issue_8_concurrent_checkpoint_saves;

@@ -35,7 +35,7 @@ pub mod simulate;
 
 pub use search::{tilt_threshold, TiltSearch};
 pub use setup::TiltSetup;
-pub use simulate::{simulate_tilt, TiltOutcome};
+pub use simulate::{simulate_tilt, TiltError, TiltOutcome};
 
 #[cfg(doc)]
 use crate::engine::dim3::World;
@@ -104,7 +104,10 @@ pub fn run(p: &Prepared, tf: &TiltFrictionSpec, out: &mut Outputs) -> Result<Sce
     let spec = &tf.tilt;
     let setup = TiltSetup::new(s, tf);
     let search = tilt_threshold(&setup, &spec.angles_deg, spec.bisection_tolerance_deg)
-        .map_err(|u| Error::Unstable(p.path.clone(), u))?;
+        .map_err(|e| match e {
+            TiltError::Unstable(u) => Error::Unstable(p.path.clone(), u),
+            TiltError::Interrupted => Error::InterruptedUnwritten(p.path.clone()),
+        })?;
     let found = search.threshold_deg();
     let TiltSearch { runs, bracket } = search;
     let expected = setup.friction.atan().to_degrees();

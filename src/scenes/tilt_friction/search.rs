@@ -1,7 +1,6 @@
 //! The threshold search: the given angles, then bisection of the bracket they make.
 
-use super::{simulate_tilt, TiltOutcome, TiltSetup};
-use crate::engine::Unstable;
+use super::{simulate_tilt, TiltError, TiltOutcome, TiltSetup};
 use crate::numerics::{try_bisect, Bisection, Stop};
 
 /// The runs of a threshold search.
@@ -27,7 +26,7 @@ pub fn tilt_threshold(
     t: &TiltSetup,
     angles_deg: &[f64],
     tolerance_deg: f64,
-) -> Result<TiltSearch, Unstable> {
+) -> Result<TiltSearch, TiltError> {
     let mut runs = angles_deg
         .iter()
         .map(|&a| simulate_tilt(t, a))
@@ -49,7 +48,7 @@ pub fn tilt_threshold(
             r.bisection = true;
             let sticks = !r.slides;
             runs.push(r);
-            Ok(sticks)
+            Ok::<bool, TiltError>(sticks)
         })?)
     } else {
         None

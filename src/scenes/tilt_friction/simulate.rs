@@ -46,13 +46,32 @@ fn tilted_world(t: &TiltSetup, angle_deg: f64) -> (PhysicsWorld, RigidBodyHandle
     (w, handle)
 }
 
+/// Why a tilt run gave no outcome.
+#[derive(Clone, Debug, PartialEq)]
+pub enum TiltError {
+    /// The block's position turned non-finite or its speed exceeded half the speed cap.
+    Unstable(Unstable),
+    /// Ctrl-C or SIGTERM ([`crate::interrupt::requested`]) during the run: no result.
+    Interrupted,
+}
+
+impl From<Unstable> for TiltError {
+    fn from(u: Unstable) -> Self {
+        Self::Unstable(u)
+    }
+}
+
 /// Runs the block at one angle (gravity tilted about y; +x is down the slope). Errors with
-/// [`Unstable`] when the block's position turns non-finite or its speed exceeds half the speed
-/// cap of the settings.
-pub fn simulate_tilt(t: &TiltSetup, angle_deg: f64) -> Result<TiltOutcome, Unstable> {
+/// [`TiltError::Unstable`] when the block's position turns non-finite or its speed exceeds half
+/// the speed cap of the settings, and [`TiltError::Interrupted`] at Ctrl-C (checked every 4096
+/// steps, a few milliseconds of Rapier).
+pub fn simulate_tilt(t: &TiltSetup, angle_deg: f64) -> Result<TiltOutcome, TiltError> {
     let (mut w, handle) = tilted_world(t, angle_deg);
     let cap = t.settings.max_linear_velocity_m_s;
     for i in 1..=t.steps() {
+        if i.is_multiple_of(4096) && crate::interrupt::requested() {
+            return Err(TiltError::Interrupted);
+        }
         w.step_with_events(&(), &());
         let rb = &w.bodies[handle];
         let speed = rb.linvel().length();
@@ -65,7 +84,7 @@ pub fn simulate_tilt(t: &TiltSetup, angle_deg: f64) -> Result<TiltOutcome, Unsta
         };
         if let Some((what, value)) = bad {
             let time = i as f64 * t.dt_s;
-            return Err(unstable(0, time, t.dt_s, what, value, 0.5 * t.dt_s));
+            return Err(unstable(0, time, t.dt_s, what, value, 0.5 * t.dt_s).into());
         }
     }
     let displacement_m = w.bodies[handle].translation().x;
