@@ -220,11 +220,13 @@ enum Command {
         #[arg(long, default_value_t = 1, allow_negative_numbers = true,
               value_parser = crate::io::arg::count)]
         seed: u64,
-        /// Also the strict bounds of the curve at each diameter: its smallest and largest value
-        /// over every distribution of the bins, without smoothing, whose χ² is at most the
-        /// number of readings (what the readings alone leave open).
-        #[arg(long)]
-        bounds: bool,
+        /// Also the strict bounds of the curve at each diameter at confidence P (`--bounds`
+        /// alone: 0.95; `--bounds=0.99`): its smallest and largest value over every distribution
+        /// of the bins, without smoothing, whose χ² is at most the P-quantile of χ² with m
+        /// degrees of freedom, m the number of readings (what the readings alone leave open).
+        #[arg(long, value_name = "P", num_args = 0..=1, require_equals = true,
+              default_missing_value = "0.95", value_parser = crate::io::arg::probability)]
+        bounds: Option<f64>,
         /// Output folder.
         #[arg(long, default_value = "out")]
         out: PathBuf,

@@ -101,7 +101,7 @@ fn invert(
         resolution,
         repeats,
         seed,
-        bounds,
+        bounds: bounds.then_some(settle::invert::DEFAULT_BOUNDS_CONFIDENCE),
     };
     // computed apart, written after: a computation stopped by Ctrl-C never writes
     let r = blocking(py, None, move || settle::invert::invert(&readings, &opts))?;

@@ -41,7 +41,7 @@ mod setup;
 pub mod solve;
 
 use options::options;
-pub use options::{InvertOptions, Model, Request};
+pub use options::{InvertOptions, Model, Request, DEFAULT_BOUNDS_CONFIDENCE};
 pub use setup::{
     read_test, DEFAULT_CYLINDER_AREA_M2, HYDROMETER_RESOLUTION, PIPETTE_RESOLUTION_G,
     SPHERE_RESOLUTION_G,
@@ -375,10 +375,11 @@ pub struct Fit {
 }
 
 /// Inverts the readings of `tests` over `bins` with `model` and the λ `rule`; the band from
-/// `repeats` Monte Carlo repeats seeded `seed`; with `bounds`, the strict bounds of the curve at
-/// each resolved edge: the range of F(d) over every distribution of `bins` (w ≥ 0, Σw = 1, no
-/// smoothing) whose χ² of the last linear problem is at most the number of readings m (Backus
-/// 1970; Stark 1992). Unlike the band, they show what the readings alone leave open, e.g. a
+/// `repeats` Monte Carlo repeats seeded `seed`; with `bounds` = Some(P), the strict bounds of
+/// the curve at each resolved edge at confidence P: the range of F(d) over every distribution of
+/// `bins` (w ≥ 0, Σw = 1, no smoothing) whose χ² of the last linear problem is at most
+/// χ²_m(P), the P-quantile of χ² with m degrees of freedom (m readings; [`solve::chi2_bar`];
+/// Backus 1970; Stark 1992). Unlike the band, they show what the readings alone leave open, e.g. a
 /// steep curve between two readings.
 pub fn fit(
     tests: &[Test],
@@ -387,15 +388,15 @@ pub fn fit(
     rule: LambdaRule,
     repeats: usize,
     seed: u64,
-    bounds: bool,
+    bounds: Option<f64>,
 ) -> Result<Fit, Error> {
     // Ctrl-C/SIGTERM: checked at each iteration, repeat and bounded edge (issue 26: the first
     // signal used to be acknowledged and ignored); nothing is written.
     let stopped = || Error::InterruptedUnwritten(tests[0].file.clone());
     let inv = iterate(tests, bins, model, rule)?;
     let mut curve = band(&inv, tests, bins, rule, repeats, seed).ok_or_else(stopped)?;
-    if bounds {
-        let m = inv.predicted.len() as f64;
+    if let Some(confidence) = bounds {
+        let bar = solve::chi2_bar(inv.predicted.len(), confidence);
         for p in &mut curve {
             if crate::interrupt::requested() {
                 return Err(stopped());
@@ -405,7 +406,7 @@ pub fn fit(
                 .collect();
             p.bounds = inv
                 .linear
-                .strict_bounds(&c, m)
+                .strict_bounds(&c, bar)
                 .map(|(lo, hi)| ((100.0 * lo).max(0.0), (100.0 * hi).min(100.0)));
         }
     }

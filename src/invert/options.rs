@@ -45,6 +45,11 @@ impl Model {
     }
 }
 
+/// The confidence of `--bounds` given alone: the strict bounds hold every distribution that
+/// explains the readings at this level, so the true curve lies inside them at every diameter
+/// with this probability when the readings' σ are right (Stark 1992).
+pub const DEFAULT_BOUNDS_CONFIDENCE: f64 = 0.95;
+
 /// The options of `settle invert` (its defaults those of the command line), as given: `invert`
 /// checks them and refuses a bad one as [`Error::BadInput`] naming the option (`--model`,
 /// `--lambda`, ...) with the command line's message.
@@ -65,8 +70,11 @@ pub struct InvertOptions {
     pub repeats: usize,
     /// `--seed` of the Monte Carlo (ChaCha8; default 1).
     pub seed: u64,
-    /// `--bounds`: also the strict bounds of the curve at each edge ([`super::solve::Linear::strict_bounds`]).
-    pub bounds: bool,
+    /// `--bounds[=P]`: also the strict bounds of the curve at each edge at confidence P,
+    /// 0 < P < 1 (`--bounds` alone: [`DEFAULT_BOUNDS_CONFIDENCE`]): every distribution of the
+    /// bins with χ² at most the P-quantile of χ² with m degrees of freedom
+    /// ([`super::solve::chi2_bar`], [`super::solve::Linear::strict_bounds`]). None: no bounds.
+    pub bounds: Option<f64>,
 }
 
 impl Default for InvertOptions {
@@ -79,7 +87,7 @@ impl Default for InvertOptions {
             resolution: Vec::new(),
             repeats: 100,
             seed: 1,
-            bounds: false,
+            bounds: None,
         }
     }
 }
@@ -163,6 +171,13 @@ pub(super) fn options(opts: &InvertOptions, files: usize) -> Result<Options, Err
             Some((a * 1e-6, b * 1e-6))
         }
     };
+    if let Some(p) = opts.bounds.filter(|p| !(*p > 0.0 && *p < 1.0)) {
+        return Err(Error::bad_argument(
+            "--bounds",
+            Path::new(&crate::io::fmt::short(p)),
+            "the confidence of the strict bounds: allowed 0 < P < 1, e.g. --bounds=0.95",
+        ));
+    }
     if let Some(n) = opts.bins.filter(|&n| !(2..=200).contains(&n)) {
         return Err(Error::bad_argument(
             "--bins",

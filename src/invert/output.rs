@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 /// The tables and files of `OUT/<name>/`: `inverted.csv`, `misfit.csv`, `standard.csv`,
 /// `inverted.svg` and `invert.toml`.
 pub fn outputs(r: &InvertResult) -> Result<Outputs, Error> {
-    let bounds = r.options.bounds;
+    let bounds = r.options.bounds.is_some();
     let rows: Vec<Vec<String>> = r
         .curve
         .iter()
@@ -135,7 +135,14 @@ fn chart(r: &InvertResult) -> Chart {
         .collect();
     if !bounds.is_empty() {
         c = c.band(Band {
-            label: "strict bounds (every curve with χ² ≤ m)".into(),
+            label: format!(
+                "strict bounds at {} % (every curve with χ² ≤ {})",
+                crate::io::fmt::short(100.0 * r.options.bounds.unwrap_or_default()),
+                crate::io::fmt::short(super::solve::chi2_bar(
+                    r.misfit.len(),
+                    r.options.bounds.unwrap_or(0.5)
+                ))
+            ),
             points: bounds,
             shade: 0.07,
         });
@@ -202,9 +209,16 @@ fn record(r: &InvertResult) -> String {
         r.converged,
         r.options.repeats,
         r.options.seed,
-        r.options.bounds,
+        r.options.bounds.is_some(),
         clean(r.wall_time_s),
     );
+    if let Some(p) = r.options.bounds {
+        t.push_str(&format!(
+            "bounds_confidence = {}\nbounds_chi2_max = {}\n",
+            clean(p),
+            clean(super::solve::chi2_bar(r.misfit.len(), p))
+        ));
+    }
     t.push_str(&format!(
         "mass_finer_than_range = {}\nmass_coarser_than_range = {}\n",
         clean(r.w[0]),
@@ -259,13 +273,15 @@ pub fn warnings(r: &InvertResult) -> Vec<String> {
         ));
     }
     let empty = r.curve.iter().filter(|c| c.bounds.is_none()).count();
-    if r.options.bounds && empty > 0 {
+    if let Some(p) = r.options.bounds.filter(|_| empty > 0) {
+        let m = r.misfit.len();
         w.push(format!(
-            "--bounds: no distribution of the bins has χ² ≤ {} (the number of readings) at {} \
-             of {} diameters, so the strict bounds there are empty (— in the table): the \
-             readings scatter more than their resolution allows for this model. Check the \
-             readings, give a larger --resolution, or try another --model",
-            r.misfit.len(),
+            "--bounds: no distribution of the bins has χ² ≤ {} (the {} % quantile of χ² for \
+             {m} readings) at {} of {} diameters, so the strict bounds there are empty (— in \
+             the table): the readings scatter more than their resolution allows for this model. \
+             Check the readings, give a larger --resolution, or try another --model",
+            crate::io::fmt::short(super::solve::chi2_bar(m, p)),
+            crate::io::fmt::short(100.0 * p),
             empty,
             r.curve.len()
         ));
@@ -276,7 +292,7 @@ pub fn warnings(r: &InvertResult) -> Vec<String> {
 /// The console summary: a title line (the results written to `out`), then diameter, percent
 /// finer and band.
 pub fn summary(r: &InvertResult, out: &Path) -> Vec<String> {
-    let bounds = r.options.bounds;
+    let bounds = r.options.bounds.is_some();
     let mut lines = vec![format!(
         "{} ({} model, {} readings, {} bins, λ = {}, χ² = {}, {} iterations, {} s) -> {}",
         r.inputs

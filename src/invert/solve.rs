@@ -176,8 +176,13 @@ impl Linear {
         if at(0.0, 1.0).0 > chi2_max {
             return None;
         }
+        // μ up to 10⁶ s: beyond, the linear term swamps the quadratic one in simplex_qp and
+        // w(μ) turns to rounding noise (issue 26: at 10¹² s, χ² jumped between 4 and 18 and
+        // the upper bound of sample 4 fell below the recovered curve's own 100 %); at 10⁶ s
+        // w(μ) is within ~10⁻⁶ of the extreme face. The bounds are at least as wide as the
+        // feasible point of least χ², w(0).
         let extreme = |sign: f64| {
-            let (lo, hi) = ((1e-8 * s).ln(), (1e12 * s).ln());
+            let (lo, hi) = ((1e-12 * s).ln(), (1e6 * s).ln());
             if at(hi.exp(), sign).0 <= chi2_max {
                 return at(hi.exp(), sign).1;
             }
@@ -189,7 +194,8 @@ impl Linear {
             });
             at(lo.exp(), sign).1
         };
-        Some((extreme(1.0), extreme(-1.0)))
+        let at_least = at(0.0, 1.0).1;
+        Some((extreme(1.0).min(at_least), extreme(-1.0).max(at_least)))
     }
 
     /// Solves with λ chosen by `rule` over a grid of λ/scale from 10⁻¹⁰ to 10⁴ (8 per decade).
@@ -250,6 +256,19 @@ fn kkt_matrix(q: &DMatrix<f64>, free: &[usize]) -> DMatrix<f64> {
         k[(f, a)] = 1.0;
     }
     k
+}
+
+/// The χ² bar of strict bounds at confidence `confidence` (0 < P < 1) for `m` readings: the
+/// P-quantile of the χ² distribution with m degrees of freedom, so that χ² of the true curve,
+/// a sum of m squared standard normal misfits when the readings' σ are right, stays below it
+/// with probability P (Stark 1992, the data constraint of strict bounds; e.g. χ²₂₇(0.95) =
+/// 40.11, NIST/SEMATECH e-Handbook 1.3.6.7.4). Computed by `statrs` (the inverse of the
+/// regularised lower incomplete gamma function).
+pub fn chi2_bar(m: usize, confidence: f64) -> f64 {
+    use statrs::distribution::{ChiSquared, ContinuousCDF};
+    ChiSquared::new(m.max(1) as f64)
+        .map(|d| d.inverse_cdf(confidence))
+        .unwrap_or(f64::NAN)
 }
 
 // Kept over clarabel (exact, 6× faster, no failures): docs/validation/numerics.md.

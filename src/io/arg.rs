@@ -84,6 +84,11 @@ pub fn reading_unit(text: &str) -> Result<f64, String> {
     real(text, "the readings' unit")
 }
 
+/// A probability, e.g. a confidence (`--bounds=P`); the range is checked later.
+pub fn probability(text: &str) -> Result<f64, String> {
+    real(text, "")
+}
+
 /// A count: a whole number ≥ `min`.
 pub fn whole(text: &str, min: u64) -> Result<u64, String> {
     let t = text.trim();

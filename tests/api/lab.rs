@@ -97,7 +97,7 @@ fn invert_tables_equal_the_files_of_settle_invert() {
     cli(&args, out.path());
     let opts = InvertOptions {
         model: "full".into(),
-        bounds: true,
+        bounds: Some(settle::invert::DEFAULT_BOUNDS_CONFIDENCE),
         ..InvertOptions::default()
     };
     let readings: Vec<Readings> = files.iter().map(|f| Readings::from(f.as_path())).collect();

@@ -227,7 +227,7 @@ fn the_band_covers_the_input_curve_under_rounded_noisy_readings() {
             LambdaRule::Discrepancy,
             40,
             repeat,
-            false,
+            None,
         )
         .expect("inverts");
         for p in &f.curve {
@@ -421,9 +421,16 @@ fn strict_bounds_match_their_closed_form() {
     let r = 0.01 * (2.0f64 / 3.0).sqrt();
     assert!((lo - (0.2 - r)).abs() < 1e-6, "{lo}");
     assert!((hi - (0.2 + r)).abs() < 1e-6, "{hi}");
-    // A bound the simplex cuts: χ² ≤ 10⁴ reaches w₀ = 0 but not w₀ = 1.
+    // Bounds the simplex cuts. χ² ≤ 10⁴ holds the vertex w = (1, 0, 0) (χ² = 9800) and w₀ = 0:
+    // [0, 1]. (Before issue 26 the upper end came out below 1: the Lagrangian's μ reached
+    // 10¹² s, where simplex_qp is rounding noise.) χ² ≤ 9000: beyond w₀ = 0.8 the closest point
+    // has w₁ = 0, w₂ = 1 − w₀, so σ²χ² = (w₀ − 0.2)² + 0.3² + (w₀ − 0.5)² = 0.9 gives
+    // w₀ = (1.4 + √6.12)/4 = 0.968465.
     let (lo, hi) = lin.strict_bounds(&[1.0, 0.0, 0.0], 1e4).unwrap();
-    assert!(lo.abs() < 1e-6 && hi < 1.0, "{lo} {hi}");
+    assert!(lo.abs() < 1e-6 && (hi - 1.0).abs() < 1e-6, "{lo} {hi}");
+    let (_, hi) = lin.strict_bounds(&[1.0, 0.0, 0.0], 9e3).unwrap();
+    let exact = (1.4 + 6.12f64.sqrt()) / 4.0;
+    assert!((hi - exact).abs() < 1e-6, "{hi} against {exact}");
     assert!(lin.strict_bounds(&[1.0, 0.0, 0.0], 0.5).is_some());
     assert!(Linear {
         b: DVector::from_vec(vec![0.5, 0.5, 0.5]),
@@ -431,6 +438,28 @@ fn strict_bounds_match_their_closed_form() {
     }
     .strict_bounds(&[1.0, 0.0, 0.0], 1.0)
     .is_none());
+}
+
+/// The χ² bar of `--bounds=P` (`solve::chi2_bar`) against the table of upper critical values
+/// of χ² (NIST/SEMATECH e-Handbook of Statistical Methods, 1.3.6.7.4, printed to 3 decimals):
+/// P = 0.95 at 1, 10 and 27 degrees of freedom, P = 0.99 at 10 and P = 0.90 at 27; within the
+/// table's rounding (5e-4).
+#[test]
+fn chi2_bar_matches_the_table_of_critical_values() {
+    use settle::invert::solve::chi2_bar;
+    for (m, p, table) in [
+        (1, 0.95, 3.841),
+        (10, 0.95, 18.307),
+        (27, 0.95, 40.113),
+        (10, 0.99, 23.209),
+        (27, 0.90, 36.741),
+    ] {
+        let got = chi2_bar(m, p);
+        assert!(
+            (got - table).abs() <= 5e-4,
+            "χ²_{m}({p}) = {got}, table {table}"
+        );
+    }
 }
 
 /// What the readings of a steep curve determine (issue 14, full-physics round trip): over every
@@ -475,7 +504,7 @@ fn the_readings_do_not_determine_a_steep_curve_between_two_readings() {
             LambdaRule::Discrepancy,
             0,
             1,
-            false,
+            None,
         )
         .unwrap();
         let (m, n) = (f.predicted.len(), bins.len());

@@ -103,11 +103,12 @@ pub fn run(p: &Prepared, tf: &TiltFrictionSpec, out: &mut Outputs) -> Result<Sce
     let s = &p.common;
     let spec = &tf.tilt;
     let setup = TiltSetup::new(s, tf);
-    let search = tilt_threshold(&setup, &spec.angles_deg, spec.bisection_tolerance_deg)
-        .map_err(|e| match e {
+    let search = tilt_threshold(&setup, &spec.angles_deg, spec.bisection_tolerance_deg).map_err(
+        |e| match e {
             TiltError::Unstable(u) => Error::Unstable(p.path.clone(), u),
             TiltError::Interrupted => Error::InterruptedUnwritten(p.path.clone()),
-        })?;
+        },
+    )?;
     let found = search.threshold_deg();
     let TiltSearch { runs, bracket } = search;
     let expected = setup.friction.atan().to_degrees();
