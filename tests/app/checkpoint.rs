@@ -11,6 +11,7 @@ use crate::common::{
 };
 use std::path::{Path, PathBuf};
 use std::process::Output;
+use std::sync::OnceLock;
 use std::time::Duration;
 
 /// Every file under `dir`, relative, sorted.
@@ -101,32 +102,41 @@ const SEDIMENTATION: [&str; 6] = [
     "run",
     "scenarios/sedimentation_sample2.toml",
     "--set",
-    "sample.particles=20000",
+    "sample.particles=10000",
     "--set",
     "sample.contacts=true",
 ];
 
-/// The sedimentation cylinder (20 000 grains, full physics, 1440 min), killed with SIGKILL at a
+/// The uninterrupted run of [`SEDIMENTATION`], made once for the tests that compare with it
+/// (in cargo's folder for integration tests' files, replaced at each test run): its results
+/// folder and the CPU time it used.
+fn sedimentation_reference() -> &'static (PathBuf, Duration) {
+    static REFERENCE: OnceLock<(PathBuf, Duration)> = OnceLock::new();
+    REFERENCE.get_or_init(|| {
+        let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("checkpoint_reference");
+        let _ = std::fs::remove_dir_all(&out);
+        let (o, whole) = run(&SEDIMENTATION, &out);
+        assert!(o.stderr.is_empty(), "no progress bar when stderr is a pipe");
+        (out.join("sedimentation_sample2"), whole)
+    })
+}
+
+/// The sedimentation cylinder (10 000 grains, full physics, 1440 min), killed with SIGKILL at a
 /// random moment and resumed: every output file is identical to an uninterrupted run's, the
 /// stale staging folder of the killed process is gone, and so is the checkpoint folder.
 #[test]
 fn sedimentation_killed_and_resumed_matches_an_uninterrupted_run() {
     let dir = tmp();
-    let reference = dir.path().join("ref");
-    let (o, whole) = run(&SEDIMENTATION, &reference);
-    assert!(o.stderr.is_empty(), "no progress bar when stderr is a pipe");
+    let (reference, whole) = sedimentation_reference();
     let killed = dir.path().join("killed");
-    let o = start_and_signal(&SEDIMENTATION, &killed, "KILL", whole);
+    let o = start_and_signal(&SEDIMENTATION, &killed, "KILL", *whole);
     assert_eq!(o.code, None, "killed by a signal");
     assert!(killed
         .join("checkpoint/sedimentation_sample2.state.bin")
         .is_file());
     assert!(!killed.join("sedimentation_sample2").exists());
     resume(&killed);
-    assert_same_outputs(
-        &reference.join("sedimentation_sample2"),
-        &killed.join("sedimentation_sample2"),
-    );
+    assert_same_outputs(reference, &killed.join("sedimentation_sample2"));
     let run_toml = std::fs::read_to_string(killed.join("sedimentation_sample2/run.toml")).unwrap();
     assert!(run_toml.contains("resumed = true"), "{run_toml}");
     assert!(run_toml.contains("status = \"complete\""), "{run_toml}");
@@ -142,10 +152,9 @@ fn sedimentation_killed_and_resumed_matches_an_uninterrupted_run() {
 #[test]
 fn sedimentation_interrupted_and_resumed_matches_an_uninterrupted_run() {
     let dir = tmp();
-    let reference = dir.path().join("ref");
-    let (_, whole) = run(&SEDIMENTATION, &reference);
+    let (reference, whole) = sedimentation_reference();
     let stopped = dir.path().join("stopped");
-    let o = start_and_signal(&SEDIMENTATION, &stopped, "INT", whole);
+    let o = start_and_signal(&SEDIMENTATION, &stopped, "INT", *whole);
     assert_eq!(o.code, Some(130), "{}", o.stderr);
     let partial = std::fs::read_to_string(stopped.join("sedimentation_sample2/run.toml")).unwrap();
     assert!(partial.contains("status = \"interrupted\""), "{partial}");
@@ -157,17 +166,13 @@ fn sedimentation_interrupted_and_resumed_matches_an_uninterrupted_run() {
         .parse()
         .unwrap();
     assert!(reached > 0.0 && reached < 86_400.0, "{partial}");
-    let complete =
-        std::fs::read_to_string(reference.join("sedimentation_sample2/run.toml")).unwrap();
+    let complete = std::fs::read_to_string(reference.join("run.toml")).unwrap();
     assert!(!complete.contains("reached_s"), "{complete}");
     assert!(stopped
         .join("checkpoint/sedimentation_sample2.state.bin")
         .is_file());
     resume(&stopped);
-    assert_same_outputs(
-        &reference.join("sedimentation_sample2"),
-        &stopped.join("sedimentation_sample2"),
-    );
+    assert_same_outputs(reference, &stopped.join("sedimentation_sample2"));
 }
 
 const FUNNEL: [&str; 6] = [

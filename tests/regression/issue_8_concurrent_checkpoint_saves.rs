@@ -25,6 +25,8 @@ fn parallel_repeats_with_checkpoints_finish() {
                 "time.end_s=0.05",
                 "--set",
                 "funnel.count_time_s=0.04",
+                "--dt",
+                "1e-4",
                 "--checkpoint-every",
                 "0.01",
                 "--quiet",

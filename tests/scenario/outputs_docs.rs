@@ -110,6 +110,7 @@ fn funnel_outputs_are_documented() {
         "scenarios/paste_68_balls.toml",
         &[
             "repeats.count=1",
+            "time.dt_s=1e-4",
             "time.end_s=0.05",
             "funnel.count_time_s=0.04",
         ],
