@@ -29,7 +29,10 @@ KINDS = {
     "drop": ("paste_single_ball.toml", {}),
     "restitution_drop": ("restitution_drop.toml", {}),
     "tilt_friction": ("tilt_friction.toml", {}),
-    "funnel_pour": ("paste_68_balls.toml", {"repeats.count": 1}),
+    "funnel_pour": (
+        "paste_68_balls.toml",
+        {"repeats.count": 1, "time.dt_s": 1e-4, "funnel.count_time_s": 0.15, "time.end_s": 0.2},
+    ),
     "sedimentation": ("sedimentation_sample5.toml", {"sample.particles": 5000}),
 }
 

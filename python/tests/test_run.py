@@ -70,7 +70,11 @@ EVERY_KIND = [
     ("paste_single_ball.toml", "drop", ()),
     ("restitution_drop.toml", "restitution_drop", ()),
     ("tilt_friction.toml", "tilt_friction", ()),
-    ("paste_68_balls.toml", "funnel_pour", ("repeats.count=1",)),
+    (
+        "paste_68_balls.toml",
+        "funnel_pour",
+        ("repeats.count=1", "time.dt_s=1e-4", "funnel.count_time_s=0.15", "time.end_s=0.2"),
+    ),
     ("sedimentation_sample1.toml", "sedimentation", ("sample.particles=2000",)),
 ]
 
