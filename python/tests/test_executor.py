@@ -15,7 +15,7 @@ import pickle
 import shutil
 import subprocess
 from pathlib import Path
-from typing import Any, Iterator, List, Tuple
+from typing import Any, Dict, Iterator, List, Tuple
 
 import pandas as pd
 import pytest
@@ -103,12 +103,8 @@ def test_a_dt_sweep_on_a_process_pool_equals_the_serial_sweep(
     for parts in (None, 4):  # one part per case (6), and shards of 2, 2, 1, 1 cases
         assert_same(settle.sweep(STOKES, **SWEEP, executor=pool, parts=parts), want)
     # overrides and a CSV table of spheres: the workers read it from its absolute path
-    want = settle.sweep(VALENTIK, dt=[0.02, 0.01], integrators="exponential", overrides=VALENTIK_SET)
-    got = settle.sweep(
-        VALENTIK, dt=[0.02, 0.01], integrators="exponential", overrides=VALENTIK_SET,
-        executor=pool,
-    )
-    assert_same(got, want)
+    opts: Dict[str, Any] = dict(dt=[0.02, 0.01], integrators="exponential", overrides=VALENTIK_SET)
+    assert_same(settle.sweep(VALENTIK, **opts, executor=pool), settle.sweep(VALENTIK, **opts))
 
 
 def test_a_parameter_sweep_on_a_process_pool_equals_the_serial_sweep(

@@ -93,7 +93,7 @@ def _gather(
     pending = list(range(n))
     try:
         with _progress.bar(progress) as cb:
-            delay = 0.01
+            delay, shown, shown_at = 0.01, -1, 0.0
             while pending:
                 still = []
                 for k in pending:
@@ -104,8 +104,11 @@ def _gather(
                         texts[k] = text
                     else:
                         still.append(k)
-                if cb is not None:
-                    cb(name, n - len(still), n, "parts", "")
+                now = time.monotonic()
+                # on each change, else about ten times a second (the bar appears after a delay)
+                if cb is not None and (n - len(still) != shown or now - shown_at >= 0.1):
+                    shown, shown_at = n - len(still), now
+                    cb(name, shown, n, "parts", "")
                 if still:
                     time.sleep(delay)
                     delay = min(delay * 1.5, 0.2)

@@ -8,7 +8,6 @@
 use super::grid::{Axis, Level};
 use super::plan::{results, run, VaryPlan};
 use super::table::VaryTable;
-use super::PART_PREFIX;
 use crate::api::Scenario;
 use crate::error::Error;
 use crate::io::{Outputs, Table};
@@ -16,6 +15,9 @@ use crate::sweep::api::{check_parts, shard_of};
 use crate::sweep::page::add_report;
 use crate::sweep::values::Shard;
 use std::path::{Path, PathBuf};
+
+/// Name prefix of the part files of a sharded parameter sweep.
+pub const PART_PREFIX: &str = "vary_part_";
 
 /// How [`vary`] runs.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -206,7 +208,7 @@ pub fn vary_cases(scenario: &Scenario, axes: &[Axis]) -> Result<Vec<Vec<Level>>,
 ///     let text = vary_part(&scenario, &axes, &opts, i, 2)?.to_csv()?; // anywhere
 ///     parts.push(VaryPart::from_csv(i, 2, &text)?);
 /// }
-/// let r = vary_merge(&scenario, &axes, &opts, parts)?; // what vary(&scenario, &axes, &opts) returns
+/// let r = vary_merge(&scenario, &axes, &opts, parts)?; // what vary(…) returns
 /// println!("{}", r.lines.join("\n"));
 /// # Ok::<(), settle::Error>(())
 /// ```

@@ -28,7 +28,9 @@ mod grid;
 pub(crate) mod plan;
 mod table;
 
-pub use api::{vary, vary_cases, vary_merge, vary_part, VaryOptions, VaryPart, VaryResult};
+pub use api::{
+    vary, vary_cases, vary_merge, vary_part, VaryOptions, VaryPart, VaryResult, PART_PREFIX,
+};
 pub use chart::unit_of;
 pub use grid::{Axis, Level, Spacing, MAX_CASES, VARY_ALLOWED};
 pub use table::{VaryRow, VaryTable};
@@ -41,9 +43,6 @@ use crate::error::Error;
 use crate::run::prepare;
 use plan::{results, VaryPlan};
 use std::path::{Path, PathBuf};
-
-/// Name prefix of the part files of a sharded parameter sweep.
-pub const PART_PREFIX: &str = "vary_part_";
 
 /// `settle sweep --vary …`: plans every scenario (every case validated), checks the output
 /// folders, then sweeps each into `OUT/<name>_vary/` (or its shard's part file).
