@@ -85,10 +85,10 @@ def sweep(
     ``concurrent.futures.ProcessPoolExecutor``, Dask's ``distributed.Client(...).get_executor()``,
     submitit's ``AutoExecutor``/``SlurmExecutor``). The options are checked here first (a bad
     one raises before anything is submitted); the grid is split into ``parts`` shards (``settle
-    sweep --shard I/N``; default one per case, at most 64), each submitted as one task given the
-    scenario as the text of :meth:`Scenario.to_toml` (its input files as absolute paths: the
-    workers must see them) and returning its part as CSV text; the parts are merged here
-    (``--merge``). The result equals the serial call's, cell for cell (wall times aside). A
+    sweep --shard I/N``; default one per case, at most 64; never more than the cases), each
+    submitted as one task given the scenario as the text of :meth:`Scenario.to_toml` (its input
+    files as absolute paths: the workers must see them) and returning its part as CSV text; the
+    parts are merged here (``--merge``). The result equals the serial call's, cell for cell (wall times aside). A
     settle error in a task is raised here as the serial call raises it; Ctrl-C cancels the
     parts not yet done. ``parts`` without an executor is an error.
 
