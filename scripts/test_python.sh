@@ -2,8 +2,9 @@
 # The Python package's tests (issue 25): a virtual environment in target/py-venv, the package
 # built into it by maturin (release), then pytest on python/tests. The tests compare with the
 # command line, so the release binary is built first. Needs a Rust toolchain and Python >= 3.9
-# with venv; reaches PyPI (maturin, pandas, pytest, python-ags4, openpyxl) when a requirement is
-# missing.
+# with venv; reaches PyPI (maturin, pandas, pytest, python-ags4, openpyxl; dask, distributed and
+# submitit for the executor tests) when a requirement is missing. The executor tests use the
+# Slurm that scripts/test.sh starts (scripts/slurm_local.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT="$PWD"
@@ -17,6 +18,6 @@ cargo test --release --no-run -q
 if [ ! -x "$VENV/bin/python" ]; then
     "$PY" -m venv "$VENV"
 fi
-"$VENV/bin/python" -m pip install -q --disable-pip-version-check "maturin>=1.5,<2" pandas pytest mypy pandas-stubs matplotlib nbformat nbclient ipykernel python-ags4 openpyxl
+"$VENV/bin/python" -m pip install -q --disable-pip-version-check "maturin>=1.5,<2" pandas pytest mypy pandas-stubs matplotlib nbformat nbclient ipykernel python-ags4 openpyxl dask distributed submitit
 (cd python && VIRTUAL_ENV="$VENV" PATH="$VENV/bin:$PATH" maturin develop --release -q)
 SETTLE_BIN="$ROOT/target/release/settle" "$VENV/bin/python" -m pytest -q python/tests "$@"

@@ -3,6 +3,7 @@ annotations of settle must accept what a user writes."""
 
 from __future__ import annotations
 
+import concurrent.futures
 from pathlib import Path
 
 import pandas as pd
@@ -95,6 +96,11 @@ def terminal_velocities(scenario_file: Path) -> list[float]:
         progress=False,
     )
     return [float(v) for v in r.tables["vary"]["terminal_velocity_m_s"]]
+
+
+def spread_sweep(scenario_file: Path, pool: concurrent.futures.ProcessPoolExecutor) -> settle.Output:
+    """A process pool is an executor of settle.sweep (typed: the package's Executor protocol)."""
+    return settle.sweep(scenario_file, dt=[1e-3, 1e-4], executor=pool, parts=2, progress=False)
 
 
 # --- end of sweep ---

@@ -11,7 +11,9 @@
 //! every table and chart of `OUT/<name>_sweep/`, the typed rows and recommended time steps, the
 //! console lines; [`SweepResult::write`] writes the folder the command writes. [`vary()`] does the
 //! same for a parameter sweep (`settle sweep --vary`): [`VaryResult`], `OUT/<name>_vary/`.
-//! Shards and `--merge` are the command line's only.
+//! [`sweep_part`] and [`sweep_merge`] ([`vary_part`], [`vary_merge`]) are `--shard` and
+//! `--merge` in memory: each part runs anywhere (another process, another machine) and travels
+//! as the text of its part file; the merge of all parts equals the whole sweep.
 //!
 //! ```no_run
 //! use settle::sweep::{sweep, vary, Axis, SweepOptions, VaryOptions};
@@ -56,7 +58,7 @@ mod tests;
 mod values;
 pub mod vary;
 
-pub use api::{sweep, SweepResult};
+pub use api::{sweep, sweep_cases, sweep_merge, sweep_part, SweepPart, SweepResult};
 pub(crate) use args::Args;
 pub(crate) use cases::run_cases;
 pub use plan::{grid, Case, Plan, SweepOptions, DEFAULT_PER_DECADE, DEFAULT_TOL};
@@ -64,10 +66,11 @@ pub use report::Recommended;
 pub(crate) use table::finish;
 pub use table::{Row, Status};
 pub use values::Shard;
-pub use vary::{vary, Axis, Level, VaryOptions, VaryResult};
+pub use vary::{
+    vary, vary_cases, vary_merge, vary_part, Axis, Level, VaryOptions, VaryPart, VaryResult,
+};
 
 use analysis::rayleigh_time_of;
-use cases::run;
 use report::{results, Context};
 use shards::PART_PREFIX;
 #[cfg(test)]
@@ -84,6 +87,7 @@ use std::path::{Path, PathBuf};
 pub(crate) use analysis::summarise;
 #[cfg(test)]
 pub(crate) use plan::{dt_range, shard};
+#[cfg(test)]
 use table::HEADER;
 #[cfg(test)]
 pub(crate) use table::{from_csv, to_csv};
@@ -136,15 +140,7 @@ fn sweep_file(p: &Prepared, plan: &Plan, out: &Path, quiet: bool) -> Result<(), 
         }
         return Ok(());
     };
-    let cases = plan.cases_to_run();
-    let bar = crate::progress::bar(
-        cases.len() as u64,
-        &p.common.name,
-        "cases, {per_sec},",
-        quiet,
-    );
-    let rows = run(p, plan, &|| bar.inc(1))?;
-    bar.finish_and_clear();
+    let rows = api::run_with_bar(p, plan, !quiet)?;
     let dir = out.join(format!("{}_sweep", p.common.name));
     std::fs::create_dir_all(&dir).map_err(|e| Error::Io(dir.clone(), e))?;
     let file = dir.join(format!("{PART_PREFIX}{index}_of_{count}.csv"));
@@ -190,13 +186,7 @@ fn merge_dt(args: &Args) -> Result<(), Error> {
         .map(|f| prepare(f, None, &args.set))
         .transpose()?;
     let files = shards::read_parts(&args.merge, PART_PREFIX, |f| {
-        let head = std::fs::read_to_string(f).map_err(|e| e.to_string())?;
-        if head.lines().next() != Some(HEADER.join(",").as_str()) {
-            return Err(
-                "not a sweep part table: its first line is not the header of sweep.csv".into(),
-            );
-        }
-        table::from_csv(head.as_bytes()).map_err(|e| format!("not a sweep part table: {e}"))
+        api::parse_part(&std::fs::read_to_string(f).map_err(|e| e.to_string())?)
     })?;
     if files.is_empty() {
         let dirs: Vec<String> = args.merge.iter().map(|d| d.display().to_string()).collect();

@@ -1,9 +1,13 @@
 //! The library's `settle::sweep::sweep` and `vary` against `settle sweep`: the same tables (each
 //! table's CSV bytes are the file's, the wall times aside), the same charts and console lines,
-//! the same files written, and the command line's errors for bad options.
+//! the same files written, and the command line's errors for bad options. The parts of a split
+//! sweep (`sweep_part`/`vary_part`, sent as text) merge into the whole sweep, cell for cell.
 
 use crate::common::{settle, tmp, tree};
-use settle::sweep::{sweep, vary, Axis, SweepOptions, VaryOptions};
+use settle::sweep::{
+    sweep, sweep_cases, sweep_merge, sweep_part, vary, vary_cases, vary_merge, vary_part, Axis,
+    SweepOptions, SweepPart, VaryOptions, VaryPart,
+};
 use settle::{Error, Scenario, Table};
 use std::path::{Path, PathBuf};
 
@@ -312,4 +316,198 @@ fn bad_vary_axes_are_the_command_lines_errors() {
         "fluid.viscosity_pa_s=3e-3,4e-3",
     ]);
     assert_eq!(format!("error: {e}"), cli.trim_end());
+}
+
+/// Every table of `a` equals that of `b` (wall times aside), and they have the same files.
+fn assert_same_outputs(a: &settle::Outputs, b: &settle::Outputs) {
+    let names = |o: &settle::Outputs| -> Vec<String> {
+        o.tables()
+            .iter()
+            .map(|t| t.name().to_string())
+            .chain(o.files().iter().map(|(n, _)| n.clone()))
+            .collect()
+    };
+    assert_eq!(names(a), names(b));
+    for t in a.tables() {
+        let other = b.get(t.name()).unwrap().to_csv().unwrap();
+        assert!(
+            without_wall_times(t.name(), &t.to_csv().unwrap())
+                == without_wall_times(t.name(), &other),
+            "{} differs between the merged parts and the whole sweep",
+            t.name()
+        );
+    }
+}
+
+/// A console line without its wall-time column (the 4th word of a case's line).
+fn wall_free(l: &str) -> String {
+    let mut w: Vec<&str> = l.split_whitespace().collect();
+    if w.len() > 3 && ["explicit", "implicit", "exponential"].contains(&w[0]) {
+        w[3] = "";
+    }
+    w.join(" ")
+}
+
+/// The 6 cases of a dt sweep split into 4 parts (shards of 2, 2, 1 and 1 cases), each sent as
+/// the text of its part file and merged in reverse order: every table (wall times aside), the
+/// wall-time-free chart, the recommended dt, the warnings and the console lines equal those of
+/// the whole sweep. A part's text is the part file `settle sweep --shard I/N` writes.
+#[test]
+fn the_parts_of_a_dt_sweep_merge_into_the_whole_sweep() {
+    let file = scenario("stokes_single.toml");
+    let s = Scenario::load(&file).unwrap();
+    let opts = SweepOptions {
+        dts: vec![1e-3, 1e-4, 1e-5],
+        integrators: vec!["explicit".into(), "exponential".into()],
+        ..SweepOptions::default()
+    };
+    assert_eq!(sweep_cases(&s, &opts).unwrap().len(), 6);
+    let whole = sweep(&s, &opts).unwrap();
+    let texts: Vec<String> = (1..=4)
+        .map(|i| sweep_part(&s, &opts, i, 4).unwrap().to_csv().unwrap())
+        .collect();
+    let parts: Vec<SweepPart> = (1..=4)
+        .rev()
+        .map(|i| SweepPart::from_csv(i, 4, &texts[i - 1]).unwrap())
+        .collect();
+    assert_eq!(
+        parts[3].rows.len(),
+        2 * 3,
+        "shard 1/4: 2 cases × 3 quantities"
+    );
+    let merged = sweep_merge(&s, &opts, parts).unwrap();
+    assert_eq!(merged.name(), whole.name());
+    assert_eq!(merged.plan, whole.plan);
+    assert_eq!(merged.recommended, whole.recommended);
+    assert_eq!(merged.warnings, whole.warnings);
+    assert_same_outputs(&merged.outputs, &whole.outputs);
+    assert_eq!(
+        merged.outputs.bytes("quantity_vs_dt.svg"),
+        whole.outputs.bytes("quantity_vs_dt.svg")
+    );
+    let lines = |r: &settle::sweep::SweepResult| -> Vec<String> {
+        r.lines.iter().map(|l| wall_free(l)).collect()
+    };
+    assert_eq!(lines(&merged), lines(&whole));
+    // The text of part 2/4 is the part file of `settle sweep --shard 2/4` (wall times aside).
+    let out = tmp();
+    cli_sweep(
+        &[
+            file.to_str().unwrap(),
+            "--dt",
+            "1e-3,1e-4,1e-5",
+            "--integrator",
+            "explicit,exponential",
+            "--shard",
+            "2/4",
+            "-q",
+        ],
+        out.path(),
+    );
+    let part_file = out.path().join("stokes_single_sweep/sweep_part_2_of_4.csv");
+    let name = "sweep_part_2_of_4.csv";
+    assert!(
+        without_wall_times(name, texts[1].as_bytes())
+            == without_wall_times(name, &std::fs::read(part_file).unwrap()),
+        "{}",
+        texts[1]
+    );
+}
+
+/// Parts that are not one whole split are refused, each saying what is wrong, and nothing is
+/// merged: a shard missing or given twice, parts of two splits, an index out of 1..=N, no
+/// parts, a part of another grid, a text that is not a part file.
+#[test]
+fn incomplete_or_foreign_parts_are_refused() {
+    let s = Scenario::load(scenario("stokes_single.toml")).unwrap();
+    let opts = SweepOptions {
+        dts: vec![1e-3, 1e-4],
+        integrators: vec!["exponential".into()],
+        ..SweepOptions::default()
+    };
+    let part = |i, n| sweep_part(&s, &opts, i, n).unwrap();
+    let refused = |parts: Vec<SweepPart>| match sweep_merge(&s, &opts, parts) {
+        Err(e @ Error::BadInput(_)) => e.to_string(),
+        other => panic!("{other:?}"),
+    };
+    let e = refused(vec![part(1, 3), part(3, 3)]);
+    assert!(e.contains("1 of 3 shards missing (2)"), "{e}");
+    assert!(e.contains("nothing merged"), "{e}");
+    let e = refused(vec![part(1, 2), part(2, 2), part(2, 2)]);
+    assert!(e.contains("shards 2 given more than once"), "{e}");
+    let e = refused(vec![part(1, 2), part(2, 3)]);
+    assert!(e.contains("a split into 2 and of a split into 3"), "{e}");
+    let e = refused(vec![]);
+    assert!(e.contains("no parts"), "{e}");
+    let e = refused(vec![SweepPart {
+        index: 0,
+        ..part(1, 1)
+    }]);
+    assert!(e.contains("0/1") && e.contains("--shard"), "{e}");
+    let e = sweep_part(&s, &opts, 3, 2).unwrap_err().to_string();
+    assert!(e.contains("3/2") && e.contains("1 ≤ I ≤ N"), "{e}");
+    let other = SweepOptions {
+        dts: vec![1e-3, 2e-4],
+        ..opts.clone()
+    };
+    let foreign = sweep_part(&s, &other, 2, 2).unwrap();
+    let e = refused(vec![part(1, 2), foreign]);
+    assert!(
+        e.contains("outside the grid") && e.contains("dt 0.0002 s"),
+        "{e}"
+    );
+    let e = SweepPart::from_csv(1, 2, "a,b\n1,2\n")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("not a sweep part table") && e.contains("1/2"),
+        "{e}"
+    );
+    // The whole split merges.
+    assert!(sweep_merge(&s, &opts, vec![part(2, 2), part(1, 2)]).is_ok());
+}
+
+/// A parameter sweep of 2 viscosities × 2 drag laws (a numeric and a categorical axis) split
+/// into 3 parts sent as text: the merge equals the whole sweep, table (wall times aside),
+/// charts byte for byte and console lines; vary_cases lists its 4 points, and a part of other
+/// axes is refused.
+#[test]
+fn the_parts_of_a_parameter_sweep_merge_into_the_whole_sweep() {
+    let s = Scenario::load(scenario("stokes_single.toml")).unwrap();
+    let axes = [
+        Axis::parse("fluid.viscosity_pa_s=0.001,0.004").unwrap(),
+        Axis::parse("drag.law=stokes,dallavalle").unwrap(),
+    ];
+    let opts = VaryOptions::default();
+    let points = vary_cases(&s, &axes).unwrap();
+    assert_eq!(points.len(), 4);
+    assert_eq!(points[1][1].to_string(), "stokes");
+    let whole = vary(&s, &axes, &opts).unwrap();
+    let parts: Vec<VaryPart> = [3, 1, 2]
+        .into_iter()
+        .map(|i| {
+            let text = vary_part(&s, &axes, &opts, i, 3).unwrap().to_csv().unwrap();
+            VaryPart::from_csv(i, 3, &text).unwrap()
+        })
+        .collect();
+    let merged = vary_merge(&s, &axes, &opts, parts.clone()).unwrap();
+    assert_eq!(merged.name(), whole.name());
+    assert_same_outputs(&merged.outputs, &whole.outputs);
+    for (name, bytes) in whole.outputs.files() {
+        if name.ends_with(".svg") {
+            assert_eq!(merged.outputs.bytes(name).as_ref(), Some(bytes), "{name}");
+        }
+    }
+    assert_eq!(merged.lines, whole.lines);
+    assert_eq!(merged.warnings, whole.warnings);
+    let other = [Axis::parse("fluid.viscosity_pa_s=0.001,0.002").unwrap()];
+    let foreign = vary_part(&s, &other, &opts, 1, 3).unwrap();
+    let mut mixed = parts.clone();
+    mixed[1] = foreign;
+    let e = vary_merge(&s, &axes, &opts, mixed).unwrap_err().to_string();
+    assert!(e.contains("varies fluid.viscosity_pa_s where"), "{e}");
+    let e = vary_merge(&s, &axes, &opts, parts[..2].to_vec())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("1 of 3 shards missing (2)"), "{e}");
 }

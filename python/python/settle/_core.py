@@ -109,6 +109,17 @@ class Scenario:
     def __repr__(self) -> str:
         return f"<settle.Scenario {self.name!r} kind={self.kind!r} from {self.path!r}>"
 
+    def __reduce__(self) -> Any:
+        """Pickles as the effective scenario (:meth:`to_toml`) and its path: unpickled, it runs
+        as this one does (its overrides applied, not listed); its input files are read again
+        where it is unpickled, from their absolute paths."""
+        return (_scenario_from_toml, (self.to_toml(), self.path))
+
+
+def _scenario_from_toml(text: str, origin: str) -> Scenario:
+    """The scenario of a pickle (:meth:`Scenario.__reduce__`)."""
+    return Scenario.from_toml(text, origin)
+
 
 def _toml_loads(text: str) -> Dict[str, Any]:
     if sys.version_info >= (3, 11):

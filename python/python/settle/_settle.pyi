@@ -91,6 +91,45 @@ def vary(
     axes: List[Tuple[str, Union[str, List[str]]]],
     progress: Optional[ProgressCallback] = None,
 ) -> Output: ...
+def sweep_cases(
+    scenario: Scenario,
+    dt: Optional[List[float]],
+    dt_range: Optional[Tuple[float, float]],
+    per_decade: Optional[int],
+    integrators: Optional[List[str]],
+    tol: Optional[float],
+) -> int: ...
+def sweep_part(
+    scenario: Scenario,
+    dt: Optional[List[float]],
+    dt_range: Optional[Tuple[float, float]],
+    per_decade: Optional[int],
+    integrators: Optional[List[str]],
+    tol: Optional[float],
+    index: int,
+    count: int,
+) -> str: ...
+def sweep_merge(
+    scenario: Scenario,
+    dt: Optional[List[float]],
+    dt_range: Optional[Tuple[float, float]],
+    per_decade: Optional[int],
+    integrators: Optional[List[str]],
+    tol: Optional[float],
+    parts: List[Tuple[int, int, str]],
+) -> Output: ...
+def vary_cases(scenario: Scenario, axes: List[Tuple[str, Union[str, List[str]]]]) -> int: ...
+def vary_part(
+    scenario: Scenario,
+    axes: List[Tuple[str, Union[str, List[str]]]],
+    index: int,
+    count: int,
+) -> str: ...
+def vary_merge(
+    scenario: Scenario,
+    axes: List[Tuple[str, Union[str, List[str]]]],
+    parts: List[Tuple[int, int, str]],
+) -> Output: ...
 
 # --- end of sweep.rs ---
 

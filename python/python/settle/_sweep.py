@@ -7,8 +7,9 @@ from __future__ import annotations
 import numbers
 from typing import Any, List, Mapping, Optional, Sequence, Tuple, Union
 
-from . import _progress, _settle
+from . import _executor, _progress, _settle
 from ._core import Output, Overrides, PathLike, Scenario, _scenario
+from ._executor import Executor
 
 #: The values of one ``vary`` axis: the grid text of ``--vary KEY=GRID`` after the ``=``
 #: (``"10:40:13"``, ``"log:1e-3:1e-1:5"``, ``"off,basset"``) or a sequence of values.
@@ -37,6 +38,20 @@ def _value_text(key: str, v: Any) -> str:
     raise TypeError(f"{key}: a value of an axis is a number, a str or a bool, not {v!r}")
 
 
+def _executor_of(executor: Optional[Executor], parts: Optional[int]) -> Optional[Executor]:
+    """``executor`` if the sweep is to be spread over it (checked), else None."""
+    if executor is None:
+        if parts is not None:
+            raise ValueError("parts: only with an executor (the number of shards it runs)")
+        return None
+    if not callable(getattr(executor, "submit", None)):
+        raise TypeError(
+            f"executor: an object with submit(fn, *args) (a concurrent.futures.Executor), "
+            f"not {executor!r}"
+        )
+    return executor
+
+
 def sweep(
     scenario: Union[Scenario, PathLike],
     *,
@@ -48,6 +63,8 @@ def sweep(
     overrides: Overrides = None,
     out: Optional[PathLike] = None,
     progress: _progress.Progress = None,
+    executor: Optional[Executor] = None,
+    parts: Optional[int] = None,
 ) -> Output:
     """A time-step sweep, as ``settle sweep``: the scenario (a :class:`Scenario` or the path of
     a scenario file) runs at every (integrator, dt) of the grid, in parallel, with the GIL
@@ -61,7 +78,19 @@ def sweep(
     the command line's default: the scenario's ``[sweep]`` table, else every integrator and
     tol = 0.01 (the time steps have no default). ``overrides``: ``{key: value}`` or
     ``["KEY=VALUE"]`` (``--set``). ``out``: also write ``out/<name>_sweep/`` (``--out``).
-    ``progress``: as for :func:`settle.run`.
+    ``progress``: as for :func:`settle.run` (with an executor, a bar over the parts done).
+
+    ``executor``: spread the cases over other processes or machines: any object with
+    ``submit(fn, *args)`` returning a future with ``done()``, ``result()`` and ``cancel()`` (a
+    ``concurrent.futures.ProcessPoolExecutor``, Dask's ``distributed.Client(...).get_executor()``,
+    submitit's ``AutoExecutor``/``SlurmExecutor``). The options are checked here first (a bad
+    one raises before anything is submitted); the grid is split into ``parts`` shards (``settle
+    sweep --shard I/N``; default one per case, at most 64; never more than the cases), each
+    submitted as one task given the scenario as the text of :meth:`Scenario.to_toml` (its input
+    files as absolute paths: the workers must see them) and returning its part as CSV text; the
+    parts are merged here (``--merge``). The result equals the serial call's, cell for cell (wall times aside). A
+    settle error in a task is raised here as the serial call raises it; Ctrl-C cancels the
+    parts not yet done. ``parts`` without an executor is an error.
 
     The result's ``tables`` are ``sweep`` and ``recommended_dt`` (``sweep.csv`` and
     ``recommended_dt.csv``), its ``files`` the charts and ``report.html``, its ``lines`` what
@@ -80,8 +109,12 @@ def sweep(
     rng = None if dt_range is None else (float(dt_range[0]), float(dt_range[1]))
     per = None if per_decade is None else int(per_decade)
     tol_ = None if tol is None else float(tol)
-    with _progress.bar(progress) as cb:
-        inner = _settle.sweep(s._inner, dts, rng, per, names, tol_, cb)
+    ex = _executor_of(executor, parts)
+    if ex is not None:
+        inner = _executor.sweep(ex, s, (dts, rng, per, names, tol_), parts, progress)
+    else:
+        with _progress.bar(progress) as cb:
+            inner = _settle.sweep(s._inner, dts, rng, per, names, tol_, cb)
     r = Output(inner)
     if out is not None:
         r.write(out)
@@ -95,6 +128,8 @@ def vary(
     overrides: Overrides = None,
     out: Optional[PathLike] = None,
     progress: _progress.Progress = None,
+    executor: Optional[Executor] = None,
+    parts: Optional[int] = None,
 ) -> Output:
     """A parameter sweep, as ``settle sweep --vary``: the scenario runs once per point of the
     full grid of ``grid`` (``{key: values}``, in order: the first key is outermost and the
@@ -104,7 +139,8 @@ def vary(
     The values of a key: the grid text of ``--vary KEY=GRID`` (``"10:40:13"``: 13 values from
     10 to 40; ``"log:1e-3:1e-1:5"``; ``"off,basset"``), or a sequence of numbers (in the key's
     unit), words or booleans. ``out``: also write ``out/<name>_vary/`` (``--out``).
-    ``progress``: as for :func:`settle.run`.
+    ``progress``: as for :func:`settle.run` (with an executor, a bar over the parts done).
+    ``executor``, ``parts``: spread the cases over an executor, as for :func:`settle.sweep`.
 
     The result's ``tables["vary"]`` is ``vary.csv`` (one row per case and body), its ``files``
     one chart per result quantity and ``report.html``, its ``warnings`` the cases that went
@@ -124,8 +160,12 @@ def vary(
             axes.append((str(key), values))
         else:
             axes.append((str(key), [_value_text(str(key), v) for v in values]))
-    with _progress.bar(progress) as cb:
-        inner = _settle.vary(s._inner, axes, cb)
+    ex = _executor_of(executor, parts)
+    if ex is not None:
+        inner = _executor.vary(ex, s, axes, parts, progress)
+    else:
+        with _progress.bar(progress) as cb:
+            inner = _settle.vary(s._inner, axes, cb)
     r = Output(inner)
     if out is not None:
         r.write(out)

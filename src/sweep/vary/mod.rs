@@ -12,6 +12,7 @@
 //! From Rust, [`vary()`] runs a parameter sweep of a [`crate::Scenario`] in memory: the axes
 //! as `--vary` gives them ([`Axis::parse`]) or as lists of values ([`Axis::list`]); its
 //! [`VaryResult`] holds every table and chart, and [`VaryResult::write`] writes the folder.
+//! [`vary_part`] and [`vary_merge`] are `--shard` and `--merge` in memory.
 //!
 //! | file | job |
 //! |---|---|
@@ -27,7 +28,9 @@ mod grid;
 pub(crate) mod plan;
 mod table;
 
-pub use api::{vary, VaryOptions, VaryResult};
+pub use api::{
+    vary, vary_cases, vary_merge, vary_part, VaryOptions, VaryPart, VaryResult, PART_PREFIX,
+};
 pub use chart::unit_of;
 pub use grid::{Axis, Level, Spacing, MAX_CASES, VARY_ALLOWED};
 pub use table::{VaryRow, VaryTable};
@@ -38,11 +41,8 @@ use super::args::Args;
 use super::values::Shard;
 use crate::error::Error;
 use crate::run::prepare;
-use plan::{results, run, VaryPlan};
+use plan::{results, VaryPlan};
 use std::path::{Path, PathBuf};
-
-/// Name prefix of the part files of a sharded parameter sweep.
-pub const PART_PREFIX: &str = "vary_part_";
 
 /// `settle sweep --vary …`: plans every scenario (every case validated), checks the output
 /// folders, then sweeps each into `OUT/<name>_vary/` (or its shard's part file).
@@ -79,9 +79,7 @@ fn sweep_file(plan: VaryPlan, out: &Path, quiet: bool) -> Result<(), Error> {
         return Ok(());
     };
     let name = &plan.base.common.name;
-    let bar = crate::progress::bar(plan.cases.len() as u64, name, "cases, {per_sec},", quiet);
-    let table = run(&plan, &|| bar.inc(1))?;
-    bar.finish_and_clear();
+    let table = api::run_with_bar(&plan, !quiet)?;
     let dir = out.join(plan.folder());
     std::fs::create_dir_all(&dir).map_err(|e| Error::Io(dir.clone(), e))?;
     let file = dir.join(format!("{PART_PREFIX}{index}_of_{count}.csv"));

@@ -196,7 +196,13 @@ impl VaryTable {
 
     /// Reads a table written by [`VaryTable::write`]; the error says what is wrong.
     pub fn read(path: &Path) -> Result<Self, String> {
-        let mut rdr = csv::Reader::from_path(path).map_err(|e| e.to_string())?;
+        Self::from_csv(std::fs::File::open(path).map_err(|e| e.to_string())?)
+    }
+
+    /// Reads the CSV text of a table ([`VaryTable::write`]'s bytes); the error says what is
+    /// wrong.
+    pub fn from_csv(text: impl io::Read) -> Result<Self, String> {
+        let mut rdr = csv::Reader::from_reader(text);
         let header: Vec<String> = rdr
             .headers()
             .map_err(|e| e.to_string())?
