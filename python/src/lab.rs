@@ -76,7 +76,7 @@ fn reduce(
 #[pyo3(signature = (
     readings, model="ideal-stokes".to_string(), bins=None, diameters_um=None,
     lambda_="discrepancy".to_string(), resolution=Vec::new(), repeats=100, seed=1,
-    bounds=false, out=None
+    bounds=None, out=None
 ))]
 #[allow(clippy::too_many_arguments)]
 fn invert(
@@ -89,7 +89,7 @@ fn invert(
     resolution: Vec<f64>,
     repeats: usize,
     seed: u64,
-    bounds: bool,
+    bounds: Option<f64>,
     out: Option<PathBuf>,
 ) -> PyResult<Output> {
     let readings: Vec<Readings> = readings.into_iter().map(Readings::from).collect();
@@ -101,7 +101,7 @@ fn invert(
         resolution,
         repeats,
         seed,
-        bounds: bounds.then_some(settle::invert::DEFAULT_BOUNDS_CONFIDENCE),
+        bounds,
     };
     // computed apart, written after: a computation stopped by Ctrl-C never writes
     let r = blocking(py, None, move || settle::invert::invert(&readings, &opts))?;

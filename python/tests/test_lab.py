@@ -208,6 +208,20 @@ def test_invert_of_a_dataframe_equals_settle_invert(tmp_path: Path) -> None:
     assert_same_as_folder(r, folder)
 
 
+def test_invert_bounds_at_a_confidence_equals_settle_invert(tmp_path: Path) -> None:
+    f = LAB / "envalysis_clayloam_d422.csv"
+    cli("invert", str(f), "--bounds=0.99", "--repeats", "0", "--out", str(tmp_path / "cli"))
+    folder = tmp_path / "cli" / "envalysis_clayloam_d422_inverted"
+    r = settle.invert(f, bounds=0.99, repeats=0)
+    assert_same_as_folder(r, folder)
+    assert "bounds_confidence = 0.99" in (folder / "invert.toml").read_text()
+    msg = cli_error("invert", str(f), "--bounds=1.5")
+    with pytest.raises(settle.ScenarioError) as e:
+        settle.invert(f, bounds=1.5)
+    assert str(e.value) == msg
+    assert e.value.key == "--bounds"
+
+
 def test_invert_bad_option_is_the_command_lines_error() -> None:
     f = LAB / "envalysis_clayloam_d422.csv"
     for option, value, kw in [

@@ -118,6 +118,13 @@ def reduce(
     )
 
 
+def _bounds(bounds: Union[bool, float]) -> Optional[float]:
+    """``bounds=`` of :func:`invert` as ``--bounds[=P]`` takes it: None (off), 0.95 or P."""
+    if isinstance(bounds, bool):
+        return 0.95 if bounds else None
+    return float(bounds)
+
+
 def invert(
     readings: Union[ReadingsLike, Sequence[ReadingsLike]],
     *,
@@ -128,7 +135,7 @@ def invert(
     resolution: Union[float, Sequence[float], None] = None,
     repeats: int = 100,
     seed: int = 1,
-    bounds: bool = False,
+    bounds: Union[bool, float] = False,
     out: Optional[PathLike] = None,
 ) -> Output:
     """``settle invert``: the grain-size distribution that explains one or several
@@ -139,7 +146,8 @@ def invert(
     defaults: ``model`` (``ideal-stokes``, ``full``), ``bins`` (2–200; default twice the
     readings, 8–30), ``diameters_um`` (``"LO:HI"`` or ``(lo, hi)``, µm), ``lambda_``
     (``--lambda``: ``discrepancy``, ``gcv`` or a number ≥ 0), ``resolution`` (one for every
-    file or one per file), ``repeats``, ``seed``, ``bounds``. ``out``: also write
+    file or one per file), ``repeats``, ``seed``, ``bounds`` (``--bounds[=P]``: ``True`` for
+    the strict bounds at confidence 0.95, a number 0 < P < 1 for another). ``out``: also write
     ``out/<stem>_inverted/``.
 
     Returns an :class:`Output` with the tables ``inverted``, ``misfit`` and ``standard``.
@@ -172,7 +180,7 @@ def invert(
             resolution=res,
             repeats=repeats,
             seed=seed,
-            bounds=bool(bounds),
+            bounds=_bounds(bounds),
             out=None if out is None else os.fspath(out),
         )
     )

@@ -153,7 +153,7 @@ def invert(
     resolution: List[float] = ...,
     repeats: int = 100,
     seed: int = 1,
-    bounds: bool = False,
+    bounds: Optional[float] = None,
     out: Optional[str] = None,
 ) -> Output: ...
 def laws(
