@@ -167,16 +167,54 @@ pub fn representative_grains(
         }
         let k = ((n as f64 * c.mass_fraction).round() as usize).max(1);
         let weight = real_count(c, mass_kg, density_kg_m3) / k as f64;
-        for _ in 0..k {
-            grains.push(Grain {
-                x_m: 0.0,
-                y_m: 0.0,
-                diameter_m: c.diameter_m,
-                weight,
-                class: i,
-            });
-        }
+        push_class(&mut grains, c, i, k, weight);
     }
+    place(grains, width_m, height_m, seed)
+}
+
+/// The number of real grains of a sample of mass `mass_kg` over `classes`: Σ round(nᵢ) of
+/// [`real_count`] (what [`real_grains`] makes).
+pub fn real_total(classes: &[SizeClass], mass_kg: f64, density_kg_m3: f64) -> usize {
+    classes
+        .iter()
+        .map(|c| real_count(c, mass_kg, density_kg_m3).round() as usize)
+        .sum()
+}
+
+/// Every real grain of a sample of mass `mass_kg` (the modelled part), each of weight 1
+/// (`sample.particles = "real"`): class i gets round(nᵢ) grains ([`real_count`], seed eq. 15),
+/// so the mass simulated differs from `mass_kg` only by that rounding (below half a grain per
+/// class). Shuffled and placed as [`representative_grains`] places them.
+pub fn real_grains(
+    classes: &[SizeClass],
+    mass_kg: f64,
+    density_kg_m3: f64,
+    width_m: f64,
+    height_m: f64,
+    seed: u64,
+) -> Vec<Grain> {
+    let mut grains = Vec::with_capacity(real_total(classes, mass_kg, density_kg_m3));
+    for (i, c) in classes.iter().enumerate() {
+        let k = real_count(c, mass_kg, density_kg_m3).round() as usize;
+        push_class(&mut grains, c, i, k, 1.0);
+    }
+    place(grains, width_m, height_m, seed)
+}
+
+/// Appends `k` grains of class `c` (index `i`), each of weight `weight`, at the origin.
+fn push_class(grains: &mut Vec<Grain>, c: &SizeClass, i: usize, k: usize, weight: f64) {
+    grains.extend((0..k).map(|_| Grain {
+        x_m: 0.0,
+        y_m: 0.0,
+        diameter_m: c.diameter_m,
+        weight,
+        class: i,
+    }));
+}
+
+/// Shuffles `grains` (seeded) and places them by stratified random sampling in a √n × √n grid
+/// of cells of the width_m × height_m rectangle.
+fn place(mut grains: Vec<Grain>, width_m: f64, height_m: f64, seed: u64) -> Vec<Grain> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     grains.shuffle(&mut rng);
     let m = (grains.len() as f64).sqrt().ceil() as usize;
@@ -237,6 +275,37 @@ mod tests {
             .map(|x| real_count(x, m, rho) * rho * PI * x.diameter_m.powi(3) / 6.0)
             .sum();
         assert!((mass / m - 1.0).abs() < 1e-12);
+    }
+
+    /// `particles = "real"`: every grain has weight 1, class i holds round(nᵢ) grains (seed eq.
+    /// 15), and the mass differs from the sample's only by that rounding (at most half a grain
+    /// of each class). A sample of 1.3e-5 kg of sample 5 in the 1/180 wedges: ~23 000 grains.
+    #[test]
+    fn real_grains_are_every_grain_at_weight_one() {
+        let c = discretize(&sample5(), 220);
+        let (m, rho) = (1.3e-5 / 180.0, 2500.0);
+        let g = real_grains(&c, m, rho, 0.0635, 0.457, 7);
+        assert_eq!(g.len(), real_total(&c, m, rho));
+        assert!(g.len() > 10_000, "{}", g.len());
+        assert!(g.iter().all(|x| x.weight == 1.0));
+        let mut per_class = vec![0usize; c.len()];
+        for x in &g {
+            per_class[x.class] += 1;
+            assert!(x.x_m > 0.0 && x.x_m < 0.0635 && x.y_m > 0.0 && x.y_m < 0.457);
+        }
+        let mut slack = 0.0;
+        for (i, k) in per_class.iter().enumerate() {
+            assert_eq!(*k, real_count(&c[i], m, rho).round() as usize, "class {i}");
+            slack += 0.5 * rho * PI * c[i].diameter_m.powi(3) / 6.0;
+        }
+        let mass: f64 = g
+            .iter()
+            .map(|x| rho * PI * x.diameter_m.powi(3) / 6.0)
+            .sum();
+        assert!(
+            (mass - m).abs() <= slack,
+            "{mass} kg against {m} kg ± {slack}"
+        );
     }
 
     #[test]

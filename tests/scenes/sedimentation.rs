@@ -51,3 +51,85 @@ fn an_explicit_blow_up_stops_the_run_instead_of_filling_the_bed() {
         "nothing written"
     );
 }
+
+/// Issue 28, item 3: `sample.particles = "real"` simulates every real grain of the modelled
+/// wedges at weight 1 (here 1e-6 kg of sample 5: 27 000 grains): the summary counts as many
+/// grains as real ones and every weight is 1; `run.toml` records the word, and a rerun from it
+/// writes the same readings. A word other than `real` and a real count beyond any machine's
+/// memory are refused naming the key (the second with the memory estimate).
+#[test]
+fn real_particles_simulate_every_grain_at_weight_one() {
+    use crate::common::{assert_exit, read_csv_records};
+    let dir = tmp();
+    let sets = [
+        "sample.particles=real",
+        "sample.mass_kg=1e-6",
+        "time.end_s=600",
+        "sample.contacts=false",
+        "sample.lubrication=false",
+    ];
+    let mut cmd = settle();
+    cmd.args(["run", "scenarios/sedimentation_sample5.toml", "-q", "--out"])
+        .arg(dir.path().join("a"));
+    for s in sets {
+        cmd.args(["--set", s]);
+    }
+    assert_exit(&cmd.output().unwrap(), 0);
+    let run = dir.path().join("a/sedimentation_sample5");
+    let summary: std::collections::HashMap<String, String> =
+        read_csv_records(&run.join("summary.csv"))
+            .into_iter()
+            .map(|r| (r["quantity"].clone(), r["value"].clone()))
+            .collect();
+    let n: f64 = summary["representative_grains"].parse().unwrap();
+    assert!(n > 10_000.0, "{n} grains");
+    assert_eq!(
+        summary["real_grains_modelled"],
+        summary["representative_grains"]
+    );
+    assert_eq!(summary["weight_min"].parse::<f64>().unwrap(), 1.0);
+    assert_eq!(summary["weight_max"].parse::<f64>().unwrap(), 1.0);
+    let record = std::fs::read_to_string(run.join("run.toml")).unwrap();
+    assert!(record.contains("particles = \"real\""), "{record}");
+    let o = settle()
+        .arg("run")
+        .arg(run.join("run.toml"))
+        .args(["-q", "--out"])
+        .arg(dir.path().join("b"))
+        .output()
+        .unwrap();
+    assert_exit(&o, 0);
+    for f in ["readings.csv", "readings_pipette.csv", "summary.csv"] {
+        let a = std::fs::read(run.join(f)).unwrap();
+        let b = std::fs::read(dir.path().join("b/sedimentation_sample5").join(f)).unwrap();
+        assert!(a == b, "{f} differs after a rerun from run.toml");
+    }
+    for (set, words) in [
+        (
+            "sample.particles=many",
+            &["sample.particles", "\"real\""][..],
+        ),
+        (
+            "sample.mass_kg=1",
+            &["sample.particles", "GB of memory"][..],
+        ),
+    ] {
+        let o = settle()
+            .args(["run", "scenarios/sedimentation_sample2.toml", "--set"])
+            .arg(if set.starts_with("sample.mass") {
+                "sample.particles=real"
+            } else {
+                set
+            })
+            .args(["--set", set, "--out"])
+            .arg(dir.path().join("c"))
+            .output()
+            .unwrap();
+        assert_exit(&o, 2);
+        let err = String::from_utf8_lossy(&o.stderr);
+        for w in words {
+            assert!(err.contains(w), "{set}: {err}");
+        }
+        assert!(!dir.path().join("c").exists(), "{set}: wrote a folder");
+    }
+}

@@ -3,7 +3,9 @@
 //! viscosity, and the default record times.
 
 use crate::error::BadInput;
-use crate::sample::{discretize, representative_grains, Distribution, Grain, SizeClass};
+use crate::sample::{
+    discretize, real_grains, representative_grains, Distribution, Grain, SizeClass,
+};
 use crate::scenario::{Common, Contacts, SceneSpec, SedimentationSpec};
 
 /// Largest travel of the fastest grain of a contact cluster per Rapier step, in diameters of
@@ -121,15 +123,26 @@ pub fn setup_with(common: &Common, spec: &SedimentationSpec, distribution: Distr
     let (width, height) = (spec.width_m, spec.height_m);
     let classes = discretize(&distribution, sm.n_diameters);
     let model_mass = sm.mass_kg * sm.wedge_fraction;
-    let grains = representative_grains(
-        &classes,
-        sm.particles,
-        model_mass,
-        sm.density_kg_m3,
-        width,
-        height,
-        sm.seed,
-    );
+    let grains = if sm.real_grains {
+        real_grains(
+            &classes,
+            model_mass,
+            sm.density_kg_m3,
+            width,
+            height,
+            sm.seed,
+        )
+    } else {
+        representative_grains(
+            &classes,
+            sm.particles,
+            model_mass,
+            sm.density_kg_m3,
+            width,
+            height,
+            sm.seed,
+        )
+    };
     Setup {
         distribution,
         classes,

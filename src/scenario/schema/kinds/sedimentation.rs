@@ -1,6 +1,7 @@
 //! Kind `sedimentation`: the methods and checks of `[sample]` and `[instruments]` (which read
 //! the whole scenario), and the kind's spec. The tables are in `tables/sedimentation.rs`.
 
+use super::super::tables::sedimentation::REAL_PARTICLES;
 use super::super::{within_run, Contacts, Container, Dim, InstrumentsSpec, SampleSpec, Scenario};
 use crate::error::BadInput;
 use crate::instruments::hydrometer::{Hydrometer, HydrometerSpec};
@@ -381,12 +382,23 @@ pub(crate) fn spec(c: &Check, s: &Scenario) -> Result<SedimentationSpec, BadInpu
     if s.instruments.is_some() {
         instruments.check(c, s, sm, h, b)?;
     }
+    let distribution = read_sample(sm, c.file)?;
+    let mut sample = sm.clone();
+    if sample.particles == REAL_PARTICLES {
+        // Every real grain of the modelled part, weight 1: the memory and time this takes are
+        // the run's cost estimate's to refuse, naming sample.particles.
+        let classes = crate::sample::discretize(&distribution, sample.n_diameters);
+        let model_mass_kg = sample.mass_kg * sample.wedge_fraction;
+        sample.particles =
+            crate::sample::real_total(&classes, model_mass_kg, sample.density_kg_m3).max(1);
+        sample.real_grains = true;
+    }
     Ok(SedimentationSpec {
-        sample: sm.clone(),
+        sample,
         width_m: b,
         height_m: h,
         instruments,
         contacts: s.contacts.clone(),
-        distribution: read_sample(sm, c.file)?,
+        distribution,
     })
 }

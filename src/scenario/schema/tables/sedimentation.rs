@@ -87,9 +87,20 @@ pub struct SampleSpec {
     #[serde(default = "default_n_diameters")]
     pub n_diameters: usize,
     /// Number of representative grains N simulated; each carries a statistical weight (the
-    /// number of real grains it stands for). Default 100 000.
-    #[serde(default = "default_particles")]
+    /// number of real grains it stands for). Default 100 000. `"real"` in the scenario file:
+    /// every real grain of the modelled part, each of weight 1 ([`crate::sample::real_grains`]);
+    /// read as [`REAL_PARTICLES`] and resolved to the real count by the kind's spec, which then
+    /// sets [`SampleSpec::real_grains`].
+    #[serde(
+        default = "default_particles",
+        deserialize_with = "particles::read",
+        serialize_with = "particles::write"
+    )]
     pub particles: usize,
+    /// Whether `particles` counts every real grain (`particles = "real"`): set by the kind's
+    /// spec, never read from the file.
+    #[serde(skip)]
+    pub real_grains: bool,
     /// Seed of the stratified random placement. Default 0.
     #[serde(default)]
     pub seed: u64,
@@ -162,6 +173,42 @@ fn default_lub_inner() -> f64 {
 fn default_n_diameters() -> usize {
     220
 }
+/// `particles = "real"` as read from the file, before the kind's spec resolves it.
+pub const REAL_PARTICLES: usize = usize::MAX;
+
+/// `sample.particles`: a whole number, or the word `"real"` ([`REAL_PARTICLES`]).
+mod particles {
+    use super::REAL_PARTICLES;
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    #[derive(Deserialize)]
+    #[serde(untagged)]
+    enum Given {
+        Count(usize),
+        Word(String),
+    }
+
+    pub fn read<'de, D: Deserializer<'de>>(d: D) -> Result<usize, D::Error> {
+        match Given::deserialize(d)
+            .map_err(|_| serde::de::Error::custom("allowed: a whole number ≥ 1 or \"real\""))?
+        {
+            Given::Count(n) => Ok(n),
+            Given::Word(w) if w.trim().eq_ignore_ascii_case("real") => Ok(REAL_PARTICLES),
+            Given::Word(w) => Err(serde::de::Error::custom(format!(
+                "\"{w}\": allowed a whole number ≥ 1 or \"real\" (every real grain, weight 1)"
+            ))),
+        }
+    }
+
+    pub fn write<S: Serializer>(n: &usize, s: S) -> Result<S::Ok, S::Error> {
+        if *n == REAL_PARTICLES {
+            s.serialize_str("real")
+        } else {
+            s.serialize_u64(*n as u64)
+        }
+    }
+}
+
 fn default_particles() -> usize {
     100_000
 }
