@@ -281,7 +281,7 @@ fn full_physics_with_contacts_accounts_for_every_grain() {
     use crate::fluid::sphere_volume_m3;
     use crate::scenes::sedimentation::{setup, simulate, OnRecord, State};
     use std::path::Path;
-    // Sample 1, 20 000 grains, full physics with contacts and lubrication, 120 s. Tolerances:
+    // Sample 1, 15 000 grains, full physics with contacts and lubrication, 120 s. Tolerances:
     // at every record time the suspended plus deposited solid volume equals the sample's to
     // 1e-12 (relative), every grain lies inside the cylinder (x within [r, B − r], y within
     // [bed − 1 % d, H]), the run found close pairs and resolved them in Rapier, and fewer than
@@ -289,7 +289,7 @@ fn full_physics_with_contacts_accounts_for_every_grain() {
     // by more than 1 % of the smaller diameter at a record time (measured 0.14 %), where the
     // same run without contacts has dozens of pairs inside each other by more than 5 %.
     let ov: Vec<String> = vec![
-        "sample.particles=20000".into(),
+        "sample.particles=15000".into(),
         "time.end_s=120".into(),
         "time.dt_s=10".into(),
         "sample.record_times_s=[10.0, 30.0, 60.0, 120.0]".into(),

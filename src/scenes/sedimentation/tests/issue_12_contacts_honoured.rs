@@ -13,7 +13,7 @@ fn tmp() -> tempfile::TempDir {
     tempfile::tempdir().expect("temp dir")
 }
 
-/// A short run of sample 1 (10 000 grains, 300 s: thousands of close pairs), with an optional
+/// A short run of sample 1 (5 000 grains, 120 s: hundreds of close pairs), with an optional
 /// `[contacts]` table written beside the scenario.
 fn run(contacts: Option<&str>) -> (State, GrainContacts) {
     let dir = tmp();
@@ -29,9 +29,9 @@ fn run(contacts: Option<&str>) -> (State, GrainContacts) {
     let path = dir.path().join("s.toml");
     std::fs::write(&path, text).unwrap();
     let ov = vec![
-        "sample.particles=10000".to_string(),
-        "time.end_s=300.0".to_string(),
-        "sample.record_times_s=[300.0]".to_string(),
+        "sample.particles=5000".to_string(),
+        "time.end_s=120.0".to_string(),
+        "sample.record_times_s=[120.0]".to_string(),
         "sample.snapshot_times_s=[]".to_string(),
         "sample.contacts=true".to_string(),
     ];
