@@ -79,6 +79,9 @@ struct Kind {
     stokes_m_s: f64,
 }
 
+/// Entries per task of [`Suspension::write_back`].
+const WRITE_BACK_GRAINS: usize = 1 << 15;
+
 /// The `cell` of an entry whose grain has settled.
 const GONE: u32 = u32::MAX;
 
@@ -168,7 +171,8 @@ impl Suspension {
     pub fn fill(&mut self, grid: &mut VoidageGrid) {
         let cells = grid.cell_count();
         let n = fill_part_grains(cells);
-        self.parts.resize_with(self.cell.len().div_ceil(n), Vec::new);
+        self.parts
+            .resize_with(self.cell.len().div_ceil(n), Vec::new);
         let kinds = &self.kinds;
         self.parts
             .par_iter_mut()
@@ -329,19 +333,34 @@ impl Suspension {
         self.kind.truncate(n);
     }
 
-    /// Writes the heights and speeds of the suspended grains into `st`.
+    /// Writes the heights and speeds of the suspended grains into `st`, in parallel by chunks
+    /// of [`WRITE_BACK_GRAINS`] entries: the indices ascend, so each chunk writes its own range
+    /// of the state's grains.
     pub fn write_back(&self, st: &mut State) {
-        for (((&i, &y), &v), _) in self
-            .index
-            .iter()
-            .zip(&self.y_m)
-            .zip(&self.v_m_s)
-            .zip(&self.cell)
-            .filter(|(_, &c)| c != GONE)
-        {
-            st.grains[i as usize].y_m = y;
-            st.velocity_m_s[i as usize] = v;
+        let n = WRITE_BACK_GRAINS;
+        let len = self.index.len();
+        let mut tasks = Vec::with_capacity(len.div_ceil(n));
+        let (mut grains, mut speeds) = (&mut st.grains[..], &mut st.velocity_m_s[..]);
+        let mut base = 0;
+        for lo in (0..len).step_by(n) {
+            let end = self
+                .index
+                .get(lo + n)
+                .map_or(base + grains.len(), |&i| i as usize);
+            let (g, g_rest) = std::mem::take(&mut grains).split_at_mut(end - base);
+            let (v, v_rest) = std::mem::take(&mut speeds).split_at_mut(end - base);
+            tasks.push((lo, base, g, v));
+            (grains, speeds, base) = (g_rest, v_rest, end);
         }
+        tasks.into_par_iter().for_each(|(lo, base, g, v)| {
+            for j in lo..len.min(lo + n) {
+                if self.cell[j] != GONE {
+                    let i = self.index[j] as usize - base;
+                    g[i].y_m = self.y_m[j];
+                    v[i] = self.v_m_s[j];
+                }
+            }
+        });
     }
 }
 

@@ -197,6 +197,12 @@ impl VoidageGrid {
         self.set_solid(solid);
     }
 
+    /// The solid volume of the suspended grains per cell, m³, as the last fill left it.
+    #[cfg(test)]
+    pub fn solid_m3(&self) -> &[f64] {
+        &self.solid_m3
+    }
+
     /// Number of cells of the grid.
     pub fn cell_count(&self) -> usize {
         self.solid_m3.len()
