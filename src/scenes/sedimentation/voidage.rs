@@ -11,9 +11,6 @@ use crate::fluid::hindered::richardson_zaki_drag_factor;
 use crate::fluid::{sphere_mass_kg, sphere_volume_m3, DragLaw, HinderedLaw, SphereDrag};
 use rayon::prelude::*;
 
-/// Cells per task of the parallel passes over the cells ([`VoidageGrid::fill_parts`]).
-const FILL_CELLS: usize = 1024;
-
 /// The grid of solid volume per cell (real units, m³) and the drag it gives.
 #[derive(Clone, Debug)]
 pub struct VoidageGrid {
@@ -194,54 +191,11 @@ impl VoidageGrid {
         for (c, v) in cells_volumes {
             solid[c] += v;
         }
-        self.set_solid(solid);
-    }
-
-    /// The solid volume of the suspended grains per cell, m³, as the last fill left it.
-    #[cfg(test)]
-    pub fn solid_m3(&self) -> &[f64] {
-        &self.solid_m3
-    }
-
-    /// Number of cells of the grid.
-    pub fn cell_count(&self) -> usize {
-        self.solid_m3.len()
-    }
-
-    /// Refills the grid with the solid volumes (m³) of `parts`, each the solid volume per cell
-    /// of a part of the grains ([`VoidageGrid::cell_count`] values, or none for an empty part),
-    /// summed part by part in the order given: cell c holds ((0 + parts[0][c]) + parts[1][c]) + ….
-    /// A single part gives its own sums exactly. Parallel over the cells; the order of the sums
-    /// does not depend on the threads.
-    pub fn fill_parts(&mut self, parts: &[Vec<f64>]) {
-        let mut solid = std::mem::take(&mut self.solid_m3);
-        solid
-            .par_chunks_mut(FILL_CELLS)
-            .enumerate()
-            .for_each(|(k, out)| {
-                out.iter_mut().for_each(|x| *x = 0.0);
-                let (lo, len) = (k * FILL_CELLS, out.len());
-                for p in parts.iter().filter(|p| !p.is_empty()) {
-                    for (x, &v) in out.iter_mut().zip(&p[lo..lo + len]) {
-                        *x += v;
-                    }
-                }
-            });
-        self.set_solid(solid);
-    }
-
-    /// Stores `solid` (m³ per cell) and the voidage it gives.
-    fn set_solid(&mut self, solid: Vec<f64>) {
         if self.is_di_felice() {
             let cell_volume_m3 = self.cell_volume_m3;
-            self.voidage
-                .par_chunks_mut(FILL_CELLS)
-                .zip(solid.par_chunks(FILL_CELLS))
-                .for_each(|(es, ss)| {
-                    for (e, &s) in es.iter_mut().zip(ss) {
-                        *e = voidage_of(s, cell_volume_m3);
-                    }
-                });
+            for (e, &s) in self.voidage.iter_mut().zip(&solid) {
+                *e = voidage_of(s, cell_volume_m3);
+            }
         }
         self.solid_m3 = solid;
     }
