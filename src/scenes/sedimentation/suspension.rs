@@ -53,6 +53,17 @@ pub struct Suspension {
     /// `reach_m` of the bed surface (ascending), and the largest speed of the others (each the
     /// larger of its speed and its Stokes terminal speed), m/s.
     near_bed: Vec<(Vec<u32>, f64)>,
+    /// Per part of the entries ([`Suspension::fill`]), the solid volume of its suspended
+    /// grains per voidage cell, m³.
+    parts: Vec<Vec<f64>>,
+}
+
+/// The entries per part of the voidage fill ([`Suspension::fill`]) in a grid of `cells` cells:
+/// at least 2¹⁶, and sixteen per cell so that zeroing and adding the parts (`cells` values
+/// each, streamed) costs little beside summing the grains (a scattered add each). A function
+/// of the grid only: the same sums whatever the threads.
+pub fn fill_part_grains(cells: usize) -> usize {
+    (1 << 16).max(16 * cells)
 }
 
 /// The constants of the grains of one size class, diameter and weight. SI units.
@@ -151,18 +162,42 @@ impl Suspension {
         self.len() == 0
     }
 
-    /// Refills `grid` with the solid volume of the suspended grains, summed in grain order (as
-    /// [`VoidageGrid::fill`]). Serial: summing in parallel (per-part sums added in order, the
-    /// same bits whatever the threads) was measured no faster on the shared 2-core machine
-    /// (docs/validation/performance.md, issue 28).
-    pub fn fill(&self, grid: &mut VoidageGrid) {
-        grid.fill_cells(
-            self.cell
-                .iter()
-                .zip(&self.kind)
-                .filter(|(&c, _)| c != GONE)
-                .map(|(&c, &k)| (c as usize, self.kinds[k as usize].volume_m3)),
-        );
+    /// Refills `grid` with the solid volume of the suspended grains: in parallel, each part of
+    /// [`fill_part_grains`] consecutive entries sums its grains per cell in grain order, then
+    /// [`VoidageGrid::fill_parts`] adds the parts in order. The order of every sum depends on the
+    /// grains and the grid only, not on the threads; with one part (up to
+    /// [`fill_part_grains`] entries) it is grain order, as [`VoidageGrid::fill`] sums; with
+    /// more, a sum's last digits may differ from grain order's.
+    pub fn fill(&mut self, grid: &mut VoidageGrid) {
+        let cells = grid.cell_count();
+        let n = fill_part_grains(cells);
+        self.parts
+            .resize_with(self.cell.len().div_ceil(n), Vec::new);
+        let kinds = &self.kinds;
+        let sum = |((solid, cs), ks): ((&mut Vec<f64>, &[u32]), &[u32])| {
+            solid.clear();
+            solid.resize(cells, 0.0);
+            for (&c, &k) in cs.iter().zip(ks) {
+                if c != GONE {
+                    solid[c as usize] += kinds[k as usize].volume_m3;
+                }
+            }
+        };
+        if self.parts.len() > 1 {
+            self.parts
+                .par_iter_mut()
+                .zip(self.cell.par_chunks(n))
+                .zip(self.kind.par_chunks(n))
+                .for_each(sum);
+        } else {
+            // One part: on this thread (no hand-over to the pool), the same sums.
+            self.parts
+                .iter_mut()
+                .zip(self.cell.chunks(n))
+                .zip(self.kind.chunks(n))
+                .for_each(sum);
+        }
+        grid.fill_parts(&self.parts);
     }
 
     /// The free update of every suspended grain over `dt_s` ([`free_step`] with [`CellDrag`]) above the
