@@ -90,7 +90,7 @@ pub fn simulate_on(
 
 /// The voidage grid of a run of `setup` with the step constants `stepper`, from `st` (its
 /// grains' terminal-state tables).
-fn voidage_grid(setup: &Setup, stepper: &Stepper, st: &State) -> VoidageGrid {
+pub(super) fn voidage_grid(setup: &Setup, stepper: &Stepper, st: &State) -> VoidageGrid {
     let sm = &setup.spec.sample;
     VoidageGrid::new(
         setup,

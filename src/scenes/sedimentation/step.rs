@@ -33,12 +33,22 @@ pub struct StepStart {
 }
 
 impl StepStart {
-    /// Keeps the heights and speeds of every grain of `st`.
+    /// Keeps the heights and speeds of every grain of `st` (in parallel, by chunks of
+    /// [`INTERRUPT_CHECK_GRAINS`] grains: copies only).
     pub fn capture(&mut self, st: &State) {
-        self.y_m.clear();
-        self.y_m.extend(st.grains.iter().map(|g| g.y_m));
-        self.v_m_s.clear();
-        self.v_m_s.extend_from_slice(&st.velocity_m_s);
+        let (n, len) = (INTERRUPT_CHECK_GRAINS, st.grains.len());
+        self.y_m.resize(len, 0.0);
+        self.v_m_s.resize(len, 0.0);
+        self.y_m
+            .par_chunks_mut(n)
+            .zip(self.v_m_s.par_chunks_mut(n))
+            .zip(st.grains.par_chunks(n).zip(st.velocity_m_s.par_chunks(n)))
+            .for_each(|((ys, vs), (gs, v0))| {
+                for (y, g) in ys.iter_mut().zip(gs) {
+                    *y = g.y_m;
+                }
+                vs.copy_from_slice(v0);
+            });
     }
 
     /// Keeps the heights, speeds and settled flags of every grain of `st` (before an
@@ -58,15 +68,17 @@ impl StepStart {
 
     /// Puts every grain of `st` back at its captured height and speed.
     pub fn rewind(&self, st: &mut State) {
-        for ((g, v), (&y0, &v0)) in st
-            .grains
-            .iter_mut()
-            .zip(st.velocity_m_s.iter_mut())
-            .zip(self.y_m.iter().zip(&self.v_m_s))
-        {
-            g.y_m = y0;
-            *v = v0;
-        }
+        let n = INTERRUPT_CHECK_GRAINS;
+        st.grains
+            .par_chunks_mut(n)
+            .zip(st.velocity_m_s.par_chunks_mut(n))
+            .zip(self.y_m.par_chunks(n).zip(self.v_m_s.par_chunks(n)))
+            .for_each(|((gs, vs), (y0, v0))| {
+                for (g, &y) in gs.iter_mut().zip(y0) {
+                    g.y_m = y;
+                }
+                vs.copy_from_slice(v0);
+            });
     }
 }
 

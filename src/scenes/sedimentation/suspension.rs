@@ -53,6 +53,17 @@ pub struct Suspension {
     /// `reach_m` of the bed surface (ascending), and the largest speed of the others (each the
     /// larger of its speed and its Stokes terminal speed), m/s.
     near_bed: Vec<(Vec<u32>, f64)>,
+    /// Per part of the entries ([`Suspension::fill`]), the solid volume of its suspended
+    /// grains per voidage cell, m³.
+    parts: Vec<Vec<f64>>,
+}
+
+/// The entries per part of the voidage fill ([`Suspension::fill`]) in a grid of `cells` cells:
+/// at least 2¹⁶, and sixteen per cell so that zeroing and adding the parts (`cells` values
+/// each, streamed) costs little beside summing the grains (a scattered add each). A function
+/// of the grid only: the same sums whatever the threads.
+pub fn fill_part_grains(cells: usize) -> usize {
+    (1 << 16).max(16 * cells)
 }
 
 /// The constants of the grains of one size class, diameter and weight. SI units.
@@ -67,6 +78,9 @@ struct Kind {
     /// Stokes terminal speed ([`Stepper::stokes_speed_m_s`]), m/s.
     stokes_m_s: f64,
 }
+
+/// Entries per task of [`Suspension::write_back`].
+const WRITE_BACK_GRAINS: usize = 1 << 15;
 
 /// The `cell` of an entry whose grain has settled.
 const GONE: u32 = u32::MAX;
@@ -148,16 +162,42 @@ impl Suspension {
         self.len() == 0
     }
 
-    /// Refills `grid` with the solid volume of the suspended grains, summed in grain order (as
-    /// [`VoidageGrid::fill`]).
-    pub fn fill(&self, grid: &mut VoidageGrid) {
-        grid.fill_cells(
-            self.cell
-                .iter()
-                .zip(&self.kind)
-                .filter(|(&c, _)| c != GONE)
-                .map(|(&c, &k)| (c as usize, self.kinds[k as usize].volume_m3)),
-        );
+    /// Refills `grid` with the solid volume of the suspended grains: in parallel, each part of
+    /// [`fill_part_grains`] consecutive entries sums its grains per cell in grain order, then
+    /// [`VoidageGrid::fill_parts`] adds the parts in order. The order of every sum depends on the
+    /// grains and the grid only, not on the threads; with one part (up to
+    /// [`fill_part_grains`] entries) it is grain order, as [`VoidageGrid::fill`] sums; with
+    /// more, a sum's last digits may differ from grain order's.
+    pub fn fill(&mut self, grid: &mut VoidageGrid) {
+        let cells = grid.cell_count();
+        let n = fill_part_grains(cells);
+        self.parts
+            .resize_with(self.cell.len().div_ceil(n), Vec::new);
+        let kinds = &self.kinds;
+        let sum = |((solid, cs), ks): ((&mut Vec<f64>, &[u32]), &[u32])| {
+            solid.clear();
+            solid.resize(cells, 0.0);
+            for (&c, &k) in cs.iter().zip(ks) {
+                if c != GONE {
+                    solid[c as usize] += kinds[k as usize].volume_m3;
+                }
+            }
+        };
+        if self.parts.len() > 1 {
+            self.parts
+                .par_iter_mut()
+                .zip(self.cell.par_chunks(n))
+                .zip(self.kind.par_chunks(n))
+                .for_each(sum);
+        } else {
+            // One part: on this thread (no hand-over to the pool), the same sums.
+            self.parts
+                .iter_mut()
+                .zip(self.cell.chunks(n))
+                .zip(self.kind.chunks(n))
+                .for_each(sum);
+        }
+        grid.fill_parts(&self.parts);
     }
 
     /// The free update of every suspended grain over `dt_s` ([`free_step`] with [`CellDrag`]) above the
@@ -303,19 +343,34 @@ impl Suspension {
         self.kind.truncate(n);
     }
 
-    /// Writes the heights and speeds of the suspended grains into `st`.
+    /// Writes the heights and speeds of the suspended grains into `st`, in parallel by chunks
+    /// of [`WRITE_BACK_GRAINS`] entries: the indices ascend, so each chunk writes its own range
+    /// of the state's grains.
     pub fn write_back(&self, st: &mut State) {
-        for (((&i, &y), &v), _) in self
-            .index
-            .iter()
-            .zip(&self.y_m)
-            .zip(&self.v_m_s)
-            .zip(&self.cell)
-            .filter(|(_, &c)| c != GONE)
-        {
-            st.grains[i as usize].y_m = y;
-            st.velocity_m_s[i as usize] = v;
+        let n = WRITE_BACK_GRAINS;
+        let len = self.index.len();
+        let mut tasks = Vec::with_capacity(len.div_ceil(n));
+        let (mut grains, mut speeds) = (&mut st.grains[..], &mut st.velocity_m_s[..]);
+        let mut base = 0;
+        for lo in (0..len).step_by(n) {
+            let end = self
+                .index
+                .get(lo + n)
+                .map_or(base + grains.len(), |&i| i as usize);
+            let (g, g_rest) = std::mem::take(&mut grains).split_at_mut(end - base);
+            let (v, v_rest) = std::mem::take(&mut speeds).split_at_mut(end - base);
+            tasks.push((lo, base, g, v));
+            (grains, speeds, base) = (g_rest, v_rest, end);
         }
+        tasks.into_par_iter().for_each(|(lo, base, g, v)| {
+            for j in lo..len.min(lo + n) {
+                if self.cell[j] != GONE {
+                    let i = self.index[j] as usize - base;
+                    g[i].y_m = self.y_m[j];
+                    v[i] = self.v_m_s[j];
+                }
+            }
+        });
     }
 }
 

@@ -191,6 +191,38 @@ impl VoidageGrid {
         for (c, v) in cells_volumes {
             solid[c] += v;
         }
+        self.set_solid(solid);
+    }
+
+    /// The solid volume of the suspended grains per cell, m³, as the last fill left it.
+    #[cfg(test)]
+    pub fn solid_m3(&self) -> &[f64] {
+        &self.solid_m3
+    }
+
+    /// Number of cells of the grid.
+    pub fn cell_count(&self) -> usize {
+        self.solid_m3.len()
+    }
+
+    /// Refills the grid with the solid volumes (m³) of `parts`, each the solid volume per cell
+    /// of a part of the grains ([`VoidageGrid::cell_count`] values, or none for an empty part),
+    /// summed part by part in the order given: cell c holds ((0 + parts[0][c]) + parts[1][c]) + ….
+    /// A single part gives its own sums exactly. Serial: a grid holds a few thousand cells,
+    /// less work than a hand-over to the thread pool costs on a busy machine.
+    pub fn fill_parts(&mut self, parts: &[Vec<f64>]) {
+        let mut solid = std::mem::take(&mut self.solid_m3);
+        solid.iter_mut().for_each(|x| *x = 0.0);
+        for p in parts.iter().filter(|p| !p.is_empty()) {
+            for (x, &v) in solid.iter_mut().zip(p) {
+                *x += v;
+            }
+        }
+        self.set_solid(solid);
+    }
+
+    /// Stores `solid` (m³ per cell) and the voidage it gives.
+    fn set_solid(&mut self, solid: Vec<f64>) {
         if self.is_di_felice() {
             let cell_volume_m3 = self.cell_volume_m3;
             for (e, &s) in self.voidage.iter_mut().zip(&solid) {

@@ -6,5 +6,6 @@ mod contacts;
 mod ideal_stokes;
 mod instruments;
 mod issue_12_contacts_honoured;
+mod packed;
 
 pub(super) use crate::scenes::tests::prepare;
