@@ -179,25 +179,40 @@ pub const REAL_PARTICLES: usize = usize::MAX;
 /// `sample.particles`: a whole number, or the word `"real"` ([`REAL_PARTICLES`]).
 mod particles {
     use super::REAL_PARTICLES;
-    use serde::{Deserialize, Deserializer, Serializer};
+    use serde::de::{self, Visitor};
+    use serde::{Deserializer, Serializer};
 
-    #[derive(Deserialize)]
-    #[serde(untagged)]
-    enum Given {
-        Count(usize),
-        Word(String),
+    /// A count or the word `real`. Asked for as a u64, so that a schema walker sees a number;
+    /// TOML hands a string to `visit_str`.
+    struct Count;
+
+    const ALLOWED: &str = "allowed: a whole number ≥ 1 or \"real\" (every real grain, weight 1)";
+
+    impl Visitor<'_> for Count {
+        type Value = usize;
+        fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+            f.write_str(ALLOWED)
+        }
+        fn visit_u64<E: de::Error>(self, n: u64) -> Result<usize, E> {
+            usize::try_from(n).map_err(|_| E::custom(format!("{n}: {ALLOWED}")))
+        }
+        fn visit_i64<E: de::Error>(self, n: i64) -> Result<usize, E> {
+            usize::try_from(n).map_err(|_| E::custom(format!("{n}: {ALLOWED}")))
+        }
+        fn visit_f64<E: de::Error>(self, x: f64) -> Result<usize, E> {
+            Err(E::custom(format!("{x}: {ALLOWED}")))
+        }
+        fn visit_str<E: de::Error>(self, w: &str) -> Result<usize, E> {
+            if w.trim().eq_ignore_ascii_case("real") {
+                Ok(REAL_PARTICLES)
+            } else {
+                Err(E::custom(format!("\"{w}\": {ALLOWED}")))
+            }
+        }
     }
 
     pub fn read<'de, D: Deserializer<'de>>(d: D) -> Result<usize, D::Error> {
-        match Given::deserialize(d)
-            .map_err(|_| serde::de::Error::custom("allowed: a whole number ≥ 1 or \"real\""))?
-        {
-            Given::Count(n) => Ok(n),
-            Given::Word(w) if w.trim().eq_ignore_ascii_case("real") => Ok(REAL_PARTICLES),
-            Given::Word(w) => Err(serde::de::Error::custom(format!(
-                "\"{w}\": allowed a whole number ≥ 1 or \"real\" (every real grain, weight 1)"
-            ))),
-        }
+        d.deserialize_u64(Count)
     }
 
     pub fn write<S: Serializer>(n: &usize, s: S) -> Result<S::Ok, S::Error> {
