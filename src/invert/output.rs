@@ -133,15 +133,12 @@ fn chart(r: &InvertResult) -> Chart {
         .iter()
         .filter_map(|p| p.bounds.map(|(lo, hi)| (um(p.diameter_m), lo, hi)))
         .collect();
-    if !bounds.is_empty() {
+    if let Some(p) = r.options.bounds.filter(|_| !bounds.is_empty()) {
         c = c.band(Band {
             label: format!(
-                "strict bounds at {} % (every curve with χ² ≤ {})",
-                crate::io::fmt::short(100.0 * r.options.bounds.unwrap_or_default()),
-                crate::io::fmt::short(super::solve::chi2_bar(
-                    r.misfit.len(),
-                    r.options.bounds.unwrap_or(0.5)
-                ))
+                "strict bounds, {} % (χ² ≤ {})",
+                crate::io::fmt::short(100.0 * p),
+                crate::io::fmt::sig_trim(super::solve::chi2_bar(r.misfit.len(), p), 4)
             ),
             points: bounds,
             shade: 0.07,
@@ -280,7 +277,7 @@ pub fn warnings(r: &InvertResult) -> Vec<String> {
              {m} readings) at {} of {} diameters, so the strict bounds there are empty (— in \
              the table): the readings scatter more than their resolution allows for this model. \
              Check the readings, give a larger --resolution, or try another --model",
-            crate::io::fmt::short(super::solve::chi2_bar(m, p)),
+            crate::io::fmt::sig_trim(super::solve::chi2_bar(m, p), 4),
             crate::io::fmt::short(100.0 * p),
             empty,
             r.curve.len()

@@ -173,7 +173,9 @@ impl Linear {
             let w = simplex_qp(&q, &(&g - &cv * (sign * mu)), None);
             (self.chi2(&w), cv.dot(&DVector::from_column_slice(&w)))
         };
-        if at(0.0, 1.0).0 > chi2_max {
+        // w(0): the feasible point of least χ² (μ = 0, either sign).
+        let (least_chi2, at_least) = at(0.0, 1.0);
+        if least_chi2 > chi2_max {
             return None;
         }
         // μ up to 10⁶ s: beyond, the linear term swamps the quadratic one in simplex_qp and
@@ -183,18 +185,18 @@ impl Linear {
         // feasible point of least χ², w(0).
         let extreme = |sign: f64| {
             let (lo, hi) = ((1e-12 * s).ln(), (1e6 * s).ln());
-            if at(hi.exp(), sign).0 <= chi2_max {
-                return at(hi.exp(), sign).1;
+            let (chi2_hi, extreme_hi) = at(hi.exp(), sign);
+            if chi2_hi <= chi2_max {
+                return extreme_hi;
             }
             if at(lo.exp(), sign).0 > chi2_max {
-                return at(0.0, sign).1;
+                return at_least;
             }
             let (lo, _) = bisect(lo, hi, Bisection::halvings(48), |mid| {
                 at(mid.exp(), sign).0 <= chi2_max
             });
             at(lo.exp(), sign).1
         };
-        let at_least = at(0.0, 1.0).1;
         Some((extreme(1.0).min(at_least), extreme(-1.0).max(at_least)))
     }
 
