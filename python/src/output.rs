@@ -59,11 +59,7 @@ impl Output {
 
     /// The names of the files that are not tables (charts, pages, records).
     fn file_names(&self) -> Vec<String> {
-        self.outputs
-            .files()
-            .iter()
-            .map(|(n, _)| n.clone())
-            .collect()
+        self.outputs.file_names().map(str::to_string).collect()
     }
 
     /// The bytes of the file `name` (a chart's SVG text, a record's TOML), or None.

@@ -181,7 +181,7 @@ pub fn extract(m: &Measurement, table: &Table) -> Result<f64, String> {
             header.join(", ")
         )
     })?;
-    let row = select(m, header, rows)?;
+    let row = select(m, header, &rows)?;
     let cell = &rows[row][col];
     cell.parse::<f64>()
         .ok()

@@ -13,6 +13,15 @@ pub const MARKER: &str = ".settle-run";
 /// other's half-written file (issue 8 regression: two funnel repeats saving their first checkpoint at once
 /// both wrote `request.toml.tmp`; the second rename found nothing and the run failed).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> io::Result<()> {
+    write_atomic_with(path, &|w: &mut dyn io::Write| w.write_all(bytes))
+}
+
+/// [`write_atomic`] of the bytes `write` writes (buffered), for a file too large to hold in
+/// memory first: the temporary file is removed when `write` fails.
+pub fn write_atomic_with(
+    path: &Path,
+    write: &dyn Fn(&mut dyn io::Write) -> io::Result<()>,
+) -> io::Result<()> {
     static COUNTER: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
     let n = COUNTER.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let name = path
@@ -20,8 +29,12 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> io::Result<()> {
         .map(|f| f.to_string_lossy().into_owned())
         .unwrap_or_default();
     let tmp = path.with_file_name(format!("{name}.{}-{n}{TMP_SUFFIX}", std::process::id()));
-    fs::write(&tmp, bytes)?;
-    fs::rename(&tmp, path).inspect_err(|_| {
+    let written = fs::File::create(&tmp).and_then(|f| {
+        let mut w = io::BufWriter::new(f);
+        write(&mut w)?;
+        io::Write::flush(&mut w)
+    });
+    written.and_then(|()| fs::rename(&tmp, path)).inspect_err(|_| {
         let _ = fs::remove_file(&tmp);
     })
 }

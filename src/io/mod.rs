@@ -27,7 +27,7 @@ pub mod xlsx;
 pub use atomic::{is_tmp_of, write_atomic, MARKER, TMP_SUFFIX};
 pub use outputs::Outputs;
 pub use owner::{check_destination_for, Owner};
-pub use table::{Column, Table};
+pub use table::{Cells, Column, Table};
 
 use std::fs;
 use std::io;

@@ -8,6 +8,7 @@ use super::chart::Chart;
 use super::table::Table;
 use std::io;
 use std::path::Path;
+use std::sync::Arc;
 
 /// Tables and files of one run, in the order they were made. Names are relative to the run's
 /// folder (`summary.csv`, `charts/velocity.svg`); a later entry of the same name replaces an
@@ -15,9 +16,44 @@ use std::path::Path;
 #[derive(Clone, Debug, Default)]
 pub struct Outputs {
     tables: Vec<Table>,
-    files: Vec<(String, Vec<u8>)>,
+    files: Vec<(String, FileBody)>,
     figures: Vec<(String, Figure)>,
     owner: Option<super::owner::Owner>,
+}
+
+/// Writes the bytes of a file made when it is written or read ([`Outputs::made_file`]).
+pub type MakeFile = dyn Fn(&mut dyn io::Write) -> io::Result<()> + Send + Sync;
+
+/// The bytes of a file of [`Outputs`]: held, or made when the file is written or read.
+#[derive(Clone)]
+enum FileBody {
+    /// The bytes.
+    Bytes(Vec<u8>),
+    /// What writes them.
+    Made(Arc<MakeFile>),
+}
+
+impl std::fmt::Debug for FileBody {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            FileBody::Bytes(b) => write!(f, "Bytes({} B)", b.len()),
+            FileBody::Made(_) => f.write_str("Made"),
+        }
+    }
+}
+
+impl FileBody {
+    /// The bytes (made now for a made file).
+    fn bytes(&self) -> io::Result<Vec<u8>> {
+        match self {
+            FileBody::Bytes(b) => Ok(b.clone()),
+            FileBody::Made(make) => {
+                let mut b = Vec::new();
+                make(&mut b)?;
+                Ok(b)
+            }
+        }
+    }
 }
 
 impl Outputs {
@@ -45,9 +81,19 @@ impl Outputs {
 
     /// Adds a file that is not a table (replacing one of the same name).
     pub fn file(&mut self, name: impl Into<String>, bytes: impl Into<Vec<u8>>) {
-        let name = name.into();
+        self.put_file(name.into(), FileBody::Bytes(bytes.into()));
+    }
+
+    /// Adds a file that is not a table, whose bytes `make` writes when the file is written or
+    /// read (replacing one of the same name): for a file as large as its data (a snapshot's
+    /// VTK points), which is then never held whole in memory.
+    pub fn made_file(&mut self, name: impl Into<String>, make: Arc<MakeFile>) {
+        self.put_file(name.into(), FileBody::Made(make));
+    }
+
+    fn put_file(&mut self, name: String, body: FileBody) {
         self.files.retain(|(n, _)| *n != name);
-        self.files.push((name, bytes.into()));
+        self.files.push((name, body));
     }
 
     /// Adds the chart `c` as the SVG file `name`.
@@ -101,7 +147,7 @@ impl Outputs {
             self.table(t);
         }
         for (n, b) in other.files {
-            self.file(n, b);
+            self.put_file(n, b);
         }
         for (n, f) in other.figures {
             self.figure(n, f);
@@ -123,12 +169,13 @@ impl Outputs {
             .find(|t| t.name() == name || t.stem() == name)
     }
 
-    /// The files that are not tables: (name, bytes).
-    pub fn files(&self) -> &[(String, Vec<u8>)] {
-        &self.files
+    /// The names of the files that are not tables, in the order they were made.
+    pub fn file_names(&self) -> impl Iterator<Item = &str> {
+        self.files.iter().map(|(n, _)| n.as_str())
     }
 
-    /// The bytes of the file `name` (a table's CSV bytes when `name` is a table's file name).
+    /// The bytes of the file `name` (a table's CSV bytes when `name` is a table's file name;
+    /// a made file's made now), or None when there is no such file or it could not be made.
     pub fn bytes(&self, name: &str) -> Option<Vec<u8>> {
         if let Some(t) = self.tables.iter().find(|t| t.name() == name) {
             return t.to_csv().ok();
@@ -136,7 +183,7 @@ impl Outputs {
         self.files
             .iter()
             .find(|(n, _)| n == name)
-            .map(|(_, b)| b.clone())
+            .and_then(|(_, b)| b.bytes().ok())
     }
 
     /// True when nothing was made.
@@ -148,10 +195,13 @@ impl Outputs {
     /// sub-folders as needed; each file atomically (written beside, then renamed).
     pub fn write_into(&self, dir: &Path) -> io::Result<()> {
         for t in &self.tables {
-            write_file(dir, t.name(), &t.to_csv()?)?;
+            write_file(dir, t.name(), &|w| t.write_csv(w))?;
         }
         for (n, b) in &self.files {
-            write_file(dir, n, b)?;
+            match b {
+                FileBody::Bytes(b) => write_file(dir, n, &|w| w.write_all(b))?,
+                FileBody::Made(make) => write_file(dir, n, &**make)?,
+            }
         }
         Ok(())
     }
@@ -165,12 +215,16 @@ impl Outputs {
     }
 }
 
-fn write_file(dir: &Path, name: &str, bytes: &[u8]) -> io::Result<()> {
+fn write_file(
+    dir: &Path,
+    name: &str,
+    write: &dyn Fn(&mut dyn io::Write) -> io::Result<()>,
+) -> io::Result<()> {
     let path = dir.join(name);
     if let Some(parent) = path.parent() {
         std::fs::create_dir_all(parent)?;
     }
-    super::atomic::write_atomic(&path, bytes)
+    super::atomic::write_atomic_with(&path, write)
 }
 
 fn read_into(dir: &Path, prefix: &str, out: &mut Outputs) -> io::Result<()> {
@@ -212,10 +266,20 @@ mod tests {
         t.push(vec!["1".into()]);
         o.table(t.clone());
         o.file("sub/x.txt", "hello");
+        o.made_file(
+            "sub/made.txt",
+            Arc::new(|w: &mut dyn io::Write| w.write_all(b"made on demand")),
+        );
+        assert_eq!(o.bytes("sub/made.txt").unwrap(), b"made on demand");
         o.write_into(&dir).unwrap();
         let back = Outputs::read_dir(&dir).unwrap();
         assert_eq!(back.get("summary"), Some(&t));
         assert_eq!(back.bytes("sub/x.txt").unwrap(), b"hello");
+        assert_eq!(back.bytes("sub/made.txt").unwrap(), b"made on demand");
+        assert_eq!(
+            back.file_names().collect::<Vec<_>>(),
+            ["sub/made.txt", "sub/x.txt"]
+        );
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

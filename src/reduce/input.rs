@@ -82,7 +82,7 @@ impl Readings {
                 }
                 t.push_str(&table.header().join(","));
                 t.push('\n');
-                for r in table.rows() {
+                for r in table.rows().iter() {
                     t.push_str(&r.join(","));
                     t.push('\n');
                 }

@@ -53,9 +53,15 @@ pub struct Load {
     pub disk_bytes: f64,
     /// The key named when the memory or disk estimate is refused.
     pub key: &'static str,
+    /// What lowers the memory, named when its estimate is refused ([`LOWER_IT`] where the key
+    /// alone drives it).
+    pub memory_hint: &'static str,
     /// The key and the hint named when the wall-time estimate is refused.
     pub wall: (&'static str, &'static str),
 }
+
+/// The memory hint of a load driven by its key alone ([`Load::memory_hint`]).
+pub const LOWER_IT: &str = "lower it";
 
 /// The hint of a wall time over the limit, for a run whose cost is its steps.
 pub const STEP_HINT: &str = "raise the step, shorten time.end_s, or run with --force";
@@ -72,6 +78,7 @@ pub fn rapier_load(c: &Common, bodies: f64, key: &'static str) -> Load {
         row_bytes: 0.0,
         disk_bytes: bodies * BODY_DISK_BYTES,
         key,
+        memory_hint: LOWER_IT,
         wall: ("time.dt_s", STEP_HINT),
     }
 }
@@ -173,8 +180,10 @@ pub fn check(p: &super::Prepared, force: bool) -> Result<Cost, BadInput> {
                 file,
                 Some(key),
                 format!(
-                    "{memory}, more than this machine's {:.1} GB: not runnable, even with --force",
-                    ram / 1e9
+                    "{memory}, more than this machine's {:.1} GB: not runnable, even with \
+                     --force ({})",
+                    ram / 1e9,
+                    load.memory_hint
                 ),
             ));
         }
@@ -187,8 +196,9 @@ pub fn check(p: &super::Prepared, force: bool) -> Result<Cost, BadInput> {
             file,
             Some(key),
             format!(
-                "{memory} (limit {:.0} GB): lower it, or run with --force",
-                MAX_MEMORY_BYTES / 1e9
+                "{memory} (limit {:.0} GB): {}, or run with --force",
+                MAX_MEMORY_BYTES / 1e9,
+                load.memory_hint
             ),
         ));
     }

@@ -73,7 +73,7 @@ fn assert_same_files(r: &FitResult, dir: &Path, same_record: bool) {
         .iter()
         .map(|t| t.name().to_string())
         .collect();
-    lib.extend(r.outputs.files().iter().map(|(n, _)| n.clone()));
+    lib.extend(r.outputs.file_names().map(str::to_string));
     lib.sort();
     assert_eq!(
         lib, files,

@@ -126,7 +126,7 @@ impl Files<'_> {
                 o.tables()
                     .iter()
                     .map(|t| t.name().to_string())
-                    .chain(o.files().iter().map(|(n, _)| n.clone())),
+                    .chain(o.file_names().map(str::to_string)),
             )),
         }
     }

@@ -3,7 +3,7 @@
 
 use crate::scenario::{Common, Engine};
 use crate::scenes::cost::{Load, BODY_DISK_BYTES, FREE_BODY_STEP_S, RAPIER_BODY_BYTES};
-use crate::scenes::cost::{RAPIER_BODY_STEP_S, STEP_HINT};
+use crate::scenes::cost::{LOWER_IT, RAPIER_BODY_STEP_S, STEP_HINT};
 
 /// One row of `timeseries.csv` (free settling and drops): in memory (a time, a depth, a speed and
 /// two optional analytic values, plus vector growth) and on disk (CSV text, measured on the
@@ -40,6 +40,7 @@ pub fn load(c: &Common, cases: usize) -> Load {
         row_bytes: TIMESERIES_ROW_MEMORY_BYTES,
         disk_bytes: rows * TIMESERIES_ROW_DISK_BYTES + bodies * BODY_DISK_BYTES,
         key,
+        memory_hint: LOWER_IT,
         wall: ("time.dt_s", STEP_HINT),
     }
 }

@@ -31,9 +31,17 @@ const SEDIMENTATION_CONTACT_N0: f64 = 1e5;
 /// The projected area A₀ of the cylinder those contact costs were measured in (B × H of
 /// `scenarios/sedimentation_sample*.toml`), m².
 const SEDIMENTATION_CONTACT_AREA_M2: f64 = 0.0635 * 0.457;
-/// Memory per grain of the sedimentation cylinder, bytes: peak RSS 187 MB at N = 10⁶ for every
-/// sample without contacts, 255 MB with contacts (sample 4), rounded up.
-const SEDIMENTATION_GRAIN_BYTES: f64 = 300.0;
+/// Memory per grain of the sedimentation cylinder without contacts, bytes, snapshots apart: peak
+/// RSS 134 B per grain at N = 10⁶ (sample 5, `settle bench`, 6 December 2026), rounded up.
+const SEDIMENTATION_GRAIN_BYTES: f64 = 140.0;
+/// The same with contacts (`sample.contacts = true`): 255 MB at N = 10⁶ (sample 4), rounded up.
+const SEDIMENTATION_CONTACT_GRAIN_BYTES: f64 = 300.0;
+/// Memory per grain and snapshot, bytes: the grains' state kept for the snapshot until the end
+/// of the run (height and settled flag, 9 B; the horizontal position too with contacts), and
+/// its table and files at the end (typed columns, the VTK file written from them): 326 MB at
+/// N = 10⁶ with three snapshots against 134 MB without (sample 5, 6 December 2026), 64 B per
+/// grain and snapshot, rounded up.
+const SNAPSHOT_GRAIN_MEMORY_BYTES: f64 = 70.0;
 
 /// The load of a sedimentation scenario.
 pub fn load(c: &Common, spec: &SedimentationSpec) -> Load {
@@ -44,11 +52,16 @@ pub fn load(c: &Common, spec: &SedimentationSpec) -> Load {
         steps: c.time.end_s / sm.max_step_s,
         bodies: n,
         body_step_s: grain_step_s(c, spec, n),
-        body_bytes: SEDIMENTATION_GRAIN_BYTES,
+        body_bytes: if contacts(c, spec) {
+            SEDIMENTATION_CONTACT_GRAIN_BYTES
+        } else {
+            SEDIMENTATION_GRAIN_BYTES
+        } + snaps * SNAPSHOT_GRAIN_MEMORY_BYTES,
         rows: 0.0,
         row_bytes: 0.0,
         disk_bytes: snaps * n * SNAPSHOT_GRAIN_DISK_BYTES + SEDIMENTATION_FIXED_DISK_BYTES,
         key: "sample.particles",
+        memory_hint: "fewer grains, or fewer sample.snapshot_times_s (each holds every grain)",
         wall: if contacts(c, spec) {
             (
                 "sample.particles",

@@ -388,7 +388,7 @@ pub fn combined_errors_table<'a>(runs: impl IntoIterator<Item = &'a Outputs>) ->
     let mut t = Table::new("instrument_errors.csv", ERROR_HEADER);
     for o in runs {
         if let Some(e) = o.get("instrument_errors.csv") {
-            for r in e.rows() {
+            for r in e.rows().iter() {
                 t.push(r.clone());
             }
         }
@@ -435,8 +435,8 @@ mod tests {
         let t = combined_errors_table([&a, &b, &c]);
         assert_eq!(t.name(), "instrument_errors.csv");
         assert_eq!(t.header(), ERROR_HEADER);
-        let firsts: Vec<(&str, &str)> = t
-            .rows()
+        let rows = t.rows();
+        let firsts: Vec<(&str, &str)> = rows
             .iter()
             .map(|r| (r[0].as_str(), r[4].as_str()))
             .collect();

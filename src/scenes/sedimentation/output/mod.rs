@@ -116,8 +116,18 @@ pub fn write_all(
         readings,
         bulb,
     } = rec;
-    for snap in &snapshots {
-        pictures::write_snapshot(out, &snap.state(setup));
+    if !snapshots.is_empty() {
+        let grains = pictures::GrainColumns::of(&setup.grains);
+        for snap in &snapshots {
+            pictures::write_snapshot(
+                out,
+                snap.time_s,
+                &grains,
+                snap.y_m.as_slice().into(),
+                (!snap.x_m.is_empty()).then(|| snap.x_m.as_slice().into()),
+                snap.settled.as_slice().into(),
+            );
+        }
     }
     let instrument_errors = granulometry::write_all(out, setup, &readings, &bulb)?;
     readings::write_all(out, setup, &readings, &profiles, &snapshots);
