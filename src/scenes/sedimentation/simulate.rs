@@ -65,13 +65,13 @@ pub fn simulate_on(
     let sm = &setup.spec.sample;
     let mut st = state;
     st.interrupted = false;
-    let stepper = Stepper::new(setup, &st);
+    let stepper = Stepper::new(setup);
     let run = Run {
         setup,
         schedule: &Schedule::new(setup, reading_times_s),
         stepper: &stepper,
     };
-    let mut grid = voidage_grid(setup, &stepper, &st);
+    let mut grid = voidage_grid(setup, &stepper);
     let chosen = step_loop == StepLoop::Chosen;
     if chosen && !stepper.ideal && !sm.contacts {
         if let Some((suspension, suspect)) = Suspension::new(&st, &grid, &stepper, setup) {
@@ -88,9 +88,9 @@ pub fn simulate_on(
     }
 }
 
-/// The voidage grid of a run of `setup` with the step constants `stepper`, from `st` (its
-/// grains' terminal-state tables).
-pub(super) fn voidage_grid(setup: &Setup, stepper: &Stepper, st: &State) -> VoidageGrid {
+/// The voidage grid of a run of `setup` with the step constants `stepper` (with its grains'
+/// terminal-state tables).
+pub(super) fn voidage_grid(setup: &Setup, stepper: &Stepper) -> VoidageGrid {
     let sm = &setup.spec.sample;
     VoidageGrid::new(
         setup,
@@ -99,7 +99,11 @@ pub(super) fn voidage_grid(setup: &Setup, stepper: &Stepper, st: &State) -> Void
         stepper.fluid_density_kg_m3,
     )
     .with_hindered(sm.hindered)
-    .with_terminal_tables(st, stepper.grain_density_kg_m3, stepper.gravity_m_s2)
+    .with_terminal_tables(
+        &setup.grains,
+        stepper.grain_density_kg_m3,
+        stepper.gravity_m_s2,
+    )
 }
 
 /// What every loop of a run reads: the cylinder, the events and the step constants.
@@ -185,7 +189,7 @@ impl Run<'_> {
     /// at the start of that interval, for the per-grain loop to redo it step by step (its fault
     /// scan reports the grain).
     fn intervals(&self, mut st: State, obs: &mut impl Observer) -> (State, Interval) {
-        let cache = IdealCache::new(self.stepper, &st);
+        let cache = IdealCache::new(self.stepper, &self.setup.grains);
         let mut start = StepStart::default();
         let mut runs: Vec<(f64, u64)> = Vec::new();
         while self.schedule.running(&st) {
@@ -236,10 +240,13 @@ impl Run<'_> {
         let (speeds, volumes) = if stepper.ideal {
             (Vec::new(), Vec::new())
         } else {
-            (stepper.stokes_speeds_m_s(&st), grid.grain_volumes_m3(&st))
+            (
+                stepper.stokes_speeds_m_s(&setup.grains),
+                grid.grain_volumes_m3(&setup.grains),
+            )
         };
         // The grains the per-step passes visit: every grain.
-        let active: Vec<usize> = (0..st.grains.len()).collect();
+        let active: Vec<usize> = (0..st.len()).collect();
         let mut start = StepStart::default();
         // The largest suspended speed (full physics), for the next step.
         let mut vmax = stepper.vmax_m_s(&st, &speeds);
@@ -253,7 +260,7 @@ impl Run<'_> {
             let dt = stepper.step_with_vmax_s(st.time_s, next_event, vmax);
             laps.lap(&mut st.stages, Stage::StepSize);
             if !stepper.ideal {
-                grid.fill(&st, &volumes, &active);
+                grid.fill(&st, &setup.grains, &volumes, &active);
             }
             start.capture(&st);
             laps.lap(&mut st.stages, Stage::Voidage);
@@ -266,7 +273,7 @@ impl Run<'_> {
             if !self.move_grains(&mut st, &step, contacts.as_mut(), &mut laps) {
                 break;
             }
-            vmax = stepper.deposit_vmax(&mut st, &speeds, &active);
+            vmax = stepper.deposit_vmax(&mut st, &setup.grains, &speeds, &active);
             self.end_step(&mut st, dt, next_event, obs, |_| {});
             laps.lap(&mut st.stages, Stage::DepositEvents);
         }
@@ -302,7 +309,7 @@ impl Run<'_> {
         }
         laps.lap(&mut st.stages, Stage::FaultScan);
         if let Some(contacts) = contacts {
-            match contacts.run(st, m.start, m.grid, dt) {
+            match contacts.run(st, &setup.grains, m.start, m.grid, dt) {
                 StageEnd::Interrupted => {
                     st.interrupted = true;
                     return false;

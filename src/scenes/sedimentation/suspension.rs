@@ -20,7 +20,6 @@ use super::step::kernel::{after_step, bed_rise_m, free_step, on_bed, CellDrag, C
 use super::step::{Stepper, INTERRUPT_CHECK_GRAINS};
 use super::voidage::VoidageGrid;
 use crate::dynamics::terminal::{exponential_near_terminal_lanes, TerminalTable};
-use crate::fluid::sphere_volume_m3;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -98,42 +97,51 @@ impl Suspension {
         setup: &Setup,
     ) -> Option<(Self, bool)> {
         let cells = grid.cells();
-        if u32::try_from(st.grains.len()).is_err()
-            || cells.cell_of(0.0, f64::INFINITY) >= GONE as usize
+        let grains = &setup.grains;
+        if u32::try_from(st.len()).is_err() || cells.cell_of(0.0, f64::INFINITY) >= GONE as usize
         {
             return None;
         }
-        let mut me = Self::default();
+        let kinds = &grains.kinds;
+        let mut me = Self {
+            kinds: kinds
+                .iter()
+                .map(|k| Kind {
+                    class: k.class,
+                    diameter_m: k.diameter_m,
+                    volume_m3: k.volume_m3(),
+                    stokes_m_s: stepper.stokes_speed_m_s(k.diameter_m),
+                })
+                .collect(),
+            ..Self::default()
+        };
+        let n = st.settled.iter().filter(|&&s| !s).count();
+        me.index.reserve_exact(n);
+        me.y_m.reserve_exact(n);
+        me.v_m_s.reserve_exact(n);
+        me.cell.reserve_exact(n);
+        me.kind.reserve_exact(n);
         let mut suspect = false;
-        let mut kinds = std::collections::HashMap::new();
         let mut total_m3 = 0.0;
-        for (i, ((gr, &v), &settled)) in st
-            .grains
+        for (i, ((&y, &v), &settled)) in st
+            .y_m
             .iter()
             .zip(&st.velocity_m_s)
             .zip(&st.settled)
             .enumerate()
         {
-            suspect |= stepper.is_faulty(gr, v, setup);
+            let x = st.x_m(grains, i);
+            suspect |= stepper.is_faulty(&grains.grain(i, x, y), v, setup);
             if settled {
                 continue;
             }
+            let kind = grains.kind[i];
             me.index.push(i as u32);
-            me.y_m.push(gr.y_m);
+            me.y_m.push(y);
             me.v_m_s.push(v);
-            me.cell.push(cells.cell_of(gr.x_m, gr.y_m) as u32);
-            let key = (gr.class, gr.diameter_m.to_bits(), gr.weight.to_bits());
-            let kind = *kinds.entry(key).or_insert_with(|| {
-                me.kinds.push(Kind {
-                    class: gr.class,
-                    diameter_m: gr.diameter_m,
-                    volume_m3: gr.weight * sphere_volume_m3(gr.diameter_m),
-                    stokes_m_s: stepper.stokes_speed_m_s(gr.diameter_m),
-                });
-                me.kinds.len() - 1
-            });
-            me.kind.push(u32::try_from(kind).ok()?);
-            total_m3 += me.kinds[kind].volume_m3;
+            me.cell.push(cells.cell_of(x, y) as u32);
+            me.kind.push(kind);
+            total_m3 += me.kinds[kind as usize].volume_m3;
         }
         me.reach_m = 1.01 * total_m3 / stepper.bed_area_m2 + 1e-12;
         Some((me, suspect))
@@ -297,12 +305,13 @@ impl Suspension {
                 let half_d = 0.5 * d;
                 if on_bed(y, half_d, st.bed_height_m) {
                     let i = self.index[j] as usize;
-                    let gr = &mut st.grains[i];
-                    gr.y_m = st.bed_height_m + half_d;
+                    let y = st.bed_height_m + half_d;
+                    st.y_m[i] = y;
                     st.velocity_m_s[i] = 0.0;
                     st.settled[i] = true;
-                    st.bed_height_m += bed_rise_m(gr.weight, d, stepper.bed_area_m2);
-                    suspect |= stepper.is_faulty(&st.grains[i], 0.0, setup);
+                    let grain = setup.grains.grain(i, st.x_m(&setup.grains, i), y);
+                    st.bed_height_m += bed_rise_m(grain.weight, d, stepper.bed_area_m2);
+                    suspect |= stepper.is_faulty(&grain, 0.0, setup);
                     self.cell[j] = GONE;
                     self.gone += 1;
                 } else {
@@ -350,7 +359,7 @@ impl Suspension {
         let n = WRITE_BACK_GRAINS;
         let len = self.index.len();
         let mut tasks = Vec::with_capacity(len.div_ceil(n));
-        let (mut grains, mut speeds) = (&mut st.grains[..], &mut st.velocity_m_s[..]);
+        let (mut grains, mut speeds) = (&mut st.y_m[..], &mut st.velocity_m_s[..]);
         let mut base = 0;
         for lo in (0..len).step_by(n) {
             let end = self
@@ -366,7 +375,7 @@ impl Suspension {
             for j in lo..len.min(lo + n) {
                 if self.cell[j] != GONE {
                     let i = self.index[j] as usize - base;
-                    g[i].y_m = self.y_m[j];
+                    g[i] = self.y_m[j];
                     v[i] = self.v_m_s[j];
                 }
             }

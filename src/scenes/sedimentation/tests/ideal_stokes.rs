@@ -32,9 +32,8 @@ fn run(sample: u32, extra: &[&str]) -> (Vec<Snap>, crate::scenes::sedimentation:
     let rec = |st: &State| {
         snaps.push(Snap {
             t: st.time_s,
-            heights: st
-                .grains
-                .iter()
+            heights: (0..st.len())
+                .map(|i| st.grain(&su.grains, i))
                 .zip(&st.settled)
                 .map(|(g, s)| (g.y_m, g.weight * sphere_volume_m3(g.diameter_m), *s))
                 .collect(),
@@ -124,6 +123,7 @@ fn every_grain_is_accounted_for_and_stays_in_the_cylinder() {
     );
     let total: f64 = su
         .grains
+        .to_vec()
         .iter()
         .map(|g| g.weight * sphere_volume_m3(g.diameter_m))
         .sum();
@@ -162,7 +162,7 @@ fn sample2_on(
     let seen = |st: &State| {
         records.push((
             st.time_s,
-            st.grains.iter().map(|g| g.y_m.to_bits()).collect(),
+            st.y_m.iter().map(|y| y.to_bits()).collect(),
             st.settled.iter().filter(|&&x| x).count(),
         ))
     };
@@ -212,8 +212,9 @@ fn the_chosen_loops_agree_with_the_per_grain_loop_bit_for_bit() {
             settled.iter().any(|&x| x) && settled.iter().any(|&x| !x),
             "{ov:?}"
         );
-        for (i, (a, b)) in chosen.grains.iter().zip(&per_grain.grains).enumerate() {
-            assert_eq!(a.y_m.to_bits(), b.y_m.to_bits(), "{ov:?} grain {i}: height");
+        assert_eq!(chosen.len(), per_grain.len());
+        for (i, (a, b)) in chosen.y_m.iter().zip(&per_grain.y_m).enumerate() {
+            assert_eq!(a.to_bits(), b.to_bits(), "{ov:?} grain {i}: height");
             assert_eq!(
                 chosen.velocity_m_s[i].to_bits(),
                 per_grain.velocity_m_s[i].to_bits(),
@@ -252,7 +253,8 @@ fn ideal_stokes_free_update_follows_the_analytic_stokes_solution() {
         let (mut checked, mut landed) = (0, 0);
         let check = |st: &State| {
             let t = st.time_s;
-            for (i, (gr, g0)) in st.grains.iter().zip(&start.grains).enumerate() {
+            for i in 0..st.len() {
+                let (gr, g0) = (st.grain(&su.grains, i), start.grain(&su.grains, i));
                 let d = gr.diameter_m;
                 let u = (rho_p - rho_f) * g * d * d / (18.0 * mu);
                 let tau = rho_p * d * d / (18.0 * mu);
