@@ -74,7 +74,7 @@ pub fn simulate_on(
     let mut grid = voidage_grid(setup, &stepper);
     let chosen = step_loop == StepLoop::Chosen;
     if chosen && !stepper.ideal && !sm.contacts {
-        if let Some((suspension, suspect)) = Suspension::new(&st, &grid, &stepper, setup) {
+        if let Some((suspension, suspect)) = Suspension::new(&mut st, &grid, &stepper, setup) {
             return run.packed(st, suspension, suspect, &mut grid, obs);
         }
     }
@@ -114,33 +114,45 @@ struct Run<'a> {
 }
 
 impl Run<'_> {
-    /// Ends a step of `dt_s` towards `next_event_s`: the clock, the events due (the grains of
-    /// `st` current for them: `write_back` puts them there), then `obs` told of the step.
+    /// Ends a step of `dt_s` towards `next_event_s`: the clock, the events due, then `obs` told
+    /// of the step. With a packed suspension `sus`, the heights of its grains are written into
+    /// `st` for the events ([`Suspension::write_back`]), and for a step whose observer wants the
+    /// grains (a checkpoint) their speeds too, for that call only (the state's speeds are empty
+    /// again after it: [`Suspension::new`]).
     fn end_step(
         &self,
         st: &mut State,
         dt_s: f64,
         next_event_s: f64,
         obs: &mut impl Observer,
-        mut write_back: impl FnMut(&mut State),
+        sus: Option<&Suspension>,
     ) {
         advance_clock(st, dt_s, next_event_s);
-        if self.schedule.due(st) {
-            write_back(st);
+        if let (Some(sus), true) = (sus, self.schedule.due(st)) {
+            sus.write_back(st);
         }
         self.schedule.dispatch(st, obs);
-        if obs.wants_grains() {
-            write_back(st);
-        }
+        let speeds = match (sus, obs.wants_grains()) {
+            (Some(sus), true) => {
+                sus.write_back(st);
+                st.velocity_m_s = sus.speeds_m_s(st.len());
+                true
+            }
+            _ => false,
+        };
         obs.step(st);
+        if speeds {
+            st.velocity_m_s = Vec::new();
+        }
     }
 
     /// The step loop of full physics without contacts, on the suspended grains packed in a
     /// [`Suspension`] (`sus`; `suspect`: a grain of `st` fails the fault test already), with the
     /// voidage grid `grid`: each pass streams through the suspended grains only, and their
-    /// heights and speeds reach the state only when something reads them there. One step of
-    /// 10⁷ grains takes well under a second, so an interrupt request is honoured between steps
-    /// (nothing to undo).
+    /// heights reach the state only when something reads them there, and their speeds only at
+    /// checkpoints, a fault scan and the end (`st.velocity_m_s` is empty in between:
+    /// [`Suspension::new`]). One step of 10⁷ grains takes well under a second, so an interrupt
+    /// request is honoured between steps (nothing to undo).
     fn packed(
         &self,
         mut st: State,
@@ -168,18 +180,20 @@ impl Run<'_> {
             laps.lap(&mut st.stages, Stage::FreeUpdate);
             if bad || pending {
                 sus.write_back(&mut st);
-                if let Some(u) = stepper.grain_fault(&st, setup, dt, Some(stepper.speed_bound_m_s))
-                {
+                st.velocity_m_s = sus.speeds_m_s(st.len());
+                let fault = stepper.grain_fault(&st, setup, dt, Some(stepper.speed_bound_m_s));
+                st.velocity_m_s = Vec::new();
+                if let Some(u) = fault {
                     st.fault = Some(u);
                     break;
                 }
             }
             laps.lap(&mut st.stages, Stage::FaultScan);
             (vmax, pending) = sus.deposit_vmax(&mut st, stepper, setup);
-            self.end_step(&mut st, dt, next_event, obs, |st| sus.write_back(st));
+            self.end_step(&mut st, dt, next_event, obs, Some(&sus));
             laps.lap(&mut st.stages, Stage::DepositEvents);
         }
-        sus.write_back(&mut st);
+        sus.into_state(&mut st);
         st
     }
 
@@ -274,7 +288,7 @@ impl Run<'_> {
                 break;
             }
             vmax = stepper.deposit_vmax(&mut st, &setup.grains, &speeds, &active);
-            self.end_step(&mut st, dt, next_event, obs, |_| {});
+            self.end_step(&mut st, dt, next_event, obs, None);
             laps.lap(&mut st.stages, Stage::DepositEvents);
         }
         st

@@ -38,7 +38,10 @@ pub struct State {
     /// Horizontal position of each grain, m, once a contact has moved one (the contact stage
     /// fills it); empty while every grain is where the setup put it ([`State::x_m`]).
     pub x_m: Vec<f64>,
-    /// Vertical velocity of each grain (negative downwards), m/s.
+    /// Vertical velocity of each grain (negative downwards), m/s. Empty while a run without
+    /// contacts holds the suspended grains' speeds packed apart
+    /// ([`super::suspension::Suspension::new`]): its records, snapshots and readings read
+    /// heights only; a checkpoint, the fault scan and the end of the run get every speed.
     pub velocity_m_s: Vec<f64>,
     /// Grain has joined the bed (or stopped on the floor).
     pub settled: Vec<bool>,

@@ -227,6 +227,66 @@ fn the_chosen_loops_agree_with_the_per_grain_loop_bit_for_bit() {
     }
 }
 
+/// An observer that wants the grains every `k`-th step (as a checkpoint does) and keeps what
+/// the state holds then: step, heights, speeds (bits) and settled flags.
+struct EveryKth {
+    k: u64,
+    calls: u64,
+    due: bool,
+    seen: Vec<(u64, Vec<u64>, Vec<u64>, Vec<bool>)>,
+}
+
+impl crate::scenes::sedimentation::Observer for EveryKth {
+    fn wants_grains(&mut self) -> bool {
+        self.calls += 1;
+        self.due = self.calls.is_multiple_of(self.k);
+        self.due
+    }
+
+    fn step(&mut self, st: &State) {
+        if self.due {
+            let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect();
+            let seen = (st.steps, bits(&st.y_m), bits(&st.velocity_m_s), st.settled.clone());
+            self.seen.push(seen);
+        }
+    }
+}
+
+/// The packed suspension keeps the suspended grains' speeds apart and gives the state every
+/// speed only when the observer wants the grains (a checkpoint) and at the end: there the
+/// state must be that of the per-grain loop, bit for bit (heights, speeds, settled flags; full
+/// physics without contacts, sample 2, 3 000 grains, every 40th step), and at the end every
+/// grain has a speed.
+#[test]
+fn the_packed_loop_gives_checkpoints_every_speed() {
+    use crate::scenes::sedimentation::simulate::{simulate_on, StepLoop};
+    let ov: Vec<String> = ["sample.particles=3000", "time.end_s=7200.0", "physics=full"]
+        .map(String::from)
+        .to_vec();
+    let p = prepare(Path::new("scenarios/sedimentation_sample2.toml"), None, &ov).unwrap();
+    let su = setup(&p).unwrap();
+    let on = |step_loop| {
+        let mut obs = EveryKth {
+            k: 40,
+            calls: 0,
+            due: false,
+            seen: Vec::new(),
+        };
+        let st = simulate_on(step_loop, &su, State::initial(&su), &[], &mut obs);
+        (st, obs.seen)
+    };
+    let (packed, packed_seen) = on(StepLoop::Chosen);
+    let (per_grain, per_grain_seen) = on(StepLoop::PerGrain);
+    assert!(packed_seen.len() >= 3, "{} checkpoints", packed_seen.len());
+    assert!(packed_seen
+        .iter()
+        .all(|s| s.2.len() == su.grains.len() && s.3.iter().any(|&x| !x)));
+    assert!(packed_seen == per_grain_seen, "the checkpoints' states differ");
+    assert_eq!(packed.velocity_m_s.len(), su.grains.len());
+    let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+    assert_eq!(bits(&packed.velocity_m_s), bits(&per_grain.velocity_m_s));
+}
+
 /// In ideal Stokes every grain obeys m v̇ = −(m − m_f) g − 3π μ d v from rest, whose solution is
 /// v(t) = −u (1 − e^(−t/τ)), y(t) = y₀ − u (t − τ (1 − e^(−t/τ))) with u = (ρ_p − ρ_f) g d²/(18 μ)
 /// and τ = ρ_p d²/(18 μ), until its bottom reaches the floor (the bed does not rise in ideal

@@ -25,13 +25,13 @@ fn packed_voidage_fill_agrees_with_grain_order_whatever_the_threads() {
     .to_vec();
     let p = prepare(Path::new("scenarios/sedimentation_sample2.toml"), None, &ov).unwrap();
     let su = setup(&p).unwrap();
-    let st = State::initial(&su);
+    let mut st = State::initial(&su);
     let stepper = Stepper::new(&su);
     let mut grid = voidage_grid(&su, &stepper);
     assert!(grid.is_di_felice());
     let parts = st.len().div_ceil(fill_part_grains(grid.cell_count()));
     assert!(parts >= 3, "{parts} parts");
-    let (mut sus, _) = Suspension::new(&st, &grid, &stepper, &su).unwrap();
+    let (mut sus, _) = Suspension::new(&mut st, &grid, &stepper, &su).unwrap();
     let mut serial = grid.clone();
     let volumes = serial.grain_volumes_m3(&su.grains);
     let all: Vec<usize> = (0..st.len()).collect();
