@@ -363,7 +363,13 @@ fn push_class(
 /// Shuffles the grains of kinds `kind` (seeded) and places them by stratified random sampling in
 /// a √n × √n grid of cells of the width_m × height_m rectangle ([`Placement::visit`]), keeping
 /// their horizontal positions.
-fn place(kinds: Vec<GrainKind>, mut kind: Vec<u32>, width_m: f64, height_m: f64, seed: u64) -> Grains {
+fn place(
+    kinds: Vec<GrainKind>,
+    mut kind: Vec<u32>,
+    width_m: f64,
+    height_m: f64,
+    seed: u64,
+) -> Grains {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     // The permutation depends on the length only: the same as that of the grains themselves.
     kind.shuffle(&mut rng);

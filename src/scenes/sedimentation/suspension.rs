@@ -101,8 +101,7 @@ impl Suspension {
     ) -> Option<(Self, bool)> {
         let cells = grid.cells();
         let grains = &setup.grains;
-        if u32::try_from(st.len()).is_err() || cells.cell_of(0.0, f64::INFINITY) >= GONE as usize
-        {
+        if u32::try_from(st.len()).is_err() || cells.cell_of(0.0, f64::INFINITY) >= GONE as usize {
             return None;
         }
         let kinds = &grains.kinds;

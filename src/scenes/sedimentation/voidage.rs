@@ -179,9 +179,12 @@ impl VoidageGrid {
     /// order.
     pub fn fill(&mut self, st: &State, grains: &Grains, volumes_m3: &[f64], active: &[usize]) {
         let cells = self.cells();
-        self.fill_cells(active.iter().filter(|&&i| !st.settled[i]).map(|&i| {
-            (cells.cell_of(st.x_m(grains, i), st.y_m[i]), volumes_m3[i])
-        }));
+        self.fill_cells(
+            active
+                .iter()
+                .filter(|&&i| !st.settled[i])
+                .map(|&i| (cells.cell_of(st.x_m(grains, i), st.y_m[i]), volumes_m3[i])),
+        );
     }
 
     /// Refills the grid with the solid volumes (m³) of `cells_volumes` (cell, real solid volume

@@ -227,13 +227,16 @@ fn the_chosen_loops_agree_with_the_per_grain_loop_bit_for_bit() {
     }
 }
 
+/// What a checkpoint reads of a state: step, heights and speeds (bits), settled flags.
+type Saved = (u64, Vec<u64>, Vec<u64>, Vec<bool>);
+
 /// An observer that wants the grains every `k`-th step (as a checkpoint does) and keeps what
-/// the state holds then: step, heights, speeds (bits) and settled flags.
+/// the state holds then ([`Saved`]).
 struct EveryKth {
     k: u64,
     calls: u64,
     due: bool,
-    seen: Vec<(u64, Vec<u64>, Vec<u64>, Vec<bool>)>,
+    seen: Vec<Saved>,
 }
 
 impl crate::scenes::sedimentation::Observer for EveryKth {
@@ -246,7 +249,12 @@ impl crate::scenes::sedimentation::Observer for EveryKth {
     fn step(&mut self, st: &State) {
         if self.due {
             let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect();
-            let seen = (st.steps, bits(&st.y_m), bits(&st.velocity_m_s), st.settled.clone());
+            let seen = (
+                st.steps,
+                bits(&st.y_m),
+                bits(&st.velocity_m_s),
+                st.settled.clone(),
+            );
             self.seen.push(seen);
         }
     }
@@ -281,7 +289,10 @@ fn the_packed_loop_gives_checkpoints_every_speed() {
     assert!(packed_seen
         .iter()
         .all(|s| s.2.len() == su.grains.len() && s.3.iter().any(|&x| !x)));
-    assert!(packed_seen == per_grain_seen, "the checkpoints' states differ");
+    assert!(
+        packed_seen == per_grain_seen,
+        "the checkpoints' states differ"
+    );
     assert_eq!(packed.velocity_m_s.len(), su.grains.len());
     let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
     assert_eq!(bits(&packed.velocity_m_s), bits(&per_grain.velocity_m_s));
