@@ -27,7 +27,9 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 /// Version of the checkpoint format; bumped whenever a checkpointed state changes layout.
-pub const FORMAT_VERSION: u32 = 3;
+/// 4: the sedimentation state holds the grains' heights (and horizontal positions once a
+/// contact moved one), their kinds and initial positions being the setup's.
+pub const FORMAT_VERSION: u32 = 4;
 
 /// Name of the checkpoint folder inside the output folder.
 pub const DIR_NAME: &str = "checkpoint";
@@ -287,6 +289,35 @@ mod tests {
         assert!(err.contains("not a settle checkpoint"), "{err}");
         c.clear().unwrap();
         assert!(!dir.path().join("checkpoint").exists());
+    }
+
+    /// A checkpoint of an older format (3: the sedimentation state held whole grains) is
+    /// refused with a message naming both formats and the way out, not read as garbage.
+    #[test]
+    fn older_format_is_refused_clearly() {
+        let dir = tempfile::tempdir().unwrap();
+        let c = Checkpoints::new(dir.path(), None);
+        let header = Header {
+            format_version: 3,
+            settle_version: env!("CARGO_PKG_VERSION").to_string(),
+            scenario: "sample".into(),
+            part: "state".into(),
+        };
+        let mut bytes = bincode::serialize(&header).unwrap();
+        bincode::serialize_into(&mut bytes, &(vec![0.5f64; 3], 7u64)).unwrap();
+        std::fs::create_dir_all(dir.path().join("checkpoint")).unwrap();
+        std::fs::write(dir.path().join("checkpoint/sample.state.bin"), bytes).unwrap();
+        let err = c
+            .load::<(Vec<f64>, u64)>("sample", "state")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("sample.state.bin")
+                && err.contains("checkpoint format 3")
+                && err.contains(&format!("(format {FORMAT_VERSION})"))
+                && err.contains("delete it to start afresh"),
+            "{err}"
+        );
     }
 
     #[test]

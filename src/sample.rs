@@ -3,6 +3,7 @@
 //! stratified random sampling (seed Fig. 6).
 
 use crate::error::BadInput;
+use crate::fluid::sphere_volume_m3;
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -133,7 +134,9 @@ pub fn real_count(class: &SizeClass, mass_kg: f64, density_kg_m3: f64) -> f64 {
 }
 
 /// A representative grain: one simulated body standing for `weight` real grains of its class.
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+/// Built by value where code wants one grain whole ([`Grains::grain`]); the grains of a run are
+/// held as [`Grains`] (constants) and the state's arrays (what changes).
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Grain {
     /// Horizontal position in the B × H rectangle, m (0 at the left wall).
     pub x_m: f64,
@@ -145,6 +148,138 @@ pub struct Grain {
     pub weight: f64,
     /// Index of its size class.
     pub class: usize,
+}
+
+/// What the grains of one kind share: size class, diameter and statistical weight.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GrainKind {
+    /// Index of the size class.
+    pub class: usize,
+    /// Diameter, m.
+    pub diameter_m: f64,
+    /// Number of real grains each grain of the kind represents.
+    pub weight: f64,
+}
+
+impl GrainKind {
+    /// The real solid volume of one grain of the kind (its weight times its volume), m³.
+    pub fn volume_m3(&self) -> f64 {
+        self.weight * sphere_volume_m3(self.diameter_m)
+    }
+}
+
+/// The grains of a sample, held once and compactly: per grain its kind (a 4-byte index into a
+/// table of a few hundred kinds) and its horizontal position at t = 0, 12 bytes per grain. The
+/// heights at t = 0 are not kept: [`Grains::initial_heights_m`] places the grains again (the same
+/// random draws, the same numbers), once per run, into the state that updates them.
+#[derive(Clone, Debug)]
+pub struct Grains {
+    /// The kinds (class, diameter, weight): one per size class holding grains.
+    pub kinds: Vec<GrainKind>,
+    /// The kind of each grain, an index into `kinds`.
+    pub kind: Vec<u32>,
+    /// Horizontal position of each grain at t = 0, m.
+    pub x_m: Vec<f64>,
+    /// How the grains were placed, to place them again ([`Grains::initial_heights_m`]).
+    placement: Placement,
+}
+
+/// The stratified placement of [`Grains`]: the random generator as the shuffle left it, and the
+/// rectangle, m.
+#[derive(Clone, Debug)]
+struct Placement {
+    rng: ChaCha8Rng,
+    width_m: f64,
+    height_m: f64,
+}
+
+impl Placement {
+    /// Places the grains of kinds `kind` (in order) by stratified random sampling in a √n × √n
+    /// grid of cells of the rectangle, calling `f(x, y)` (m) for each, in grain order.
+    fn visit(&self, kinds: &[GrainKind], kind: &[u32], mut f: impl FnMut(f64, f64)) {
+        let mut rng = self.rng.clone();
+        let (width_m, height_m) = (self.width_m, self.height_m);
+        let m = (kind.len() as f64).sqrt().ceil() as usize;
+        let (cw, ch) = (width_m / m as f64, height_m / m as f64);
+        let (cells, n_grains) = (m * m, kind.len());
+        for (i, &k) in kind.iter().enumerate() {
+            // Spread the grains evenly over all m² cells (the last cells are not left empty).
+            let cell = i * cells / n_grains;
+            let (cx, cy) = ((cell % m) as f64, (cell / m) as f64);
+            let r = 0.5 * kinds[k as usize].diameter_m;
+            let x = ((cx + rng.random::<f64>()) * cw).clamp(r, width_m - r);
+            let y = ((cy + rng.random::<f64>()) * ch).clamp(r, height_m - r);
+            f(x, y);
+        }
+    }
+}
+
+impl Grains {
+    /// Number of grains.
+    pub fn len(&self) -> usize {
+        self.kind.len()
+    }
+
+    /// True when there is no grain.
+    pub fn is_empty(&self) -> bool {
+        self.kind.is_empty()
+    }
+
+    /// The kind of grain `i`.
+    #[inline(always)]
+    pub fn kind_of(&self, i: usize) -> &GrainKind {
+        &self.kinds[self.kind[i] as usize]
+    }
+
+    /// Diameter of grain `i`, m.
+    #[inline(always)]
+    pub fn diameter_m(&self, i: usize) -> f64 {
+        self.kind_of(i).diameter_m
+    }
+
+    /// Grain `i` whole, at (`x_m`, `y_m`) (m).
+    #[inline(always)]
+    pub fn grain(&self, i: usize, x_m: f64, y_m: f64) -> Grain {
+        let k = self.kind_of(i);
+        Grain {
+            x_m,
+            y_m,
+            diameter_m: k.diameter_m,
+            weight: k.weight,
+            class: k.class,
+        }
+    }
+
+    /// The kinds that hold at least one grain (every kind of a sample made here; a table
+    /// filtered by hand may hold more).
+    pub fn kinds_present(&self) -> Vec<GrainKind> {
+        let mut used = vec![false; self.kinds.len()];
+        for &k in &self.kind {
+            used[k as usize] = true;
+        }
+        self.kinds
+            .iter()
+            .zip(used)
+            .filter_map(|(k, u)| u.then_some(*k))
+            .collect()
+    }
+
+    /// The height of every grain's centre at t = 0, m: the placement made again.
+    pub fn initial_heights_m(&self) -> Vec<f64> {
+        let mut y = Vec::with_capacity(self.len());
+        self.placement
+            .visit(&self.kinds, &self.kind, |_, y_m| y.push(y_m));
+        y
+    }
+
+    /// Every grain whole at t = 0 (tests and small samples: 40 bytes per grain).
+    pub fn to_vec(&self) -> Vec<Grain> {
+        self.initial_heights_m()
+            .into_iter()
+            .enumerate()
+            .map(|(i, y)| self.grain(i, self.x_m[i], y))
+            .collect()
+    }
 }
 
 /// `n` representative grains of a sample of mass `mass_kg` (the modelled part, e.g. 1/180 of the
@@ -159,17 +294,18 @@ pub fn representative_grains(
     width_m: f64,
     height_m: f64,
     seed: u64,
-) -> Vec<Grain> {
-    let mut grains = Vec::with_capacity(n + classes.len());
+) -> Grains {
+    let mut kinds = Vec::new();
+    let mut kind = Vec::with_capacity(n + classes.len());
     for (i, c) in classes.iter().enumerate() {
         if c.mass_fraction <= 0.0 {
             continue;
         }
         let k = ((n as f64 * c.mass_fraction).round() as usize).max(1);
         let weight = real_count(c, mass_kg, density_kg_m3) / k as f64;
-        push_class(&mut grains, c, i, k, weight);
+        push_class(&mut kinds, &mut kind, c, i, k, weight);
     }
-    place(grains, width_m, height_m, seed)
+    place(kinds, kind, width_m, height_m, seed)
 }
 
 /// The number of real grains of a sample of mass `mass_kg` over `classes`: Σ round(nᵢ) of
@@ -192,43 +328,64 @@ pub fn real_grains(
     width_m: f64,
     height_m: f64,
     seed: u64,
-) -> Vec<Grain> {
-    let mut grains = Vec::with_capacity(real_total(classes, mass_kg, density_kg_m3));
+) -> Grains {
+    let mut kinds = Vec::new();
+    let mut kind = Vec::with_capacity(real_total(classes, mass_kg, density_kg_m3));
     for (i, c) in classes.iter().enumerate() {
         let k = real_count(c, mass_kg, density_kg_m3).round() as usize;
-        push_class(&mut grains, c, i, k, 1.0);
+        push_class(&mut kinds, &mut kind, c, i, k, 1.0);
     }
-    place(grains, width_m, height_m, seed)
+    place(kinds, kind, width_m, height_m, seed)
 }
 
-/// Appends `k` grains of class `c` (index `i`), each of weight `weight`, at the origin.
-fn push_class(grains: &mut Vec<Grain>, c: &SizeClass, i: usize, k: usize, weight: f64) {
-    grains.extend((0..k).map(|_| Grain {
-        x_m: 0.0,
-        y_m: 0.0,
+/// Appends `k` grains of class `c` (index `i`), each of weight `weight`: one kind (none if `k`
+/// is 0).
+fn push_class(
+    kinds: &mut Vec<GrainKind>,
+    kind: &mut Vec<u32>,
+    c: &SizeClass,
+    i: usize,
+    k: usize,
+    weight: f64,
+) {
+    if k == 0 {
+        return;
+    }
+    let index = u32::try_from(kinds.len()).expect("fewer than 2³² size classes");
+    kinds.push(GrainKind {
+        class: i,
         diameter_m: c.diameter_m,
         weight,
-        class: i,
-    }));
+    });
+    kind.extend(std::iter::repeat_n(index, k));
 }
 
-/// Shuffles `grains` (seeded) and places them by stratified random sampling in a √n × √n grid
-/// of cells of the width_m × height_m rectangle.
-fn place(mut grains: Vec<Grain>, width_m: f64, height_m: f64, seed: u64) -> Vec<Grain> {
+/// Shuffles the grains of kinds `kind` (seeded) and places them by stratified random sampling in
+/// a √n × √n grid of cells of the width_m × height_m rectangle ([`Placement::visit`]), keeping
+/// their horizontal positions.
+fn place(
+    kinds: Vec<GrainKind>,
+    mut kind: Vec<u32>,
+    width_m: f64,
+    height_m: f64,
+    seed: u64,
+) -> Grains {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    grains.shuffle(&mut rng);
-    let m = (grains.len() as f64).sqrt().ceil() as usize;
-    let (cw, ch) = (width_m / m as f64, height_m / m as f64);
-    let (cells, n_grains) = (m * m, grains.len());
-    for (i, g) in grains.iter_mut().enumerate() {
-        // Spread the grains evenly over all m² cells (the last cells are not left empty).
-        let cell = i * cells / n_grains;
-        let (cx, cy) = ((cell % m) as f64, (cell / m) as f64);
-        let r = 0.5 * g.diameter_m;
-        g.x_m = ((cx + rng.random::<f64>()) * cw).clamp(r, width_m - r);
-        g.y_m = ((cy + rng.random::<f64>()) * ch).clamp(r, height_m - r);
+    // The permutation depends on the length only: the same as that of the grains themselves.
+    kind.shuffle(&mut rng);
+    let placement = Placement {
+        rng,
+        width_m,
+        height_m,
+    };
+    let mut x_m = Vec::with_capacity(kind.len());
+    placement.visit(&kinds, &kind, |x, _| x_m.push(x));
+    Grains {
+        kinds,
+        kind,
+        x_m,
+        placement,
     }
-    grains
 }
 
 #[cfg(test)]
@@ -284,7 +441,7 @@ mod tests {
     fn real_grains_are_every_grain_at_weight_one() {
         let c = discretize(&sample5(), 220);
         let (m, rho) = (1.3e-5 / 180.0, 2500.0);
-        let g = real_grains(&c, m, rho, 0.0635, 0.457, 7);
+        let g = real_grains(&c, m, rho, 0.0635, 0.457, 7).to_vec();
         assert_eq!(g.len(), real_total(&c, m, rho));
         assert!(g.len() > 10_000, "{}", g.len());
         assert!(g.iter().all(|x| x.weight == 1.0));
@@ -312,7 +469,7 @@ mod tests {
     fn representative_grains_carry_the_mass_and_fill_the_rectangle() {
         let c = discretize(&sample5(), 220);
         let (m, rho) = (0.06 / 180.0, 2500.0);
-        let g = representative_grains(&c, 20_000, m, rho, 0.0635, 0.457, 7);
+        let g = representative_grains(&c, 20_000, m, rho, 0.0635, 0.457, 7).to_vec();
         let mass: f64 = g
             .iter()
             .map(|x| x.weight * rho * PI * x.diameter_m.powi(3) / 6.0)
@@ -340,7 +497,56 @@ mod tests {
         // Same seed, same grains.
         assert_eq!(
             g,
-            representative_grains(&c, 20_000, m, rho, 0.0635, 0.457, 7)
+            representative_grains(&c, 20_000, m, rho, 0.0635, 0.457, 7).to_vec()
         );
+    }
+
+    /// The grains held once (a kind index and x per grain, the heights placed again) are the
+    /// grains the 40-byte-per-grain layout made: the same shuffle (it depends on the count
+    /// only), the same draws, bit for bit. The reference is that layout's code, kept here.
+    #[test]
+    fn compact_grains_are_those_of_the_grain_by_grain_layout() {
+        let c = discretize(&sample5(), 220);
+        let (m, rho, (w, h), seed) = (0.06 / 180.0, 2500.0, (0.0635, 0.457), 11);
+        let n = 5_000;
+        let mut old = Vec::new();
+        for (i, x) in c.iter().enumerate() {
+            if x.mass_fraction <= 0.0 {
+                continue;
+            }
+            let k = ((n as f64 * x.mass_fraction).round() as usize).max(1);
+            let weight = real_count(x, m, rho) / k as f64;
+            old.extend((0..k).map(|_| Grain {
+                x_m: 0.0,
+                y_m: 0.0,
+                diameter_m: x.diameter_m,
+                weight,
+                class: i,
+            }));
+        }
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        old.shuffle(&mut rng);
+        let side = (old.len() as f64).sqrt().ceil() as usize;
+        let (cw, ch) = (w / side as f64, h / side as f64);
+        let (cells, len) = (side * side, old.len());
+        for (i, g) in old.iter_mut().enumerate() {
+            let cell = i * cells / len;
+            let (cx, cy) = ((cell % side) as f64, (cell / side) as f64);
+            let r = 0.5 * g.diameter_m;
+            g.x_m = ((cx + rng.random::<f64>()) * cw).clamp(r, w - r);
+            g.y_m = ((cy + rng.random::<f64>()) * ch).clamp(r, h - r);
+        }
+        let new = representative_grains(&c, n, m, rho, w, h, seed);
+        assert_eq!(new.len(), old.len());
+        let bits = |g: &[Grain]| -> Vec<(u64, u64, u64, u64, usize)> {
+            g.iter()
+                .map(|g| {
+                    let b = |x: f64| x.to_bits();
+                    (b(g.x_m), b(g.y_m), b(g.diameter_m), b(g.weight), g.class)
+                })
+                .collect()
+        };
+        assert_eq!(bits(&new.to_vec()), bits(&old));
+        assert_eq!(new.kinds_present(), new.kinds);
     }
 }

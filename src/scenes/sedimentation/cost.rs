@@ -32,8 +32,10 @@ const SEDIMENTATION_CONTACT_N0: f64 = 1e5;
 /// `scenarios/sedimentation_sample*.toml`), m².
 const SEDIMENTATION_CONTACT_AREA_M2: f64 = 0.0635 * 0.457;
 /// Memory per grain of the sedimentation cylinder without contacts, bytes, snapshots apart: peak
-/// RSS 134 B per grain at N = 10⁶ (sample 5, `settle bench`, 6 December 2026), rounded up.
-const SEDIMENTATION_GRAIN_BYTES: f64 = 140.0;
+/// RSS 58.9 B per grain at N = 10⁶ (sample 5, `settle bench`, 6 December 2026; the grains held
+/// once: 12 B of constants, 9 B of state, 28 B of packed suspension, 8 B more on a checkpoint's
+/// step), rounded up.
+const SEDIMENTATION_GRAIN_BYTES: f64 = 64.0;
 /// The same with contacts (`sample.contacts = true`): 255 MB at N = 10⁶ (sample 4), rounded up.
 const SEDIMENTATION_CONTACT_GRAIN_BYTES: f64 = 300.0;
 /// Memory per grain and snapshot, bytes: the grains' state kept for the snapshot until the end

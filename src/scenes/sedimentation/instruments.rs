@@ -320,12 +320,10 @@ pub fn read_instruments(
         }
     }
     if pip {
-        let grains = st
-            .grains
-            .iter()
-            .zip(&st.settled)
-            .filter(|(_, s)| !**s)
-            .map(|(g, _)| GrainSample {
+        let grains = (0..st.len())
+            .filter(|&i| !st.settled[i])
+            .map(|i| st.grain(&setup.grains, i))
+            .map(|g| GrainSample {
                 x_m: g.x_m,
                 depth_m: setup.height_m - g.y_m,
                 mass_kg: g.weight * sphere_mass_kg(g.diameter_m, rho_p),

@@ -119,11 +119,14 @@ pub fn run(
     let setup = setup_of(p, spec);
     let c = &setup.common;
     let instruments = InstrumentSet::new(&setup);
-    let (start, recorded) = match (&ctx.checkpoints, ctx.resume) {
+    let saved = match (&ctx.checkpoints, ctx.resume) {
         (Some(ck), true) => ck.load::<(State, Recorded)>(&c.name, "state")?,
         _ => None,
+    };
+    if let (Some(ck), Some((st, _))) = (&ctx.checkpoints, &saved) {
+        check_saved(st, &setup, ck.dir())?;
     }
-    .unwrap_or_else(|| {
+    let (start, recorded) = saved.unwrap_or_else(|| {
         let recorded = Recorded {
             bulb: initial_bulb_profile(&instruments, &setup),
             ..Recorded::default()
@@ -164,6 +167,27 @@ pub fn run(
     }
     let wall = t0.elapsed().as_secs_f64();
     output::write_all(out, &setup, &st, obs.rec, wall).map_err(|e| Error::Io(p.path.clone(), e))
+}
+
+/// Refuses a saved state `st` (in the checkpoint folder `dir`) whose per-grain arrays do not
+/// match the grains of `setup` (one entry per grain; horizontal positions none or one per grain).
+fn check_saved(st: &State, setup: &Setup, dir: &std::path::Path) -> Result<(), Error> {
+    let n = setup.grains.len();
+    let ok = [st.y_m.len(), st.velocity_m_s.len(), st.settled.len()]
+        .iter()
+        .all(|&k| k == n)
+        && (st.x_m.is_empty() || st.x_m.len() == n);
+    if ok {
+        return Ok(());
+    }
+    Err(Error::bad_input(
+        dir,
+        None,
+        format!(
+            "the saved state holds {} grains, the scenario makes {n}; delete the checkpoint to start afresh",
+            st.y_m.len()
+        ),
+    ))
 }
 
 /// The observer of [`run`]: records profiles, pictures, snapshots and instrument readings, moves

@@ -18,7 +18,8 @@ pub trait Observer {
     /// still suspended in the state passed to `step` may be those of an earlier step (a run
     /// without contacts keeps them elsewhere, [`super::suspension::Suspension`]); its time, step
     /// count and everything else are current. The records, snapshots and readings always get
-    /// current grains.
+    /// current heights and settled flags; speeds only when this answers true (a run without
+    /// contacts hands the state's speeds to the suspension between those calls).
     fn wants_grains(&mut self) -> bool {
         true
     }

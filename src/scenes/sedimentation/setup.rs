@@ -4,7 +4,7 @@
 
 use crate::error::BadInput;
 use crate::sample::{
-    discretize, real_grains, representative_grains, Distribution, Grain, SizeClass,
+    discretize, real_grains, representative_grains, Distribution, Grains, SizeClass,
 };
 use crate::scenario::{Common, Contacts, SceneSpec, SedimentationSpec};
 
@@ -37,8 +37,9 @@ pub struct Setup {
     pub distribution: Distribution,
     /// Discrete classes.
     pub classes: Vec<SizeClass>,
-    /// Representative grains at t = 0.
-    pub grains: Vec<Grain>,
+    /// The grains' constants, held once: kind (class, diameter, weight) and horizontal position
+    /// at t = 0 (the state holds what changes: heights, speeds, settled flags).
+    pub grains: Grains,
     /// Modelled sample mass (wedge fraction of the sample), kg.
     pub model_mass_kg: f64,
     /// Width B, height H and projection thickness h_z, m.

@@ -65,16 +65,16 @@ pub fn simulate_on(
     let sm = &setup.spec.sample;
     let mut st = state;
     st.interrupted = false;
-    let stepper = Stepper::new(setup, &st);
+    let stepper = Stepper::new(setup);
     let run = Run {
         setup,
         schedule: &Schedule::new(setup, reading_times_s),
         stepper: &stepper,
     };
-    let mut grid = voidage_grid(setup, &stepper, &st);
+    let mut grid = voidage_grid(setup, &stepper);
     let chosen = step_loop == StepLoop::Chosen;
     if chosen && !stepper.ideal && !sm.contacts {
-        if let Some((suspension, suspect)) = Suspension::new(&st, &grid, &stepper, setup) {
+        if let Some((suspension, suspect)) = Suspension::new(&mut st, &grid, &stepper, setup) {
             return run.packed(st, suspension, suspect, &mut grid, obs);
         }
     }
@@ -88,9 +88,9 @@ pub fn simulate_on(
     }
 }
 
-/// The voidage grid of a run of `setup` with the step constants `stepper`, from `st` (its
-/// grains' terminal-state tables).
-pub(super) fn voidage_grid(setup: &Setup, stepper: &Stepper, st: &State) -> VoidageGrid {
+/// The voidage grid of a run of `setup` with the step constants `stepper` (with its grains'
+/// terminal-state tables).
+pub(super) fn voidage_grid(setup: &Setup, stepper: &Stepper) -> VoidageGrid {
     let sm = &setup.spec.sample;
     VoidageGrid::new(
         setup,
@@ -99,7 +99,11 @@ pub(super) fn voidage_grid(setup: &Setup, stepper: &Stepper, st: &State) -> Void
         stepper.fluid_density_kg_m3,
     )
     .with_hindered(sm.hindered)
-    .with_terminal_tables(st, stepper.grain_density_kg_m3, stepper.gravity_m_s2)
+    .with_terminal_tables(
+        &setup.grains,
+        stepper.grain_density_kg_m3,
+        stepper.gravity_m_s2,
+    )
 }
 
 /// What every loop of a run reads: the cylinder, the events and the step constants.
@@ -110,33 +114,45 @@ struct Run<'a> {
 }
 
 impl Run<'_> {
-    /// Ends a step of `dt_s` towards `next_event_s`: the clock, the events due (the grains of
-    /// `st` current for them: `write_back` puts them there), then `obs` told of the step.
+    /// Ends a step of `dt_s` towards `next_event_s`: the clock, the events due, then `obs` told
+    /// of the step. With a packed suspension `sus`, the heights of its grains are written into
+    /// `st` for the events ([`Suspension::write_back`]), and for a step whose observer wants the
+    /// grains (a checkpoint) their speeds too, for that call only (the state's speeds are empty
+    /// again after it: [`Suspension::new`]).
     fn end_step(
         &self,
         st: &mut State,
         dt_s: f64,
         next_event_s: f64,
         obs: &mut impl Observer,
-        mut write_back: impl FnMut(&mut State),
+        sus: Option<&Suspension>,
     ) {
         advance_clock(st, dt_s, next_event_s);
-        if self.schedule.due(st) {
-            write_back(st);
+        if let (Some(sus), true) = (sus, self.schedule.due(st)) {
+            sus.write_back(st);
         }
         self.schedule.dispatch(st, obs);
-        if obs.wants_grains() {
-            write_back(st);
-        }
+        let speeds = match (sus, obs.wants_grains()) {
+            (Some(sus), true) => {
+                sus.write_back(st);
+                st.velocity_m_s = sus.speeds_m_s(st.len());
+                true
+            }
+            _ => false,
+        };
         obs.step(st);
+        if speeds {
+            st.velocity_m_s = Vec::new();
+        }
     }
 
     /// The step loop of full physics without contacts, on the suspended grains packed in a
     /// [`Suspension`] (`sus`; `suspect`: a grain of `st` fails the fault test already), with the
     /// voidage grid `grid`: each pass streams through the suspended grains only, and their
-    /// heights and speeds reach the state only when something reads them there. One step of
-    /// 10⁷ grains takes well under a second, so an interrupt request is honoured between steps
-    /// (nothing to undo).
+    /// heights reach the state only when something reads them there, and their speeds only at
+    /// checkpoints, a fault scan and the end (`st.velocity_m_s` is empty in between:
+    /// [`Suspension::new`]). One step of 10⁷ grains takes well under a second, so an interrupt
+    /// request is honoured between steps (nothing to undo).
     fn packed(
         &self,
         mut st: State,
@@ -164,18 +180,20 @@ impl Run<'_> {
             laps.lap(&mut st.stages, Stage::FreeUpdate);
             if bad || pending {
                 sus.write_back(&mut st);
-                if let Some(u) = stepper.grain_fault(&st, setup, dt, Some(stepper.speed_bound_m_s))
-                {
+                st.velocity_m_s = sus.speeds_m_s(st.len());
+                let fault = stepper.grain_fault(&st, setup, dt, Some(stepper.speed_bound_m_s));
+                st.velocity_m_s = Vec::new();
+                if let Some(u) = fault {
                     st.fault = Some(u);
                     break;
                 }
             }
             laps.lap(&mut st.stages, Stage::FaultScan);
             (vmax, pending) = sus.deposit_vmax(&mut st, stepper, setup);
-            self.end_step(&mut st, dt, next_event, obs, |st| sus.write_back(st));
+            self.end_step(&mut st, dt, next_event, obs, Some(&sus));
             laps.lap(&mut st.stages, Stage::DepositEvents);
         }
-        sus.write_back(&mut st);
+        sus.into_state(&mut st);
         st
     }
 
@@ -185,7 +203,7 @@ impl Run<'_> {
     /// at the start of that interval, for the per-grain loop to redo it step by step (its fault
     /// scan reports the grain).
     fn intervals(&self, mut st: State, obs: &mut impl Observer) -> (State, Interval) {
-        let cache = IdealCache::new(self.stepper, &st);
+        let cache = IdealCache::new(self.stepper, &self.setup.grains);
         let mut start = StepStart::default();
         let mut runs: Vec<(f64, u64)> = Vec::new();
         while self.schedule.running(&st) {
@@ -236,10 +254,13 @@ impl Run<'_> {
         let (speeds, volumes) = if stepper.ideal {
             (Vec::new(), Vec::new())
         } else {
-            (stepper.stokes_speeds_m_s(&st), grid.grain_volumes_m3(&st))
+            (
+                stepper.stokes_speeds_m_s(&setup.grains),
+                grid.grain_volumes_m3(&setup.grains),
+            )
         };
         // The grains the per-step passes visit: every grain.
-        let active: Vec<usize> = (0..st.grains.len()).collect();
+        let active: Vec<usize> = (0..st.len()).collect();
         let mut start = StepStart::default();
         // The largest suspended speed (full physics), for the next step.
         let mut vmax = stepper.vmax_m_s(&st, &speeds);
@@ -253,7 +274,7 @@ impl Run<'_> {
             let dt = stepper.step_with_vmax_s(st.time_s, next_event, vmax);
             laps.lap(&mut st.stages, Stage::StepSize);
             if !stepper.ideal {
-                grid.fill(&st, &volumes, &active);
+                grid.fill(&st, &setup.grains, &volumes, &active);
             }
             start.capture(&st);
             laps.lap(&mut st.stages, Stage::Voidage);
@@ -266,8 +287,8 @@ impl Run<'_> {
             if !self.move_grains(&mut st, &step, contacts.as_mut(), &mut laps) {
                 break;
             }
-            vmax = stepper.deposit_vmax(&mut st, &speeds, &active);
-            self.end_step(&mut st, dt, next_event, obs, |_| {});
+            vmax = stepper.deposit_vmax(&mut st, &setup.grains, &speeds, &active);
+            self.end_step(&mut st, dt, next_event, obs, None);
             laps.lap(&mut st.stages, Stage::DepositEvents);
         }
         st
@@ -302,7 +323,7 @@ impl Run<'_> {
         }
         laps.lap(&mut st.stages, Stage::FaultScan);
         if let Some(contacts) = contacts {
-            match contacts.run(st, m.start, m.grid, dt) {
+            match contacts.run(st, &setup.grains, m.start, m.grid, dt) {
                 StageEnd::Interrupted => {
                     st.interrupted = true;
                     return false;

@@ -2,8 +2,7 @@
 //! statistics.
 
 use super::setup::Setup;
-use crate::fluid::sphere_volume_m3;
-use crate::sample::Grain;
+use crate::sample::{Grain, Grains};
 
 /// One profile: per layer (top first) the solid volume of suspended grains (real units), their
 /// count, and the largest and smallest diameter present.
@@ -29,12 +28,20 @@ pub struct Profile {
     pub bed_mass_kg: f64,
 }
 
-/// State of the simulation: everything a resumed run needs (see [`crate::checkpoint`]).
+/// State of the simulation: everything a resumed run needs (see [`crate::checkpoint`]) beside
+/// the setup's grains ([`Setup::grains`]: their kinds and horizontal positions at t = 0, which
+/// never change), grain i of the setup being entry i of every per-grain array.
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct State {
-    /// Grains (positions updated in place).
-    pub grains: Vec<Grain>,
-    /// Vertical velocity of each grain (negative downwards), m/s.
+    /// Height of each grain's centre above the bottom, m.
+    pub y_m: Vec<f64>,
+    /// Horizontal position of each grain, m, once a contact has moved one (the contact stage
+    /// fills it); empty while every grain is where the setup put it ([`State::x_m`]).
+    pub x_m: Vec<f64>,
+    /// Vertical velocity of each grain (negative downwards), m/s. Empty while a run without
+    /// contacts holds the suspended grains' speeds packed apart
+    /// ([`super::suspension::Suspension::new`]): its records, snapshots and readings read
+    /// heights only; a checkpoint, the fault scan and the end of the run get every speed.
     pub velocity_m_s: Vec<f64>,
     /// Grain has joined the bed (or stopped on the floor).
     pub settled: Vec<bool>,
@@ -65,9 +72,16 @@ pub struct State {
 impl State {
     /// The state at t = 0: every grain of `setup` at rest in suspension.
     pub fn initial(setup: &Setup) -> Self {
-        let n = setup.grains.len();
+        Self::at_heights(setup.grains.initial_heights_m())
+    }
+
+    /// The state at t = 0 with the grains at heights `y_m` (m), at rest in suspension, where the
+    /// setup put them across.
+    pub fn at_heights(y_m: Vec<f64>) -> Self {
+        let n = y_m.len();
         Self {
-            grains: setup.grains.clone(),
+            y_m,
+            x_m: Vec::new(),
             velocity_m_s: vec![0.0; n],
             settled: vec![false; n],
             bed_height_m: 0.0,
@@ -79,6 +93,39 @@ impl State {
             contacts: ContactStats::default(),
             fault: None,
             stages: StageTimes::default(),
+        }
+    }
+
+    /// Number of grains.
+    pub fn len(&self) -> usize {
+        self.y_m.len()
+    }
+
+    /// True when there is no grain.
+    #[allow(dead_code)] // the pair of `len` (clippy's len_without_is_empty)
+    pub fn is_empty(&self) -> bool {
+        self.y_m.is_empty()
+    }
+
+    /// Horizontal position of grain `i` of `grains` (the setup's grains), m.
+    #[inline(always)]
+    pub fn x_m(&self, grains: &Grains, i: usize) -> f64 {
+        match self.x_m.get(i) {
+            Some(&x) => x,
+            None => grains.x_m[i],
+        }
+    }
+
+    /// Grain `i` of `grains` (the setup's grains) whole, where it is now.
+    #[inline(always)]
+    pub fn grain(&self, grains: &Grains, i: usize) -> Grain {
+        grains.grain(i, self.x_m(grains, i), self.y_m[i])
+    }
+
+    /// Keeps every grain's horizontal position in the state (before a contact moves one).
+    pub fn own_x(&mut self, grains: &Grains) {
+        if self.x_m.is_empty() {
+            self.x_m = grains.x_m.clone();
         }
     }
 }
@@ -188,19 +235,23 @@ pub fn profile(st: &State, setup: &Setup, layers: usize, rho_p: f64) -> Profile 
         bed_height_m: st.bed_height_m,
         bed_mass_kg: 0.0,
     };
-    for (g, &settled) in st.grains.iter().zip(&st.settled) {
-        let v = g.weight * sphere_volume_m3(g.diameter_m);
+    let grains = &setup.grains;
+    let volumes: Vec<f64> = grains.kinds.iter().map(|k| k.volume_m3()).collect();
+    for (i, (&y, &settled)) in st.y_m.iter().zip(&st.settled).enumerate() {
+        let kind = grains.kind[i] as usize;
+        let v = volumes[kind];
         if settled {
             p.bed_mass_kg += v * rho_p;
             continue;
         }
-        let depth = setup.height_m - g.y_m;
+        let d = grains.kinds[kind].diameter_m;
+        let depth = setup.height_m - y;
         let k = ((depth / h_ly) as usize).min(layers - 1);
         p.solid_m3[k] += v;
         p.count[k] += 1;
         p.solid_sq_m6[k] += v * v;
-        p.d_max_m[k] = p.d_max_m[k].max(g.diameter_m);
-        p.d_min_m[k] = p.d_min_m[k].min(g.diameter_m);
+        p.d_max_m[k] = p.d_max_m[k].max(d);
+        p.d_min_m[k] = p.d_min_m[k].min(d);
     }
     p
 }
@@ -213,10 +264,11 @@ pub const PICTURE_BANDS: usize = 100;
 pub fn band_mass_fractions(st: &State, setup: &Setup, bands: usize) -> Vec<f64> {
     let mut f = vec![0.0; bands];
     let mut total = 0.0;
-    for g in &st.grains {
-        let v = g.weight * sphere_volume_m3(g.diameter_m);
-        let k =
-            (((setup.height_m - g.y_m) / setup.height_m * bands as f64) as usize).min(bands - 1);
+    let grains = &setup.grains;
+    let volumes: Vec<f64> = grains.kinds.iter().map(|k| k.volume_m3()).collect();
+    for (&y, &kind) in st.y_m.iter().zip(&grains.kind) {
+        let v = volumes[kind as usize];
+        let k = (((setup.height_m - y) / setup.height_m * bands as f64) as usize).min(bands - 1);
         f[k] += v;
         total += v;
     }

@@ -13,6 +13,7 @@ use super::state::State;
 use super::voidage::VoidageGrid;
 use crate::dynamics::{DtBasis, Integrator, Unstable};
 use crate::fluid::newtonian::stokes_response_time_s;
+use crate::sample::Grains;
 use kernel::{
     bed_rise_m, free_step, horizontal_fault, on_bed, vertical_fault, CellDrag, CellGrain, Limits,
 };
@@ -36,17 +37,15 @@ impl StepStart {
     /// Keeps the heights and speeds of every grain of `st` (in parallel, by chunks of
     /// [`INTERRUPT_CHECK_GRAINS`] grains: copies only).
     pub fn capture(&mut self, st: &State) {
-        let (n, len) = (INTERRUPT_CHECK_GRAINS, st.grains.len());
+        let (n, len) = (INTERRUPT_CHECK_GRAINS, st.len());
         self.y_m.resize(len, 0.0);
         self.v_m_s.resize(len, 0.0);
         self.y_m
             .par_chunks_mut(n)
             .zip(self.v_m_s.par_chunks_mut(n))
-            .zip(st.grains.par_chunks(n).zip(st.velocity_m_s.par_chunks(n)))
-            .for_each(|((ys, vs), (gs, v0))| {
-                for (y, g) in ys.iter_mut().zip(gs) {
-                    *y = g.y_m;
-                }
+            .zip(st.y_m.par_chunks(n).zip(st.velocity_m_s.par_chunks(n)))
+            .for_each(|((ys, vs), (y0, v0))| {
+                ys.copy_from_slice(y0);
                 vs.copy_from_slice(v0);
             });
     }
@@ -69,14 +68,12 @@ impl StepStart {
     /// Puts every grain of `st` back at its captured height and speed.
     pub fn rewind(&self, st: &mut State) {
         let n = INTERRUPT_CHECK_GRAINS;
-        st.grains
+        st.y_m
             .par_chunks_mut(n)
             .zip(st.velocity_m_s.par_chunks_mut(n))
             .zip(self.y_m.par_chunks(n).zip(self.v_m_s.par_chunks(n)))
-            .for_each(|((gs, vs), (y0, v0))| {
-                for (g, &y) in gs.iter_mut().zip(y0) {
-                    g.y_m = y;
-                }
+            .for_each(|((ys, vs), (y0, v0))| {
+                ys.copy_from_slice(y0);
                 vs.copy_from_slice(v0);
             });
     }
@@ -112,16 +109,18 @@ impl Stepper {
         let suspect = AtomicBool::new(false);
         let n = INTERRUPT_CHECK_GRAINS;
         let stopped = AtomicBool::new(false);
+        let (grains, xs) = (&setup.grains, &st.x_m);
+        let x_of = |i: usize| xs.get(i).copied().unwrap_or_else(|| grains.x_m[i]);
         let moved = st
-            .grains
+            .y_m
             .par_chunks_mut(n)
             .zip(st.velocity_m_s.par_chunks_mut(n))
             .zip(st.settled.par_chunks(n))
             .enumerate()
-            .map(|(ci, ((grains, speeds), settled))| {
+            .map(|(ci, ((ys, speeds), settled))| {
                 let base = ci * n;
                 let lo = active.partition_point(|&i| i < base);
-                let hi = active.partition_point(|&i| i < base + grains.len());
+                let hi = active.partition_point(|&i| i < base + ys.len());
                 if lo == hi {
                     return 0;
                 }
@@ -133,22 +132,22 @@ impl Stepper {
                 let mut bad = false;
                 for &i in &active[lo..hi] {
                     let k = i - base;
-                    let (gr, v) = (&mut grains[k], &mut speeds[k]);
+                    let (y, v) = (&mut ys[k], &mut speeds[k]);
+                    let (kind, x) = (grains.kind_of(i), x_of(i));
+                    let d = kind.diameter_m;
                     if settled[k] {
-                        bad |= Self::faulty(gr, *v, width, height, lim.speed_bound_m_s);
+                        bad |= Self::faulty(x, *y, d, *v, width, height, lim.speed_bound_m_s);
                         continue;
                     }
-                    let d = gr.diameter_m;
                     let g = CellGrain {
                         diameter_m: d,
-                        class: gr.class,
-                        cell: grid.cell_of(gr.x_m, gr.y_m),
+                        class: kind.class,
+                        cell: grid.cell_of(x, *y),
                     };
                     let fault;
-                    (gr.y_m, *v, fault) =
-                        free_step(&drag, &g, gr.y_m, *v, 0.5 * d, height + d, lim);
+                    (*y, *v, fault) = free_step(&drag, &g, *y, *v, 0.5 * d, height + d, lim);
                     moved += 1;
-                    bad |= fault || horizontal_fault(gr.x_m, width);
+                    bad |= fault || horizontal_fault(x, width);
                 }
                 if bad {
                     suspect.store(true, Ordering::Relaxed);
@@ -163,7 +162,9 @@ impl Stepper {
     /// (m/s) in the cylinder of `setup`.
     pub fn is_faulty(&self, gr: &crate::sample::Grain, v_m_s: f64, setup: &Setup) -> bool {
         Self::faulty(
-            gr,
+            gr.x_m,
+            gr.y_m,
+            gr.diameter_m,
             v_m_s,
             setup.width_m,
             setup.height_m,
@@ -171,10 +172,11 @@ impl Stepper {
         )
     }
 
-    /// The test of [`Stepper::grain_fault`] on one grain of speed `v` (m/s) in a cylinder of
-    /// `width` × `height` (m) with speed bound `bound` (m/s).
-    fn faulty(gr: &crate::sample::Grain, v: f64, width: f64, height: f64, bound: f64) -> bool {
-        vertical_fault(gr.y_m, v, height + gr.diameter_m, bound) || horizontal_fault(gr.x_m, width)
+    /// The test of [`Stepper::grain_fault`] on one grain at (`x`, `y`) of diameter `d` (m) and
+    /// speed `v` (m/s) in a cylinder of `width` × `height` (m) with speed bound `bound` (m/s).
+    #[allow(clippy::too_many_arguments)]
+    fn faulty(x: f64, y: f64, d: f64, v: f64, width: f64, height: f64, bound: f64) -> bool {
+        vertical_fault(y, v, height + d, bound) || horizontal_fault(x, width)
     }
 
     /// Deposition (serial, in ascending grain order: the bed grows as grains join it): every
@@ -185,20 +187,27 @@ impl Stepper {
     /// it (each the larger of its speed and its Stokes terminal speed, `stokes_speeds_m_s`; only
     /// its speed where that list is empty), m/s, 0 if none: the bound of the next step
     /// ([`Stepper::step_with_vmax_s`]), found in the same pass.
-    pub fn deposit_vmax(&self, st: &mut State, stokes_speeds_m_s: &[f64], active: &[usize]) -> f64 {
+    pub fn deposit_vmax(
+        &self,
+        st: &mut State,
+        grains: &Grains,
+        stokes_speeds_m_s: &[f64],
+        active: &[usize],
+    ) -> f64 {
         let mut vmax = 0.0f64;
         for &i in active {
-            let (gr, v) = (&mut st.grains[i], &mut st.velocity_m_s[i]);
+            let (y, v) = (&mut st.y_m[i], &mut st.velocity_m_s[i]);
             if st.settled[i] {
                 continue;
             }
-            let half_d = 0.5 * gr.diameter_m;
-            if on_bed(gr.y_m, half_d, st.bed_height_m) {
+            let kind = grains.kind_of(i);
+            let half_d = 0.5 * kind.diameter_m;
+            if on_bed(*y, half_d, st.bed_height_m) {
                 st.settled[i] = true;
                 *v = 0.0;
-                gr.y_m = st.bed_height_m + half_d;
+                *y = st.bed_height_m + half_d;
                 if !self.ideal {
-                    st.bed_height_m += bed_rise_m(gr.weight, gr.diameter_m, self.bed_area_m2);
+                    st.bed_height_m += bed_rise_m(kind.weight, kind.diameter_m, self.bed_area_m2);
                 }
             } else {
                 let vs = stokes_speeds_m_s.get(i).copied().unwrap_or(0.0);
@@ -223,12 +232,17 @@ impl Stepper {
     ) -> Option<Unstable> {
         let (width, height) = (setup.width_m, setup.height_m);
         let bound = speed_bound_m_s.unwrap_or(f64::INFINITY);
+        let grains = &setup.grains;
         let i = st
-            .grains
+            .y_m
             .par_iter()
             .zip(st.velocity_m_s.par_iter())
-            .position_first(|(gr, v)| Self::faulty(gr, *v, width, height, bound))?;
-        let (gr, v) = (st.grains[i], st.velocity_m_s[i]);
+            .enumerate()
+            .position_first(|(i, (&y, &v))| {
+                let (x, d) = (st.x_m(grains, i), grains.diameter_m(i));
+                Self::faulty(x, y, d, v, width, height, bound)
+            })?;
+        let (gr, v) = (st.grain(grains, i), st.velocity_m_s[i]);
         let d = gr.diameter_m;
         let (stable, basis) = if self.integrator == Integrator::Explicit {
             (

@@ -20,7 +20,6 @@ use super::step::kernel::{after_step, bed_rise_m, free_step, on_bed, CellDrag, C
 use super::step::{Stepper, INTERRUPT_CHECK_GRAINS};
 use super::voidage::VoidageGrid;
 use crate::dynamics::terminal::{exponential_near_terminal_lanes, TerminalTable};
-use crate::fluid::sphere_volume_m3;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -87,54 +86,62 @@ const GONE: u32 = u32::MAX;
 
 impl Suspension {
     /// The suspended grains of `st` in the cells of `grid`, or None if a grain index or a cell
-    /// does not fit in 32 bits (the caller then steps the [`State`] itself). Also returns whether
+    /// does not fit in 32 bits (the caller then steps the [`State`] itself, left as it was).
+    /// Takes the speeds of `st` (their array becomes the suspended grains', compacted in place:
+    /// no second copy; [`Suspension::into_state`] gives them back): `st.velocity_m_s` is empty
+    /// while the suspension lives, every settled grain being at rest. Also returns whether
     /// any grain of `st`, suspended or settled, fails the fault test of
     /// [`Stepper::grain_fault`] now (in the cylinder of `setup`): the first step's free update
     /// would have found it (nothing changes a settled grain or a horizontal position afterwards).
     pub fn new(
-        st: &State,
+        st: &mut State,
         grid: &VoidageGrid,
         stepper: &Stepper,
         setup: &Setup,
     ) -> Option<(Self, bool)> {
         let cells = grid.cells();
-        if u32::try_from(st.grains.len()).is_err()
-            || cells.cell_of(0.0, f64::INFINITY) >= GONE as usize
-        {
+        let grains = &setup.grains;
+        if u32::try_from(st.len()).is_err() || cells.cell_of(0.0, f64::INFINITY) >= GONE as usize {
             return None;
         }
-        let mut me = Self::default();
+        let kinds = &grains.kinds;
+        let mut me = Self {
+            kinds: kinds
+                .iter()
+                .map(|k| Kind {
+                    class: k.class,
+                    diameter_m: k.diameter_m,
+                    volume_m3: k.volume_m3(),
+                    stokes_m_s: stepper.stokes_speed_m_s(k.diameter_m),
+                })
+                .collect(),
+            ..Self::default()
+        };
+        let n = st.settled.iter().filter(|&&s| !s).count();
+        me.index.reserve_exact(n);
+        me.y_m.reserve_exact(n);
+        me.cell.reserve_exact(n);
+        me.kind.reserve_exact(n);
+        let mut speeds = std::mem::take(&mut st.velocity_m_s);
         let mut suspect = false;
-        let mut kinds = std::collections::HashMap::new();
         let mut total_m3 = 0.0;
-        for (i, ((gr, &v), &settled)) in st
-            .grains
-            .iter()
-            .zip(&st.velocity_m_s)
-            .zip(&st.settled)
-            .enumerate()
-        {
-            suspect |= stepper.is_faulty(gr, v, setup);
+        for (i, (&y, &settled)) in st.y_m.iter().zip(&st.settled).enumerate() {
+            let (x, v) = (st.x_m(grains, i), speeds[i]);
+            suspect |= stepper.is_faulty(&grains.grain(i, x, y), v, setup);
             if settled {
                 continue;
             }
+            let kind = grains.kind[i];
+            // Entry k = index.len() ≤ i: its slot is read already.
+            speeds[me.index.len()] = v;
             me.index.push(i as u32);
-            me.y_m.push(gr.y_m);
-            me.v_m_s.push(v);
-            me.cell.push(cells.cell_of(gr.x_m, gr.y_m) as u32);
-            let key = (gr.class, gr.diameter_m.to_bits(), gr.weight.to_bits());
-            let kind = *kinds.entry(key).or_insert_with(|| {
-                me.kinds.push(Kind {
-                    class: gr.class,
-                    diameter_m: gr.diameter_m,
-                    volume_m3: gr.weight * sphere_volume_m3(gr.diameter_m),
-                    stokes_m_s: stepper.stokes_speed_m_s(gr.diameter_m),
-                });
-                me.kinds.len() - 1
-            });
-            me.kind.push(u32::try_from(kind).ok()?);
-            total_m3 += me.kinds[kind].volume_m3;
+            me.y_m.push(y);
+            me.cell.push(cells.cell_of(x, y) as u32);
+            me.kind.push(kind);
+            total_m3 += me.kinds[kind as usize].volume_m3;
         }
+        speeds.truncate(me.index.len());
+        me.v_m_s = speeds;
         me.reach_m = 1.01 * total_m3 / stepper.bed_area_m2 + 1e-12;
         Some((me, suspect))
     }
@@ -273,8 +280,9 @@ impl Suspension {
 
     /// Deposition (as [`Stepper::deposit_vmax`], in ascending grain order), after
     /// [`Suspension::free_update`]: every suspended grain touching the bed surface of `st` joins
-    /// the bed, at rest on it, the bed rising by its real volume over `stepper.bed_area_m2`; it
-    /// is written into `st` and leaves the suspension. Only the grains the free update found
+    /// the bed, at rest on it, the bed rising by its real volume over `stepper.bed_area_m2`; its
+    /// height and settled flag are written into `st` (its speed, 0, when the suspension ends)
+    /// and it leaves the suspension. Only the grains the free update found
     /// within reach of the bed are visited. Returns the largest speed of the grains still
     /// suspended (each the larger of its speed and its Stokes terminal speed), m/s, 0 if none,
     /// and whether a grain that joined the bed fails the test of [`Stepper::grain_fault`] there
@@ -297,12 +305,12 @@ impl Suspension {
                 let half_d = 0.5 * d;
                 if on_bed(y, half_d, st.bed_height_m) {
                     let i = self.index[j] as usize;
-                    let gr = &mut st.grains[i];
-                    gr.y_m = st.bed_height_m + half_d;
-                    st.velocity_m_s[i] = 0.0;
+                    let y = st.bed_height_m + half_d;
+                    st.y_m[i] = y;
                     st.settled[i] = true;
-                    st.bed_height_m += bed_rise_m(gr.weight, d, stepper.bed_area_m2);
-                    suspect |= stepper.is_faulty(&st.grains[i], 0.0, setup);
+                    let grain = setup.grains.grain(i, st.x_m(&setup.grains, i), y);
+                    st.bed_height_m += bed_rise_m(grain.weight, d, stepper.bed_area_m2);
+                    suspect |= stepper.is_faulty(&grain, 0.0, setup);
                     self.cell[j] = GONE;
                     self.gone += 1;
                 } else {
@@ -343,34 +351,78 @@ impl Suspension {
         self.kind.truncate(n);
     }
 
-    /// Writes the heights and speeds of the suspended grains into `st`, in parallel by chunks
-    /// of [`WRITE_BACK_GRAINS`] entries: the indices ascend, so each chunk writes its own range
-    /// of the state's grains.
+    /// Writes the heights of the suspended grains into `st`, in parallel by chunks of
+    /// [`WRITE_BACK_GRAINS`] entries: the indices ascend, so each chunk writes its own range of
+    /// the state's grains. Their speeds stay here ([`Suspension::speeds_m_s`]).
     pub fn write_back(&self, st: &mut State) {
         let n = WRITE_BACK_GRAINS;
         let len = self.index.len();
         let mut tasks = Vec::with_capacity(len.div_ceil(n));
-        let (mut grains, mut speeds) = (&mut st.grains[..], &mut st.velocity_m_s[..]);
+        let mut heights = &mut st.y_m[..];
         let mut base = 0;
         for lo in (0..len).step_by(n) {
             let end = self
                 .index
                 .get(lo + n)
-                .map_or(base + grains.len(), |&i| i as usize);
-            let (g, g_rest) = std::mem::take(&mut grains).split_at_mut(end - base);
-            let (v, v_rest) = std::mem::take(&mut speeds).split_at_mut(end - base);
-            tasks.push((lo, base, g, v));
-            (grains, speeds, base) = (g_rest, v_rest, end);
+                .map_or(base + heights.len(), |&i| i as usize);
+            let (g, rest) = std::mem::take(&mut heights).split_at_mut(end - base);
+            tasks.push((lo, base, g));
+            (heights, base) = (rest, end);
         }
-        tasks.into_par_iter().for_each(|(lo, base, g, v)| {
+        tasks.into_par_iter().for_each(|(lo, base, g)| {
             for j in lo..len.min(lo + n) {
                 if self.cell[j] != GONE {
-                    let i = self.index[j] as usize - base;
-                    g[i].y_m = self.y_m[j];
-                    v[i] = self.v_m_s[j];
+                    g[self.index[j] as usize - base] = self.y_m[j];
                 }
             }
         });
+    }
+
+    /// The vertical velocity of every one of the `n` grains of the state, m/s: a suspended
+    /// grain's from here, 0 for a settled one (at rest in the bed). A new array of `n` speeds,
+    /// for what reads the state's speeds while the suspension holds them (a checkpoint, the
+    /// fault scan).
+    pub fn speeds_m_s(&self, n: usize) -> Vec<f64> {
+        let mut v = vec![0.0; n];
+        for (j, &i) in self.index.iter().enumerate() {
+            if self.cell[j] != GONE {
+                v[i as usize] = self.v_m_s[j];
+            }
+        }
+        v
+    }
+
+    /// Ends the suspension: writes the heights of the suspended grains into `st` and gives it
+    /// back every grain's speed ([`Suspension::speeds_m_s`]), spread in place over the array of
+    /// speeds [`Suspension::new`] took from `st` (which still has room for every grain): no
+    /// new array, so the end of a run needs no more memory than its steps.
+    pub fn into_state(self, st: &mut State) {
+        self.write_back(st);
+        let Self {
+            index,
+            mut v_m_s,
+            cell,
+            ..
+        } = self;
+        let n = st.len();
+        let mut j = index.len();
+        v_m_s.resize(n, 0.0);
+        // From the last grain down: entry j goes to grain index[j] ≥ j, so every entry is read
+        // before its slot is written.
+        for i in (0..n).rev() {
+            let speed = if j > 0 && index[j - 1] as usize == i {
+                j -= 1;
+                if cell[j] == GONE {
+                    0.0
+                } else {
+                    v_m_s[j]
+                }
+            } else {
+                0.0
+            };
+            v_m_s[i] = speed;
+        }
+        st.velocity_m_s = v_m_s;
     }
 }
 

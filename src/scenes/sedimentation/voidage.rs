@@ -8,7 +8,8 @@ use super::state::State;
 use crate::dynamics::terminal::TerminalTable;
 use crate::dynamics::DallavalleGrain;
 use crate::fluid::hindered::richardson_zaki_drag_factor;
-use crate::fluid::{sphere_mass_kg, sphere_volume_m3, DragLaw, HinderedLaw, SphereDrag};
+use crate::fluid::{sphere_mass_kg, DragLaw, HinderedLaw, SphereDrag};
+use crate::sample::Grains;
 use rayon::prelude::*;
 
 /// The grid of solid volume per cell (real units, m³) and the drag it gives.
@@ -76,22 +77,24 @@ impl VoidageGrid {
     }
 
     /// The same grid with the terminal-state table ([`TerminalTable`]) of every size class of
-    /// the grains of `st` (full physics with the Di Felice factor; otherwise none), for grains
+    /// `grains` (full physics with the Di Felice factor; otherwise none), for grains
     /// of density `grain_density_kg_m3` under gravity `gravity_m_s2`: built once per run, in
     /// parallel (each class is independent).
     pub fn with_terminal_tables(
         self,
-        st: &State,
+        grains: &Grains,
         grain_density_kg_m3: f64,
         gravity_m_s2: f64,
     ) -> Self {
         if !self.is_di_felice() {
             return self;
         }
-        let classes = st.grains.iter().map(|g| g.class + 1).max().unwrap_or(0);
+        // The kinds holding grains: the same classes and diameters as the grains themselves.
+        let kinds = grains.kinds_present();
+        let classes = kinds.iter().map(|g| g.class + 1).max().unwrap_or(0);
         let mut diameter: Vec<Option<f64>> = vec![None; classes];
         let mut single = vec![true; classes];
-        for g in &st.grains {
+        for g in &kinds {
             match diameter[g.class] {
                 None => diameter[g.class] = Some(g.diameter_m),
                 Some(d) => single[g.class] &= d.to_bits() == g.diameter_m.to_bits(),
@@ -163,24 +166,25 @@ impl VoidageGrid {
         }
     }
 
-    /// The real solid volume of every grain of `st` (its weight times its volume), m³: computed
-    /// once per run for [`VoidageGrid::fill`].
-    pub fn grain_volumes_m3(&self, st: &State) -> Vec<f64> {
-        st.grains
-            .iter()
-            .map(|gr| gr.weight * sphere_volume_m3(gr.diameter_m))
-            .collect()
+    /// The real solid volume of every grain of `grains` (its weight times its volume), m³:
+    /// computed once per run for [`VoidageGrid::fill`].
+    pub fn grain_volumes_m3(&self, grains: &Grains) -> Vec<f64> {
+        let volumes: Vec<f64> = grains.kinds.iter().map(|k| k.volume_m3()).collect();
+        grains.kind.iter().map(|&k| volumes[k as usize]).collect()
     }
 
-    /// Refills the grid with the solid volume of the suspended grains of `st` among `active`
-    /// (ascending grain indices, every suspended grain among them), given the real solid volume
-    /// of each grain ([`VoidageGrid::grain_volumes_m3`]), summed in grain order.
-    pub fn fill(&mut self, st: &State, volumes_m3: &[f64], active: &[usize]) {
+    /// Refills the grid with the solid volume of the suspended grains of `st` (grains `grains`)
+    /// among `active` (ascending grain indices, every suspended grain among them), given the
+    /// real solid volume of each grain ([`VoidageGrid::grain_volumes_m3`]), summed in grain
+    /// order.
+    pub fn fill(&mut self, st: &State, grains: &Grains, volumes_m3: &[f64], active: &[usize]) {
         let cells = self.cells();
-        self.fill_cells(active.iter().filter(|&&i| !st.settled[i]).map(|&i| {
-            let gr = &st.grains[i];
-            (cells.cell_of(gr.x_m, gr.y_m), volumes_m3[i])
-        }));
+        self.fill_cells(
+            active
+                .iter()
+                .filter(|&&i| !st.settled[i])
+                .map(|&i| (cells.cell_of(st.x_m(grains, i), st.y_m[i]), volumes_m3[i])),
+        );
     }
 
     /// Refills the grid with the solid volumes (m³) of `cells_volumes` (cell, real solid volume

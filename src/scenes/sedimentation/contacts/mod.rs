@@ -16,6 +16,7 @@ use super::state::State;
 use super::step::{StepStart, Stepper};
 use super::voidage::VoidageGrid;
 use crate::fluid::lubrication::Cutoffs;
+use crate::sample::Grains;
 use crate::scenario::SampleSpec;
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -69,27 +70,26 @@ impl ContactStage {
     /// After the free update of a step `dt_s` from `start`: finds the close
     /// pairs, groups them in clusters and re-does each cluster from the start of the step in its
     /// own Rapier world (in parallel), the grains' drag from `grid`; updates the contact
-    /// statistics. On an interrupt request the grains go back to the start of the step (a
-    /// resumed run re-does it) and the stage says so.
+    /// statistics. `grains` are the setup's grains of `st`; a grain a contact moves across gets
+    /// its horizontal position in the state ([`State::own_x`]). On an interrupt request the
+    /// grains go back to the start of the step (a resumed run re-does it) and the stage says so.
     pub fn run(
         &mut self,
         st: &mut State,
+        grains: &Grains,
         start: &StepStart,
         grid: &VoidageGrid,
         dt_s: f64,
     ) -> StageEnd {
         let t0 = std::time::Instant::now();
-        let probes: Vec<Option<Probe>> = st
-            .grains
-            .iter()
-            .zip(&st.settled)
-            .zip(&start.y_m)
-            .map(|((g, &settled), &y0)| {
-                (!settled).then_some(Probe {
-                    x_m: g.x_m,
+        let probes: Vec<Option<Probe>> = (st.y_m.iter().zip(&st.settled).zip(&start.y_m))
+            .enumerate()
+            .map(|(i, ((&y, &settled), &y0))| {
+                (!settled).then(|| Probe {
+                    x_m: st.x_m(grains, i),
                     y_start_m: y0,
-                    y_end_m: g.y_m,
-                    radius_m: 0.5 * g.diameter_m,
+                    y_end_m: y,
+                    radius_m: 0.5 * grains.diameter_m(i),
                 })
             })
             .collect();
@@ -106,7 +106,7 @@ impl ContactStage {
             floor_m: st.bed_height_m,
             ..self.scene
         };
-        let (grains, y0s, v0s) = (&st.grains, &start.y_m, &start.v_m_s);
+        let (state, y0s, v0s) = (&*st, &start.y_m, &start.v_m_s);
         let results: Vec<(Vec<Resolved>, Solve)> = groups
             .par_iter()
             .zip(&group_pairs)
@@ -121,13 +121,13 @@ impl ContactStage {
                 let members: Vec<ClusterGrain> = grp
                     .iter()
                     .map(|&i| {
-                        let gr = &grains[i];
+                        let (x, d) = (state.x_m(grains, i), grains.diameter_m(i));
                         ClusterGrain {
-                            x_m: gr.x_m,
+                            x_m: x,
                             y_m: y0s[i],
                             vy_m_s: v0s[i],
-                            diameter_m: gr.diameter_m,
-                            drag: grid.drag_at(gr.diameter_m, gr.x_m, y0s[i]),
+                            diameter_m: d,
+                            drag: grid.drag_at(d, x, y0s[i]),
                         }
                     })
                     .collect();
@@ -138,12 +138,15 @@ impl ContactStage {
             start.rewind(st);
             return StageEnd::Interrupted;
         }
+        if !groups.is_empty() {
+            st.own_x(grains);
+        }
         for (grp, (res, n)) in groups.iter().zip(results) {
             st.contacts.rapier_steps += n.rapier_steps;
             st.contacts.fallbacks += u64::from(n.fallback);
             for (&i, r) in grp.iter().zip(res) {
-                st.grains[i].x_m = r.x_m;
-                st.grains[i].y_m = r.y_m;
+                st.x_m[i] = r.x_m;
+                st.y_m[i] = r.y_m;
                 st.velocity_m_s[i] = r.vy_m_s;
             }
         }

@@ -6,7 +6,6 @@
 
 use super::plot::{err, time_text};
 use super::Snapshot;
-use crate::fluid::sphere_volume_m3;
 use crate::io::fmt::{num, sig_shortest};
 use crate::io::Table;
 use crate::scenes::sedimentation::setup::Setup;
@@ -33,14 +32,16 @@ impl CylinderPanel {
     pub fn of(st: &State, setup: &Setup, bands: usize) -> Self {
         let mut f = vec![0.0; bands];
         let (mut total, mut bed) = (0.0, 0.0);
-        for (g, &settled) in st.grains.iter().zip(&st.settled) {
-            let v = g.weight * sphere_volume_m3(g.diameter_m);
+        let grains = &setup.grains;
+        let volumes: Vec<f64> = grains.kinds.iter().map(|k| k.volume_m3()).collect();
+        for ((&y, &settled), &kind) in st.y_m.iter().zip(&st.settled).zip(&grains.kind) {
+            let v = volumes[kind as usize];
             total += v;
             if settled {
                 bed += v;
                 continue;
             }
-            let depth = (setup.height_m - g.y_m) / setup.height_m;
+            let depth = (setup.height_m - y) / setup.height_m;
             f[((depth * bands as f64).max(0.0) as usize).min(bands - 1)] += v;
         }
         let total = if total > 0.0 { total } else { 1.0 };
@@ -58,7 +59,7 @@ impl CylinderPanel {
 pub fn panels(snapshots: &[Snapshot], setup: &Setup) -> Vec<CylinderPanel> {
     snapshots
         .iter()
-        .map(|sn| CylinderPanel::of(&sn.state(setup), setup, PICTURE_BANDS))
+        .map(|sn| CylinderPanel::of(&sn.state(), setup, PICTURE_BANDS))
         .collect()
 }
 

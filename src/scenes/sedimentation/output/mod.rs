@@ -19,6 +19,7 @@ use super::setup::{limiting_diameter_m, Setup};
 use super::state::{concentration, Profile, State};
 use crate::io::fmt::num;
 use crate::io::{Outputs, Table};
+use crate::sample::Grains;
 use crate::scenario::{Physics, SampleSpec};
 use crate::scenes::SceneReport;
 use std::io;
@@ -62,35 +63,28 @@ pub struct Snapshot {
 impl Snapshot {
     /// The snapshot of `st`, a state of a run of `setup`.
     pub fn of(st: &State, setup: &Setup) -> Self {
-        let moved = st.grains.len() != setup.grains.len()
-            || st
-                .grains
-                .iter()
-                .zip(&setup.grains)
-                .any(|(g, g0)| g.x_m.to_bits() != g0.x_m.to_bits());
+        let moved = !st.x_m.is_empty()
+            && (st.x_m.len() != setup.grains.len()
+                || st
+                    .x_m
+                    .iter()
+                    .zip(&setup.grains.x_m)
+                    .any(|(x, x0)| x.to_bits() != x0.to_bits()));
         Self {
             time_s: st.time_s,
             bed_height_m: st.bed_height_m,
-            y_m: st.grains.iter().map(|g| g.y_m).collect(),
-            x_m: if moved {
-                st.grains.iter().map(|g| g.x_m).collect()
-            } else {
-                Vec::new()
-            },
+            y_m: st.y_m.clone(),
+            x_m: if moved { st.x_m.clone() } else { Vec::new() },
             settled: st.settled.clone(),
         }
     }
 
-    /// The state the snapshot was taken of, as its outputs read it: grains, settled flags, time
-    /// and bed height (speeds zero, counters and statistics those of a new run).
-    pub fn state(&self, setup: &Setup) -> State {
-        let mut st = State::initial(setup);
-        for (i, (g, &y)) in st.grains.iter_mut().zip(&self.y_m).enumerate() {
-            g.y_m = y;
-            if let Some(&x) = self.x_m.get(i) {
-                g.x_m = x;
-            }
-        }
+    /// The state the snapshot was taken of, as its outputs read it: heights, horizontal
+    /// positions, settled flags, time and bed height (speeds zero, counters and statistics those
+    /// of a new run).
+    pub fn state(&self) -> State {
+        let mut st = State::at_heights(self.y_m.clone());
+        st.x_m.clone_from(&self.x_m);
         st.settled.copy_from_slice(&self.settled);
         st.time_s = self.time_s;
         st.bed_height_m = self.bed_height_m;
@@ -169,7 +163,7 @@ pub fn write_all(
     let from_snapshots: Vec<Profile> = snapshots
         .iter()
         .filter(|sn| !profiles.iter().any(|p| p.time_s == sn.time_s))
-        .map(|sn| super::state::profile(&sn.state(setup), setup, sm.layers, sm.density_kg_m3))
+        .map(|sn| super::state::profile(&sn.state(), setup, sm.layers, sm.density_kg_m3))
         .collect();
     let mut at: Vec<&Profile> = profiles.iter().chain(&from_snapshots).collect();
     at.sort_by(|a, b| a.time_s.total_cmp(&b.time_s));
@@ -187,7 +181,7 @@ pub fn write_all(
             ),
         )?;
     }
-    let summary = Summary::of(st);
+    let summary = Summary::of(st, &setup.grains);
     out.table(summary_table(sm, setup, st, &summary));
     let mut report = report(sm, setup, st, &summary, wall_s, &instrument_errors);
     report
@@ -376,11 +370,14 @@ struct Summary {
 }
 
 impl Summary {
-    fn of(st: &State) -> Self {
-        let real: f64 = st.grains.iter().map(|g| g.weight).sum();
-        let (weight_min, weight_max) = st.grains.iter().fold((f64::INFINITY, 0.0f64), |a, g| {
-            (a.0.min(g.weight), a.1.max(g.weight))
-        });
+    fn of(st: &State, grains: &Grains) -> Self {
+        let weight = |&k: &u32| grains.kinds[k as usize].weight;
+        let real: f64 = grains.kind.iter().map(weight).sum();
+        let (weight_min, weight_max) = grains
+            .kind
+            .iter()
+            .map(weight)
+            .fold((f64::INFINITY, 0.0f64), |a, w| (a.0.min(w), a.1.max(w)));
         Self {
             real,
             weight_min,
@@ -394,7 +391,7 @@ impl Summary {
 fn summary_table(sm: &SampleSpec, setup: &Setup, st: &State, su: &Summary) -> Table {
     let rows: [(&str, String); 18] = [
         ("sample", sm.sample.to_string()),
-        ("representative_grains", st.grains.len().to_string()),
+        ("representative_grains", st.len().to_string()),
         ("real_grains_modelled", num(su.real)),
         ("weight_min", num(su.weight_min)),
         ("weight_max", num(su.weight_max)),
@@ -442,7 +439,7 @@ fn report(
         format!(
             "sample {}: {} representative grains for {} real ones (weights {}–{}), h_z = {} m",
             sm.sample,
-            st.grains.len(),
+            st.len(),
             g(su.real),
             g(su.weight_min),
             g(su.weight_max),
@@ -479,7 +476,7 @@ fn report(
     SceneReport {
         warnings: Vec::new(),
         steps: st.steps,
-        bodies: st.grains.len(),
+        bodies: st.len(),
         engine_settings: None,
         lines,
         interrupted: st.interrupted,

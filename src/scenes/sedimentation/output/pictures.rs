@@ -9,7 +9,7 @@
 //! held until the end of the run).
 
 use crate::io::{Cells, Outputs, Table};
-use crate::sample::Grain;
+use crate::sample::Grains;
 use std::io::{self, Write};
 use std::sync::Arc;
 
@@ -27,11 +27,12 @@ pub struct GrainColumns {
 
 impl GrainColumns {
     /// The columns of `grains`.
-    pub fn of(grains: &[Grain]) -> Self {
+    pub fn of(grains: &Grains) -> Self {
+        let kinds = || (0..grains.len()).map(|i| grains.kind_of(i));
         Self {
-            x_m: grains.iter().map(|g| g.x_m).collect(),
-            diameter_m: grains.iter().map(|g| g.diameter_m).collect(),
-            weight: grains.iter().map(|g| g.weight).collect(),
+            x_m: grains.x_m.as_slice().into(),
+            diameter_m: kinds().map(|k| k.diameter_m).collect(),
+            weight: kinds().map(|k| k.weight).collect(),
         }
     }
 }
@@ -113,23 +114,11 @@ mod tests {
 
     #[test]
     fn a_snapshot_prints_its_grains_in_both_files() {
-        let grains = [
-            Grain {
-                x_m: 0.01,
-                y_m: 0.4,
-                diameter_m: 2.5e-5,
-                weight: 3.0,
-                class: 0,
-            },
-            Grain {
-                x_m: 0.05,
-                y_m: 0.3,
-                diameter_m: 1e-6,
-                weight: 1.5e8,
-                class: 1,
-            },
-        ];
-        let cols = GrainColumns::of(&grains);
+        let cols = GrainColumns {
+            x_m: vec![0.01, 0.05].into(),
+            diameter_m: vec![2.5e-5, 1e-6].into(),
+            weight: vec![3.0, 1.5e8].into(),
+        };
         let mut out = Outputs::new();
         write_snapshot(
             &mut out,

@@ -267,7 +267,7 @@ fn d7928_readings(
             })
             .or_else(|| {
                 let sn = snapshots.iter().find(|sn| same(sn.time_s, t))?;
-                read(&profile(&sn.state(setup), setup, set.layers, rho_p))
+                read(&profile(&sn.state(), setup, set.layers, rho_p))
             });
         match r {
             Some((r, sd)) => at.push((t, r, sd)),

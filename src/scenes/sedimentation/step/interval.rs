@@ -8,7 +8,7 @@ use super::kernel::{free_step, horizontal_fault, on_bed, Limits, StokesDrag, Sto
 use super::stepper::{Stepper, INTERRUPT_CHECK_GRAINS};
 use crate::dynamics::phi12;
 use crate::fluid::{sphere_mass_kg, DragLaw, SphereDrag};
-use crate::sample::Grain;
+use crate::sample::Grains;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -27,14 +27,14 @@ pub struct IdealCache {
 }
 
 impl IdealCache {
-    /// The factors of every grain of `st` at the largest step of `stepper` (Stokes drag).
-    pub fn new(stepper: &Stepper, st: &State) -> Self {
+    /// The factors of every grain of `grains` at the largest step of `stepper` (Stokes drag).
+    pub fn new(stepper: &Stepper, grains: &Grains) -> Self {
         let dt = stepper.max_step_s;
-        let factors = st
-            .grains
+        let factors = grains
+            .kind
             .par_iter()
-            .map(|gr| {
-                let g = stepper.stokes_grain(gr.diameter_m);
+            .map(|&k| {
+                let g = stepper.stokes_grain(grains.kinds[k as usize].diameter_m);
                 factors(g.mass_kg, g.slope_n_s_m, dt)
             })
             .collect();
@@ -101,6 +101,11 @@ impl Stepper {
         let job = Job {
             stepper: self,
             setup,
+            xs: if st.x_m.is_empty() {
+                &setup.grains.x_m
+            } else {
+                &st.x_m
+            },
             runs,
             cache,
             lim: Limits {
@@ -112,12 +117,12 @@ impl Stepper {
         let stopped = AtomicBool::new(false);
         let fault = AtomicBool::new(false);
         let moved = st
-            .grains
+            .y_m
             .par_chunks_mut(n)
             .zip(st.velocity_m_s.par_chunks_mut(n))
             .zip(st.settled.par_chunks_mut(n))
             .enumerate()
-            .map(|(ci, ((grains, speeds), settled))| {
+            .map(|(ci, ((ys, speeds), settled))| {
                 if stopped.load(Ordering::Relaxed)
                     || fault.load(Ordering::Relaxed)
                     || crate::interrupt::requested()
@@ -125,7 +130,7 @@ impl Stepper {
                     stopped.store(true, Ordering::Relaxed);
                     return 0;
                 }
-                let (moved, bad) = job.chunk(ci * n, grains, speeds, settled);
+                let (moved, bad) = job.chunk(ci * n, ys, speeds, settled);
                 if bad {
                     fault.store(true, Ordering::Relaxed);
                 }
@@ -147,6 +152,8 @@ impl Stepper {
 struct Job<'a> {
     stepper: &'a Stepper,
     setup: &'a Setup,
+    /// The horizontal position of every grain, m.
+    xs: &'a [f64],
     runs: &'a [(f64, u64)],
     cache: &'a IdealCache,
     lim: Limits,
@@ -165,34 +172,36 @@ struct Lanes {
 }
 
 impl Job<'_> {
-    /// The interval of the chunk of grains `grains` (speeds `speeds`, settled flags `settled`)
-    /// starting at grain `base`: its grain-steps and whether a grain failed the fault test.
+    /// The interval of the chunk of grains starting at grain `base` (heights `ys`, speeds
+    /// `speeds`, settled flags `settled`): its grain-steps and whether a grain failed the fault
+    /// test.
     fn chunk(
         &self,
         base: usize,
-        grains: &mut [Grain],
+        ys: &mut [f64],
         speeds: &mut [f64],
         settled: &mut [bool],
     ) -> (u64, bool) {
         let width = self.setup.width_m;
+        let xs = &self.xs[base..base + ys.len()];
         let mut bad = false;
         // The grains of the chunk still suspended, `L` at a time (the horizontal position, which
         // does not change, tested here).
-        let mut live_in_chunk: Vec<usize> = Vec::with_capacity(grains.len());
-        for (k, (gr, &st)) in grains.iter().zip(settled.iter()).enumerate() {
-            bad |= horizontal_fault(gr.x_m, width);
+        let mut live_in_chunk: Vec<usize> = Vec::with_capacity(ys.len());
+        for (k, (&x, &st)) in xs.iter().zip(settled.iter()).enumerate() {
+            bad |= horizontal_fault(x, width);
             if !st {
                 live_in_chunk.push(k);
             }
         }
         let mut moved = 0u64;
         for group in live_in_chunk.chunks(L) {
-            let lanes = self.lanes(group, grains, speeds);
+            let lanes = self.lanes(base, group, ys, speeds);
             let factors = |i: usize| &self.cache.factors[base + group[i]];
             let (lanes, m, b) = self.step_lanes(lanes, group.len(), factors);
             (moved, bad) = (moved + m, bad | b);
             for (i, &g) in group.iter().enumerate() {
-                grains[g].y_m = lanes.y_m[i];
+                ys[g] = lanes.y_m[i];
                 speeds[g] = lanes.v_m_s[i];
                 settled[g] = !lanes.live[i];
             }
@@ -203,9 +212,9 @@ impl Job<'_> {
         (moved, bad)
     }
 
-    /// The lanes of the grains `group` (indices into `grains` and `speeds`); the lanes past the
-    /// group are empty.
-    fn lanes(&self, group: &[usize], grains: &[Grain], speeds: &[f64]) -> Lanes {
+    /// The lanes of the grains `group` (indices into `ys` and `speeds`, of the chunk starting at
+    /// grain `base`); the lanes past the group are empty.
+    fn lanes(&self, base: usize, group: &[usize], ys: &[f64], speeds: &[f64]) -> Lanes {
         let empty = StokesGrain {
             mass_kg: 1.0,
             body_force_n: 0.0,
@@ -222,11 +231,10 @@ impl Job<'_> {
             live: [false; L],
         };
         for (i, &g) in group.iter().enumerate() {
-            let gr = &grains[g];
-            let d = gr.diameter_m;
+            let d = self.setup.grains.diameter_m(base + g);
             lanes.grain[i] = self.stepper.stokes_grain(d);
             lanes.live[i] = true;
-            (lanes.y_m[i], lanes.v_m_s[i]) = (gr.y_m, speeds[g]);
+            (lanes.y_m[i], lanes.v_m_s[i]) = (ys[g], speeds[g]);
             lanes.half_d_m[i] = 0.5 * d;
             lanes.top_m[i] = self.setup.height_m + d;
         }

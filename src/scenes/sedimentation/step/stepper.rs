@@ -7,6 +7,7 @@ use super::super::state::State;
 use super::super::voidage::VoidageGrid;
 use crate::dynamics::Integrator;
 use crate::fluid::newtonian::stokes_terminal_velocity_m_s;
+use crate::sample::Grains;
 use crate::scenario::Physics;
 use rayon::prelude::*;
 
@@ -42,9 +43,9 @@ pub struct Stepper {
 }
 
 impl Stepper {
-    /// The step constants of the run of `setup` (its physics, integrator, gravity, fluid and
-    /// `[sample]`) for the grains of `st`.
-    pub fn new(setup: &Setup, st: &State) -> Self {
+    /// The step constants of the run of `setup` (its physics, integrator, gravity, fluid,
+    /// `[sample]` and grains).
+    pub fn new(setup: &Setup) -> Self {
         let (c, sm) = (&setup.common, &setup.spec.sample);
         let mut me = Self {
             ideal: c.physics == Physics::IdealStokes,
@@ -59,9 +60,11 @@ impl Stepper {
             speed_bound_m_s: 0.0,
         };
         me.speed_bound_m_s = 2.0
-            * st.grains
+            * setup
+                .grains
+                .kinds_present()
                 .iter()
-                .map(|gr| me.stokes_speed_m_s(gr.diameter_m))
+                .map(|k| me.stokes_speed_m_s(k.diameter_m))
                 .fold(0.0, f64::max);
         me
     }
@@ -77,13 +80,15 @@ impl Stepper {
         )
     }
 
-    /// The Stokes terminal speed of every grain of `st` ([`Stepper::stokes_speed_m_s`]), m/s:
-    /// computed once per run for [`Stepper::step_with_vmax_s`].
-    pub fn stokes_speeds_m_s(&self, st: &State) -> Vec<f64> {
-        st.grains
+    /// The Stokes terminal speed of every grain of `grains` ([`Stepper::stokes_speed_m_s`]),
+    /// m/s: computed once per run for [`Stepper::step_with_vmax_s`].
+    pub fn stokes_speeds_m_s(&self, grains: &Grains) -> Vec<f64> {
+        let speeds: Vec<f64> = grains
+            .kinds
             .iter()
-            .map(|gr| self.stokes_speed_m_s(gr.diameter_m))
-            .collect()
+            .map(|k| self.stokes_speed_m_s(k.diameter_m))
+            .collect();
+        grains.kind.iter().map(|&k| speeds[k as usize]).collect()
     }
 
     /// The step from time `t_s` to `next_event_s` before any bound from the grains: up to the

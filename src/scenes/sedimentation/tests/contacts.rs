@@ -247,9 +247,13 @@ fn a_grain_pushed_against_a_wall_stays_in_the_domain() {
 
 /// Largest overlap of suspended grains, in diameters of the smaller of each pair, and the number
 /// of pairs overlapping by more than 5 % (pairs found by the cell list on frozen positions).
-fn overlaps(st: &crate::scenes::sedimentation::State, width_m: f64) -> (f64, usize) {
-    let probes: Vec<Option<Probe>> = st
-        .grains
+fn overlaps(
+    st: &crate::scenes::sedimentation::State,
+    grains: &crate::sample::Grains,
+    width_m: f64,
+) -> (f64, usize) {
+    let all: Vec<_> = (0..st.len()).map(|i| st.grain(grains, i)).collect();
+    let probes: Vec<Option<Probe>> = all
         .iter()
         .zip(&st.settled)
         .map(|(g, s)| {
@@ -263,7 +267,7 @@ fn overlaps(st: &crate::scenes::sedimentation::State, width_m: f64) -> (f64, usi
         .collect();
     let (mut worst, mut deep): (f64, usize) = (0.0, 0);
     for (i, j) in PairFinder::default().pairs(&probes, width_m, 0.1) {
-        let (a, b) = (&st.grains[i], &st.grains[j]);
+        let (a, b) = (&all[i], &all[j]);
         let dist = ((a.x_m - b.x_m).powi(2) + (a.y_m - b.y_m).powi(2)).sqrt();
         let overlap = 0.5 * (a.diameter_m + b.diameter_m) - dist;
         let d = a.diameter_m.min(b.diameter_m);
@@ -308,6 +312,7 @@ fn full_physics_with_contacts_accounts_for_every_grain() {
     let su = setup(&p).unwrap();
     let total: f64 = su
         .grains
+        .to_vec()
         .iter()
         .map(|g| g.weight * sphere_volume_m3(g.diameter_m))
         .sum();
@@ -320,14 +325,14 @@ fn full_physics_with_contacts_accounts_for_every_grain() {
         &mut OnRecord(|st: &State| {
             records += 1;
             let mut volume = 0.0;
-            for (g, _) in st.grains.iter().zip(&st.settled) {
+            for g in (0..st.len()).map(|i| st.grain(&su.grains, i)) {
                 volume += g.weight * sphere_volume_m3(g.diameter_m);
                 let r = 0.5 * g.diameter_m;
                 assert!(g.x_m >= r * (1.0 - 1e-9) && g.x_m <= su.width_m - r * (1.0 - 1e-9));
                 assert!(g.y_m - r >= -0.01 * g.diameter_m && g.y_m <= su.height_m);
             }
             assert!(((volume - total) / total).abs() < 1e-12);
-            let (w, d) = overlaps(st, su.width_m);
+            let (w, d) = overlaps(st, &su.grains, su.width_m);
             worst = worst.max(w);
             deep += d;
         }),
@@ -362,7 +367,7 @@ fn full_physics_with_contacts_accounts_for_every_grain() {
         &su_off,
         State::initial(&su_off),
         &[],
-        &mut OnRecord(|st: &State| deep_off += overlaps(st, su_off.width_m).1),
+        &mut OnRecord(|st: &State| deep_off += overlaps(st, &su_off.grains, su_off.width_m).1),
     );
     assert_eq!(st.contacts.pairs, 0);
     assert!(deep_off > 10, "without contacts: {deep_off} deep overlaps");

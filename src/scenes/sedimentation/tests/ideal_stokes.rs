@@ -32,9 +32,8 @@ fn run(sample: u32, extra: &[&str]) -> (Vec<Snap>, crate::scenes::sedimentation:
     let rec = |st: &State| {
         snaps.push(Snap {
             t: st.time_s,
-            heights: st
-                .grains
-                .iter()
+            heights: (0..st.len())
+                .map(|i| st.grain(&su.grains, i))
                 .zip(&st.settled)
                 .map(|(g, s)| (g.y_m, g.weight * sphere_volume_m3(g.diameter_m), *s))
                 .collect(),
@@ -124,6 +123,7 @@ fn every_grain_is_accounted_for_and_stays_in_the_cylinder() {
     );
     let total: f64 = su
         .grains
+        .to_vec()
         .iter()
         .map(|g| g.weight * sphere_volume_m3(g.diameter_m))
         .sum();
@@ -162,7 +162,7 @@ fn sample2_on(
     let seen = |st: &State| {
         records.push((
             st.time_s,
-            st.grains.iter().map(|g| g.y_m.to_bits()).collect(),
+            st.y_m.iter().map(|y| y.to_bits()).collect(),
             st.settled.iter().filter(|&&x| x).count(),
         ))
     };
@@ -212,8 +212,9 @@ fn the_chosen_loops_agree_with_the_per_grain_loop_bit_for_bit() {
             settled.iter().any(|&x| x) && settled.iter().any(|&x| !x),
             "{ov:?}"
         );
-        for (i, (a, b)) in chosen.grains.iter().zip(&per_grain.grains).enumerate() {
-            assert_eq!(a.y_m.to_bits(), b.y_m.to_bits(), "{ov:?} grain {i}: height");
+        assert_eq!(chosen.len(), per_grain.len());
+        for (i, (a, b)) in chosen.y_m.iter().zip(&per_grain.y_m).enumerate() {
+            assert_eq!(a.to_bits(), b.to_bits(), "{ov:?} grain {i}: height");
             assert_eq!(
                 chosen.velocity_m_s[i].to_bits(),
                 per_grain.velocity_m_s[i].to_bits(),
@@ -224,6 +225,77 @@ fn the_chosen_loops_agree_with_the_per_grain_loop_bit_for_bit() {
         assert!(loop_records.len() > 3, "{ov:?}: {}", loop_records.len());
         assert!(chosen_records == loop_records, "{ov:?}: the records differ");
     }
+}
+
+/// What a checkpoint reads of a state: step, heights and speeds (bits), settled flags.
+type Saved = (u64, Vec<u64>, Vec<u64>, Vec<bool>);
+
+/// An observer that wants the grains every `k`-th step (as a checkpoint does) and keeps what
+/// the state holds then ([`Saved`]).
+struct EveryKth {
+    k: u64,
+    calls: u64,
+    due: bool,
+    seen: Vec<Saved>,
+}
+
+impl crate::scenes::sedimentation::Observer for EveryKth {
+    fn wants_grains(&mut self) -> bool {
+        self.calls += 1;
+        self.due = self.calls.is_multiple_of(self.k);
+        self.due
+    }
+
+    fn step(&mut self, st: &State) {
+        if self.due {
+            let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect();
+            let seen = (
+                st.steps,
+                bits(&st.y_m),
+                bits(&st.velocity_m_s),
+                st.settled.clone(),
+            );
+            self.seen.push(seen);
+        }
+    }
+}
+
+/// The packed suspension keeps the suspended grains' speeds apart and gives the state every
+/// speed only when the observer wants the grains (a checkpoint) and at the end: there the
+/// state must be that of the per-grain loop, bit for bit (heights, speeds, settled flags; full
+/// physics without contacts, sample 2, 3 000 grains, every 40th step), and at the end every
+/// grain has a speed.
+#[test]
+fn the_packed_loop_gives_checkpoints_every_speed() {
+    use crate::scenes::sedimentation::simulate::{simulate_on, StepLoop};
+    let ov: Vec<String> = ["sample.particles=3000", "time.end_s=7200.0", "physics=full"]
+        .map(String::from)
+        .to_vec();
+    let p = prepare(Path::new("scenarios/sedimentation_sample2.toml"), None, &ov).unwrap();
+    let su = setup(&p).unwrap();
+    let on = |step_loop| {
+        let mut obs = EveryKth {
+            k: 40,
+            calls: 0,
+            due: false,
+            seen: Vec::new(),
+        };
+        let st = simulate_on(step_loop, &su, State::initial(&su), &[], &mut obs);
+        (st, obs.seen)
+    };
+    let (packed, packed_seen) = on(StepLoop::Chosen);
+    let (per_grain, per_grain_seen) = on(StepLoop::PerGrain);
+    assert!(packed_seen.len() >= 3, "{} checkpoints", packed_seen.len());
+    assert!(packed_seen
+        .iter()
+        .all(|s| s.2.len() == su.grains.len() && s.3.iter().any(|&x| !x)));
+    assert!(
+        packed_seen == per_grain_seen,
+        "the checkpoints' states differ"
+    );
+    assert_eq!(packed.velocity_m_s.len(), su.grains.len());
+    let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+    assert_eq!(bits(&packed.velocity_m_s), bits(&per_grain.velocity_m_s));
 }
 
 /// In ideal Stokes every grain obeys m v̇ = −(m − m_f) g − 3π μ d v from rest, whose solution is
@@ -252,7 +324,8 @@ fn ideal_stokes_free_update_follows_the_analytic_stokes_solution() {
         let (mut checked, mut landed) = (0, 0);
         let check = |st: &State| {
             let t = st.time_s;
-            for (i, (gr, g0)) in st.grains.iter().zip(&start.grains).enumerate() {
+            for i in 0..st.len() {
+                let (gr, g0) = (st.grain(&su.grains, i), start.grain(&su.grains, i));
                 let d = gr.diameter_m;
                 let u = (rho_p - rho_f) * g * d * d / (18.0 * mu);
                 let tau = rho_p * d * d / (18.0 * mu);

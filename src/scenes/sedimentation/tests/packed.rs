@@ -25,20 +25,17 @@ fn packed_voidage_fill_agrees_with_grain_order_whatever_the_threads() {
     .to_vec();
     let p = prepare(Path::new("scenarios/sedimentation_sample2.toml"), None, &ov).unwrap();
     let su = setup(&p).unwrap();
-    let st = State::initial(&su);
-    let stepper = Stepper::new(&su, &st);
-    let mut grid = voidage_grid(&su, &stepper, &st);
+    let mut st = State::initial(&su);
+    let stepper = Stepper::new(&su);
+    let mut grid = voidage_grid(&su, &stepper);
     assert!(grid.is_di_felice());
-    let parts = st
-        .grains
-        .len()
-        .div_ceil(fill_part_grains(grid.cell_count()));
+    let parts = st.len().div_ceil(fill_part_grains(grid.cell_count()));
     assert!(parts >= 3, "{parts} parts");
-    let (mut sus, _) = Suspension::new(&st, &grid, &stepper, &su).unwrap();
+    let (mut sus, _) = Suspension::new(&mut st, &grid, &stepper, &su).unwrap();
     let mut serial = grid.clone();
-    let volumes = serial.grain_volumes_m3(&st);
-    let all: Vec<usize> = (0..st.grains.len()).collect();
-    serial.fill(&st, &volumes, &all);
+    let volumes = serial.grain_volumes_m3(&su.grains);
+    let all: Vec<usize> = (0..st.len()).collect();
+    serial.fill(&st, &su.grains, &volumes, &all);
     let mut by_threads = Vec::new();
     for threads in [1, 2, 3] {
         let pool = rayon::ThreadPoolBuilder::new()
