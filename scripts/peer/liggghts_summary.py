@@ -11,7 +11,9 @@ the step LIGGGHTS's floor E = 5e6 Pa would impose (OUT/logs/params_N.txt).
 Usage: liggghts_summary.py OUT
 """
 import csv
+import glob
 import os
+import re
 import statistics
 import sys
 
@@ -25,6 +27,27 @@ def params(out, n):
             k, v = line.split("=", 1)
             p[k.strip()] = float(v)
     return p
+
+
+def breakdown(out):
+    """{(atoms, ranks, round): {"loop": s, "Pair": s, "Neigh": s, ..., "builds": n}} of the
+    timed (last) loop of every LIGGGHTS log."""
+    res = {}
+    for path in glob.glob(os.path.join(out, "logs", "liggghts_*_np*_r*.log")):
+        text = open(path).read()
+        loops = list(re.finditer(r"Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms", text))
+        if not loops:
+            continue
+        last = loops[-1]
+        tail = text[last.end():]
+        parts = {"loop": float(last.group(1))}
+        for name, secs in re.findall(r"^(\w+)\s+time \(%\) = (\S+)", tail, re.M)[:5]:
+            parts[name] = float(secs)
+        m = re.search(r"Neighbor list builds = (\d+)", tail)
+        parts["builds"] = int(m.group(1)) if m else 0
+        rnd = int(re.search(r"_r(\d+)\.log$", path).group(1))
+        res[(int(last.group(4)), last.group(2), rnd)] = parts
+    return res
 
 
 def fmt(x):
@@ -56,6 +79,8 @@ def main():
           "| settle ideal Stokes, free update |")
     print("|---|---|---|---|---|---|---|---|---|")
     proj = []
+    parts = breakdown(out)
+    notes = []
     for (tool, n, ranks), lg in sorted(by.items(), key=lambda kv: (kv[0][1], kv[0][2])):
         if tool != "liggghts":
             continue
@@ -76,10 +101,26 @@ def main():
               f"{run_med / lg_med:.2f} [{run_best / lg_best:.2f}] | {fmt(nt_med)} [{fmt(nt_best)}] | "
               f"{fmt(id_med)} [{fmt(id_best)}] |")
         p = params(out, n)
+        bd = [parts[(n, ranks, int(r["round"]))] for r in lg if (n, ranks, int(r["round"])) in parts]
+        if bd:
+            share = lambda k: statistics.median(b.get(k, 0.0) / b["loop"] for b in bd)  # noqa: E731
+            no_neigh = statistics.median(
+                float(r["grain_steps_per_s"]) * parts[key]["loop"] / (parts[key]["loop"] - parts[key].get("Neigh", 0.0))
+                for r in lg if (key := (n, ranks, int(r["round"]))) in parts)
+            notes.append(f"| {n} | {ranks} | {share('Pair'):.0%} | {share('Neigh'):.0%} | {share('Comm'):.0%} | "
+                         f"{share('Other'):.0%} | {statistics.median(b['builds'] for b in bd):.0f} | "
+                         f"{fmt(no_neigh)} | {fu_med / no_neigh:.2f} |")
         walls = [float(r["wall_1440min_s"]) for r in full]
         iwalls = [float(r["wall_1440min_s"]) for r in ideal]
         proj.append((n, ranks, p, lg_med, lg_best, statistics.median(walls), min(walls),
                      statistics.median(iwalls)))
+    print("\nLIGGGHTS's loop time by part (median share over the rounds; Other: the fixes: "
+          "integration, gravity, drag, walls), its neighbour-list builds in the timed run, and its "
+          "rate with the neighbour time taken out (an upper bound for a state without rebuilds):\n")
+    print("| N | ranks | Pair | Neigh | Comm | Other | builds | particle-steps/s without Neigh "
+          "| ratio settle free update / that |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    print("\n".join(notes))
     print("\nWall time of the full 1440 min (settle: measured, median [best]; LIGGGHTS: projected "
           "from its median [best] rate):\n")
     print("| N | LIGGGHTS ranks | LIGGGHTS at the drag-limited dt | LIGGGHTS at dt for E = 5e6 Pa "
