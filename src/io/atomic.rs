@@ -34,9 +34,11 @@ pub fn write_atomic_with(
         write(&mut w)?;
         io::Write::flush(&mut w)
     });
-    written.and_then(|()| fs::rename(&tmp, path)).inspect_err(|_| {
-        let _ = fs::remove_file(&tmp);
-    })
+    written
+        .and_then(|()| fs::rename(&tmp, path))
+        .inspect_err(|_| {
+            let _ = fs::remove_file(&tmp);
+        })
 }
 
 /// The suffix of the temporary files [`write_atomic`] writes: `NAME.<pid>-<n>.tmp`.

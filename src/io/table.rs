@@ -125,7 +125,12 @@ impl Table {
         columns: Vec<Cells>,
     ) -> Self {
         let mut t = Self::new(name, header);
-        assert_eq!(columns.len(), t.header.len(), "{}: one column per header", t.name);
+        assert_eq!(
+            columns.len(),
+            t.header.len(),
+            "{}: one column per header",
+            t.name
+        );
         assert!(
             columns.windows(2).all(|w| w[0].len() == w[1].len()),
             "{}: columns of one length",
@@ -373,7 +378,12 @@ mod tests {
             vec![Cells::Numbers(x.clone()), Cells::Flags(flags)],
         );
         let mut text = Table::new("s.csv", ["x_m", "settled"]);
-        for (x, f) in [("0.5", "true"), ("1.25e-7", "false"), ("3e8", "false"), ("0", "true")] {
+        for (x, f) in [
+            ("0.5", "true"),
+            ("1.25e-7", "false"),
+            ("3e8", "false"),
+            ("0", "true"),
+        ] {
             text.push(vec![x.into(), f.into()]);
         }
         assert_eq!(typed.to_csv().unwrap(), text.to_csv().unwrap());
@@ -384,7 +394,9 @@ mod tests {
         let back = Table::from_csv("s.csv", &typed.to_csv().unwrap()).unwrap();
         assert_eq!(back, typed);
         // shared, not copied
-        assert!(matches!(&typed.typed_columns().unwrap()[0], Cells::Numbers(v) if Arc::ptr_eq(v, &x)));
+        assert!(
+            matches!(&typed.typed_columns().unwrap()[0], Cells::Numbers(v) if Arc::ptr_eq(v, &x))
+        );
         let mut grown = typed.clone();
         grown.push(vec!["2".into(), "true".into()]);
         assert_eq!(grown.len(), 5);

@@ -495,7 +495,11 @@ fn the_parts_of_a_parameter_sweep_merge_into_the_whole_sweep() {
     assert_same_outputs(&merged.outputs, &whole.outputs);
     for name in whole.outputs.file_names() {
         if name.ends_with(".svg") {
-            assert_eq!(merged.outputs.bytes(name), whole.outputs.bytes(name), "{name}");
+            assert_eq!(
+                merged.outputs.bytes(name),
+                whole.outputs.bytes(name),
+                "{name}"
+            );
         }
     }
     assert_eq!(merged.lines, whole.lines);

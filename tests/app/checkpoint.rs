@@ -281,7 +281,12 @@ fn cost_guard_refuses_runs_beyond_the_limits() {
                 "--set",
                 "sample.particles=35000000",
             ],
-            &["sample.particles", "9.6 GB", "--force", "sample.snapshot_times_s"],
+            &[
+                "sample.particles",
+                "9.6 GB",
+                "--force",
+                "sample.snapshot_times_s",
+            ],
         ),
         (
             &[

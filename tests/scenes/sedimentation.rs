@@ -111,7 +111,11 @@ fn real_particles_simulate_every_grain_at_weight_one() {
         ),
         (
             "sample.mass_kg=1",
-            &["sample.particles", "GB of memory", "sample.snapshot_times_s"][..],
+            &[
+                "sample.particles",
+                "GB of memory",
+                "sample.snapshot_times_s",
+            ][..],
         ),
     ] {
         let o = settle()

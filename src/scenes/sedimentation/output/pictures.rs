@@ -137,7 +137,10 @@ mod tests {
         assert!(vtp.contains("NumberOfPoints=\"2\""), "{vtp}");
         assert!(vtp.contains("\n2.5e-5 1e-6 \n</DataArray>"), "{vtp}");
         assert!(vtp.contains("\n3e0 1.5e8 \n</DataArray>"), "{vtp}");
-        assert!(vtp.contains("\n1e-2 2.5e-1 0 5e-2 1.25e-2 0 \n</DataArray>\n</Points>"), "{vtp}");
+        assert!(
+            vtp.contains("\n1e-2 2.5e-1 0 5e-2 1.25e-2 0 \n</DataArray>\n</Points>"),
+            "{vtp}"
+        );
         // a contact moved the grains: their own horizontal positions
         write_snapshot(
             &mut out,
