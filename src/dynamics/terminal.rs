@@ -234,8 +234,10 @@ pub fn exponential_near_terminal(
 
 /// [`exponential_near_terminal`] for `L` spheres at once, each with its table (`tables`), its
 /// voidage, step over mass dt/m (s/kg: the caller may compute it once for many spheres of one
-/// mass), body force (N) and velocity (m/s) over the same step `dt_s` (s): each lane's result
-/// of [`near_terminal_lanes`] where it applies, None where it does not.
+/// mass), body force (N) and velocity (m/s) over the same step `dt_s` (s). Each
+/// lane's result is the one-sphere result bit for bit (the same operations in the same order);
+/// the lanes go through each stage together (Horner's rule is a chain of 30 multiply-adds per
+/// sphere, and the step three divisions), so that the processor overlaps and pairs them.
 #[inline(always)]
 pub fn exponential_near_terminal_lanes<const L: usize>(
     tables: [&TerminalTable; L],
@@ -245,53 +247,17 @@ pub fn exponential_near_terminal_lanes<const L: usize>(
     v0_m_s: [f64; L],
     dt_s: f64,
 ) -> [Option<(f64, f64)>; L] {
-    let s = near_terminal_lanes(
-        tables,
-        voidage,
-        dt_over_mass_s_kg,
-        body_force_n,
-        v0_m_s,
-        dt_s,
-    );
-    std::array::from_fn(|l| s.applies[l].then_some((s.velocity_m_s[l], s.displacement_m[l])))
-}
-
-/// The steps of [`near_terminal_lanes`], lane by lane. SI units.
-#[derive(Clone, Copy, Debug)]
-pub struct LaneSteps<const L: usize> {
-    /// Velocity at the step's end, m/s (meaningless where the step does not apply).
-    pub velocity_m_s: [f64; L],
-    /// Displacement over the step, m (likewise).
-    pub displacement_m: [f64; L],
-    /// Whether the tabulated step applies ([`exponential_near_terminal`]'s conditions).
-    pub applies: [bool; L],
-}
-
-/// [`exponential_near_terminal`] for `L` spheres at once (the arguments as in
-/// [`exponential_near_terminal_lanes`]), without branches on the lanes: every lane's step is
-/// computed, and whether it applies is returned beside it. Each applying lane's result is the
-/// one-sphere result bit for bit (the same operations in the same order); the lanes go through
-/// each stage together (Horner's rule is a chain of 30 multiply-adds per sphere, and the step
-/// three divisions), so that the processor overlaps and pairs them.
-#[inline(always)]
-pub fn near_terminal_lanes<const L: usize>(
-    tables: [&TerminalTable; L],
-    voidage: [f64; L],
-    dt_over_mass_s_kg: [f64; L],
-    body_force_n: [f64; L],
-    v0_m_s: [f64; L],
-    dt_s: f64,
-) -> LaneSteps<L> {
     let t = voidage.map(cheb_t);
     let ut = horner_lanes(tables.map(|x| &x.u), t);
     let kt = horner_lanes(tables.map(|x| &x.k), t);
     let ct = horner_lanes(tables.map(|x| &x.c), t);
     let (w, v0, dt) = (body_force_n, v0_m_s, dt_s);
-    let kk = dt_over_mass_s_kg;
-    let (mut p, mut inv_h1, mut d0, mut delta) = ([0.0; L], [0.0; L], [0.0; L], [0.0; L]);
+    let (mut kk, mut p, mut inv_h1, mut d0, mut delta) =
+        ([0.0; L], [0.0; L], [0.0; L], [0.0; L], [0.0; L]);
     let (mut k, mut f0, mut num, mut z, mut inv) =
         ([0.0; L], [0.0; L], [0.0; L], [0.0; L], [0.0; L]);
     for l in 0..L {
+        kk[l] = dt_over_mass_s_kg[l];
         p[l] = v0[l] + w[l] * kk[l];
         inv_h1[l] = 1.0 / (1.0 + kk[l] * kt[l]);
     }
@@ -302,39 +268,28 @@ pub fn near_terminal_lanes<const L: usize>(
         k[l] = kt[l] + ct[l] * delta[l];
         f0[l] =
             w[l].abs() + (kt[l] + 0.5 * ct[l] * delta[l]) * delta[l] - k[l] * (ut[l] + delta[l]);
-        // a₀ dt φ₁ = (W − F₀ p̂ − k v₀)(dt/m) φ₁, a₀ dt² φ₂ likewise, with λdt = k dt/m. p̂ is
-        // p's sign (p's signum wherever the step applies: there p is not NaN).
-        num[l] = (w[l] - 1.0f64.copysign(p[l]) * f0[l] - v0[l] * k[l]) * kk[l];
+        // a₀ dt φ₁ = (W − F₀ p̂ − k v₀)(dt/m) φ₁, a₀ dt² φ₂ likewise, with λdt = k dt/m.
+        num[l] = (w[l] - p[l].signum() * f0[l] - v0[l] * k[l]) * kk[l];
         z[l] = -k[l] * kk[l];
     }
     // φ₁ = −1/z, φ₂ = (−1 − z)/z² with one division where z < PHI_SATURATED.
     for l in 0..L {
         inv[l] = 1.0 / z[l];
     }
-    let mut out = LaneSteps {
-        velocity_m_s: [0.0; L],
-        displacement_m: [0.0; L],
-        applies: [false; L],
-    };
-    let mut unsaturated = false;
+    let mut out = [None; L];
     for l in 0..L {
-        let in_table = voidage[l] >= TABLE_VOIDAGE_MIN && voidage[l] <= 1.0;
+        let in_table = (TABLE_VOIDAGE_MIN..=1.0).contains(&voidage[l]);
         let same_way = p[l] * w[l] > 0.0;
         let near = delta[l].abs() <= NEAR_TERMINAL * ut[l];
-        out.applies[l] = in_table & same_way & near;
-        unsaturated |= !(z[l] < PHI_SATURATED);
-        let (phi1, phi2) = (-inv[l], (-1.0 - z[l]) * (inv[l] * inv[l]));
-        out.velocity_m_s[l] = v0[l] + num[l] * phi1;
-        out.displacement_m[l] = v0[l] * dt + num[l] * (dt * phi2);
-    }
-    if unsaturated {
-        for l in 0..L {
-            if !(z[l] < PHI_SATURATED) {
-                let (phi1, phi2) = phi12(z[l]);
-                out.velocity_m_s[l] = v0[l] + num[l] * phi1;
-                out.displacement_m[l] = v0[l] * dt + num[l] * (dt * phi2);
-            }
+        if !(in_table && same_way && near) {
+            continue;
         }
+        let (phi1, phi2) = if z[l] < PHI_SATURATED {
+            (-inv[l], (-1.0 - z[l]) * (inv[l] * inv[l]))
+        } else {
+            phi12(z[l])
+        };
+        out[l] = Some((v0[l] + num[l] * phi1, v0[l] * dt + num[l] * (dt * phi2)));
     }
     out
 }

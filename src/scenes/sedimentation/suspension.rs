@@ -19,13 +19,13 @@ use super::state::State;
 use super::step::kernel::{after_step, bed_rise_m, free_step, on_bed, CellDrag, CellGrain, Limits};
 use super::step::{Stepper, INTERRUPT_CHECK_GRAINS};
 use super::voidage::VoidageGrid;
-use crate::dynamics::terminal::{near_terminal_lanes, TerminalTable};
+use crate::dynamics::terminal::{exponential_near_terminal_lanes, TerminalTable};
 use crate::fluid::sphere_volume_m3;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Grains whose terminal-state tables the free update evaluates together
-/// ([`near_terminal_lanes`]).
+/// ([`exponential_near_terminal_lanes`]).
 const LANES: usize = 16;
 
 /// The suspended grains of a run without contacts (see the module doc). SI units.
@@ -216,27 +216,22 @@ impl Suspension {
     ) -> (u64, bool) {
         let drag = CellDrag::new(stepper, grid, dt_s);
         let fast = drag.fast;
-        let kinds: Vec<KindStep> = self
-            .kinds
-            .iter()
-            .map(|k| {
-                let table = grid.terminal_table(k.class, k.diameter_m).filter(|_| fast);
-                KindStep {
-                    table,
-                    dt_over_mass: table.map_or(f64::NAN, |t| dt_s / t.mass_kg),
-                    half_d_m: 0.5 * k.diameter_m,
-                    top_m: setup.height_m + k.diameter_m,
-                    stokes_m_s: k.stokes_m_s,
-                }
-            })
-            .collect();
-        let every_table = kinds.iter().all(|q| q.table.is_some());
         let ctx = Update {
             drag,
-            every_table: every_table
-                .then(|| kinds.first().and_then(|q| q.table))
-                .flatten(),
-            kinds,
+            kinds: self
+                .kinds
+                .iter()
+                .map(|k| {
+                    let table = grid.terminal_table(k.class, k.diameter_m).filter(|_| fast);
+                    KindStep {
+                        table,
+                        dt_over_mass: table.map_or(f64::NAN, |t| dt_s / t.mass_kg),
+                        half_d_m: 0.5 * k.diameter_m,
+                        top_m: setup.height_m + k.diameter_m,
+                        stokes_m_s: k.stokes_m_s,
+                    }
+                })
+                .collect(),
             lim: Limits {
                 floor_m,
                 speed_bound_m_s: stepper.speed_bound_m_s,
@@ -385,9 +380,6 @@ struct Update<'a> {
     drag: CellDrag<'a>,
     /// What the update reads of each kind ([`KindStep`]).
     kinds: Vec<KindStep<'a>>,
-    /// On the fast path, when every kind has a terminal-state table: one of them (so that a
-    /// block of lanes needs no test of its kinds).
-    every_table: Option<&'a TerminalTable>,
     /// The bed surface and the speed bound.
     lim: Limits,
 }
@@ -451,19 +443,12 @@ impl Chunk<'_> {
         let mut k = 0;
         while k + LANES <= len {
             let lanes: [&KindStep; LANES] = std::array::from_fn(|l| kind_of(k + l));
-            let cells: [u32; LANES] = std::array::from_fn(|l| cs[k + l]);
-            let tables = match u.every_table {
-                Some(any) => Some(lanes.map(|q| q.table.unwrap_or(any))),
-                None => {
-                    let tables = lanes.map(|q| q.table);
-                    (u.drag.fast && tables.iter().all(Option::is_some))
-                        .then(|| tables.map(|t| t.expect("all tables present")))
-                }
-            };
-            let steps = if let Some(tables) = tables {
-                Some(near_terminal_lanes(
+            let tables = lanes.map(|q| q.table);
+            let steps = if u.drag.fast && tables.iter().all(Option::is_some) {
+                let tables = tables.map(|t| t.expect("all tables present"));
+                exponential_near_terminal_lanes(
                     tables,
-                    cells.map(|c| match c {
+                    std::array::from_fn(|l| match cs[k + l] {
                         GONE => 1.0,
                         cell => voidage[cell as usize],
                     }),
@@ -471,21 +456,18 @@ impl Chunk<'_> {
                     tables.map(|t| t.body_force_n),
                     std::array::from_fn(|l| vs[k + l]),
                     u.drag.dt_s,
-                ))
+                )
             } else {
-                None
+                [None; LANES]
             };
-            for (l, &cell) in cells.iter().enumerate() {
+            for (l, step) in steps.into_iter().enumerate() {
                 let j = k + l;
-                if cell == GONE {
+                if cs[j] == GONE {
                     continue;
                 }
-                match &steps {
-                    Some(s) if s.applies[l] => {
-                        let step = (s.velocity_m_s[l], s.displacement_m[l]);
-                        finish(u, lanes[l], reach, j, step, ys, vs, cs, found)
-                    }
-                    _ => {
+                match step {
+                    Some(step) => finish(u, lanes[l], reach, j, step, ys, vs, cs, found),
+                    None => {
                         let kind = &kinds[ks[j] as usize];
                         one_grain(u, kind, lanes[l], reach, j, ys, vs, cs, found)
                     }
@@ -570,13 +552,7 @@ fn record(
     if y - q.half_d_m <= reach {
         found.near.push(j as u32);
     } else {
-        // found.vmax.max(v.abs().max(q.stokes_m_s)), the same value (found.vmax is never NaN,
-        // and a NaN speed gives the Stokes speed as f64::max does), without NaN tests.
-        let s = v.abs();
-        let s = if s > q.stokes_m_s { s } else { q.stokes_m_s };
-        if s > found.vmax {
-            found.vmax = s;
-        }
+        found.vmax = found.vmax.max(v.abs().max(q.stokes_m_s));
     }
     found.bad |= fault;
 }

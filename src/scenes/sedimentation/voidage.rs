@@ -149,30 +149,6 @@ impl VoidageGrid {
         if lo <= y_m && y_m < hi {
             return cell;
         }
-        self.cell_after_moving(cell, y_m)
-    }
-
-    /// [`VoidageGrid::cell_after`] for a point that left cell `cell`: row by row along the
-    /// bounds (a grain crosses one row in a step, rarely more), without a division; a height
-    /// that is not finite, or more than a few rows away, ends in [`Cells::cell_in_column`].
-    #[inline(never)]
-    fn cell_after_moving(&self, cell: usize, y_m: f64) -> usize {
-        let mut c = cell;
-        for _ in 0..4 {
-            if !y_m.is_finite() {
-                break;
-            }
-            let (lo, hi) = self.bounds_m[c];
-            if y_m < lo {
-                c -= self.ncx;
-            } else if y_m >= hi {
-                c += self.ncx;
-            } else if lo <= y_m {
-                return c;
-            } else {
-                break;
-            }
-        }
         let cells = self.cells();
         cells.cell_in_column(cells.column_of_cell(cell), y_m)
     }
