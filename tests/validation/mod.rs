@@ -5,6 +5,7 @@ mod bingham_laws;
 mod hindered;
 mod invert;
 mod invert_counting;
+mod sedimentation_real_count;
 mod sedimentation_reference;
 mod slump;
 mod sphere_drag;
