@@ -126,6 +126,8 @@ def test_a_failing_progress_callback_stops_the_run_and_is_raised() -> None:
     assert settle.run(SCENARIOS / "stokes_single.toml", progress=False).status == "complete"
 
 
+# 10⁶ grains of sample 2 (about 18 s of CPU): the signal lands mid-run even on a loaded machine.
+# At 300 000 grains the run (1.5 s) once ended before the signal was seen, under load (stop 36).
 CHILD = textwrap.dedent(
     """
     import sys, time, settle
@@ -134,7 +136,7 @@ CHILD = textwrap.dedent(
             cb.said = True
             print("running", flush=True)
     try:
-        settle.run(sys.argv[1], overrides={"sample.particles": 300000}, out=sys.argv[2],
+        settle.run(sys.argv[1], overrides={"sample.particles": 1000000}, out=sys.argv[2],
                    progress=cb)
         print("finished", flush=True)
     except KeyboardInterrupt:
