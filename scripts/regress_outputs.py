@@ -214,10 +214,20 @@ def csvs(top):
     return out
 
 
+def relative_difference(a, b):
+    """|x - y| / max(|x|, |y|) of two numeric cells that are not the same text, else None."""
+    x, y = number(a), number(b)
+    if x is None or y is None or a.strip() == b.strip() or math.isnan(x) or math.isnan(y):
+        return None
+    return abs(x - y) / max(abs(x), abs(y), 1e-300)
+
+
 def compare(old, new):
     a, b = csvs(old), csvs(new)
     roots = (repo_root(old), repo_root(new))
     bad = 0
+    # Values that differ at all (within the tolerance or not), and the largest difference.
+    moved, largest = 0, (0.0, "")
     for rel in sorted(set(a) - set(b)):
         print(f"only in {old}: {rel}")
     for rel in sorted(set(b) - set(a)):
@@ -246,6 +256,11 @@ def compare(old, new):
             for c in common:
                 u = x[ia[c]] if ia[c] < len(x) else ""
                 v = y[ib[c]] if ib[c] < len(y) else ""
+                d = relative_difference(u, v)
+                if d is not None and d > 0.0:
+                    moved += 1
+                    if d > largest[0]:
+                        largest = (d, f"{rel}: row {i} column {c}: {u} vs {v}")
                 if not same(u, v, roots):
                     if diffs < 5:
                         print(f"{rel}: row {i} column {c}: {u} vs {v}")
@@ -255,6 +270,8 @@ def compare(old, new):
             bad += 1
         checked += 1
     print(f"{checked} files compared, {bad} differ")
+    print(f"{moved} numbers not identical; largest relative difference {largest[0]:.3g}"
+          + (f" ({largest[1]})" if largest[1] else ""))
     return 1 if bad else 0
 
 

@@ -251,7 +251,50 @@ pub fn exponential_near_terminal_lanes<const L: usize>(
     let ut = horner_lanes(tables.map(|x| &x.u), t);
     let kt = horner_lanes(tables.map(|x| &x.k), t);
     let ct = horner_lanes(tables.map(|x| &x.c), t);
-    let (w, v0, dt) = (body_force_n, v0_m_s, dt_s);
+    near_terminal_step(
+        [ut, kt, ct],
+        voidage,
+        dt_over_mass_s_kg,
+        body_force_n,
+        v0_m_s,
+        dt_s,
+    )
+}
+
+/// Σ aⱼ tₗʲ by Horner's rule for one polynomial `a` at `L` points `t`: lane by lane the same
+/// operations as [`horner_lanes`] (so the same bits).
+#[inline(always)]
+fn horner_one<const N: usize, const L: usize>(a: &[f64; N], t: [f64; L]) -> [f64; L] {
+    let mut acc = [0.0; L];
+    for j in (0..N).rev() {
+        for l in 0..L {
+            acc[l] = acc[l] * t[l] + a[j];
+        }
+    }
+    acc
+}
+
+/// What the tabulated step of `L` spheres computes before its φ factors: per lane whether the
+/// step applies (`applies`: voidage in the table, body force and p the same way, s₁ within
+/// [`NEAR_TERMINAL`] of u_t), z = −k dt/m, 1/z and a₀ dt (`num`).
+struct NearTerminal<const L: usize> {
+    applies: [bool; L],
+    z: [f64; L],
+    inv: [f64; L],
+    num: [f64; L],
+}
+
+/// The stages of [`exponential_near_terminal_lanes`] before its φ factors, from the tabulated
+/// terminal state `[u_t, k_t, c_t]` of each lane.
+#[inline(always)]
+fn near_terminal_core<const L: usize>(
+    [ut, kt, ct]: [[f64; L]; 3],
+    voidage: [f64; L],
+    dt_over_mass_s_kg: [f64; L],
+    body_force_n: [f64; L],
+    v0_m_s: [f64; L],
+) -> NearTerminal<L> {
+    let (w, v0) = (body_force_n, v0_m_s);
     let (mut kk, mut p, mut inv_h1, mut d0, mut delta) =
         ([0.0; L], [0.0; L], [0.0; L], [0.0; L], [0.0; L]);
     let (mut k, mut f0, mut num, mut z, mut inv) =
@@ -276,12 +319,44 @@ pub fn exponential_near_terminal_lanes<const L: usize>(
     for l in 0..L {
         inv[l] = 1.0 / z[l];
     }
-    let mut out = [None; L];
+    // Plain loops here and below (not `array::from_fn` or `map`, which may be left out of line
+    // and so not built for the caller's vector width).
+    let mut applies = [false; L];
     for l in 0..L {
         let in_table = (TABLE_VOIDAGE_MIN..=1.0).contains(&voidage[l]);
         let same_way = p[l] * w[l] > 0.0;
         let near = delta[l].abs() <= NEAR_TERMINAL * ut[l];
-        if !(in_table && same_way && near) {
+        applies[l] = in_table && same_way && near;
+    }
+    NearTerminal {
+        applies,
+        z,
+        inv,
+        num,
+    }
+}
+
+/// The step of [`exponential_near_terminal_lanes`] from the tabulated terminal state
+/// `[u_t, k_t, c_t]` of each lane.
+#[inline(always)]
+fn near_terminal_step<const L: usize>(
+    terminal: [[f64; L]; 3],
+    voidage: [f64; L],
+    dt_over_mass_s_kg: [f64; L],
+    body_force_n: [f64; L],
+    v0_m_s: [f64; L],
+    dt_s: f64,
+) -> [Option<(f64, f64)>; L] {
+    let (v0, dt) = (v0_m_s, dt_s);
+    let NearTerminal {
+        applies,
+        z,
+        inv,
+        num,
+    } = near_terminal_core(terminal, voidage, dt_over_mass_s_kg, body_force_n, v0_m_s);
+    let mut out = [None; L];
+    for l in 0..L {
+        if !applies[l] {
             continue;
         }
         let (phi1, phi2) = if z[l] < PHI_SATURATED {
@@ -292,4 +367,70 @@ pub fn exponential_near_terminal_lanes<const L: usize>(
         out[l] = Some((v0[l] + num[l] * phi1, v0[l] * dt + num[l] * (dt * phi2)));
     }
     out
+}
+
+/// The steps of `L` spheres of one kind that [`exponential_near_terminal`] gives and whose φ
+/// factors are saturated (z = −k dt/m below [`PHI_SATURATED`], every step of a grain
+/// much longer than its relaxation time): lane by lane (velocity, m/s; displacement, m), and
+/// whether that lane is such a step (`ok`); the other lanes' values are meaningless (the caller
+/// takes [`exponential_near_terminal`] there, which gives None or the unsaturated step). No
+/// branch: every stage is one vector operation on the lanes.
+pub struct SaturatedSteps<const L: usize> {
+    /// Velocity after the step, m/s.
+    pub velocity_m_s: [f64; L],
+    /// Displacement over the step, m.
+    pub displacement_m: [f64; L],
+    /// Whether the lane's step is given here.
+    pub ok: [bool; L],
+}
+
+/// [`exponential_near_terminal`] for `L` spheres of one table (one diameter, mass and body
+/// force: a grain kind), each with its voidage and velocity (m/s), over the same step `dt_s`
+/// (s), where the step's φ factors are saturated ([`SaturatedSteps`]); `dt_over_mass_s_kg` is
+/// dt/m (s/kg). On those lanes the same bits as one sphere alone (the same operations in the
+/// same order as [`exponential_near_terminal_lanes`]); with one table the coefficients are
+/// read once for all the lanes and every stage is the same operation on every lane, so the
+/// compiler computes the lanes as vectors.
+#[inline(always)]
+pub fn exponential_near_terminal_kind_saturated<const L: usize>(
+    table: &TerminalTable,
+    voidage: [f64; L],
+    dt_over_mass_s_kg: f64,
+    v0_m_s: [f64; L],
+    dt_s: f64,
+) -> SaturatedSteps<L> {
+    let mut t = [0.0; L];
+    for l in 0..L {
+        t[l] = cheb_t(voidage[l]);
+    }
+    let terminal = [
+        horner_one(&table.u, t),
+        horner_one(&table.k, t),
+        horner_one(&table.c, t),
+    ];
+    let (v0, dt) = (v0_m_s, dt_s);
+    let NearTerminal {
+        applies,
+        z,
+        inv,
+        num,
+    } = near_terminal_core(
+        terminal,
+        voidage,
+        [dt_over_mass_s_kg; L],
+        [table.body_force_n; L],
+        v0_m_s,
+    );
+    let (mut velocity_m_s, mut displacement_m, mut ok) = ([0.0; L], [0.0; L], [false; L]);
+    for l in 0..L {
+        let (phi1, phi2) = (-inv[l], (-1.0 - z[l]) * (inv[l] * inv[l]));
+        velocity_m_s[l] = v0[l] + num[l] * phi1;
+        displacement_m[l] = v0[l] * dt + num[l] * (dt * phi2);
+        ok[l] = applies[l] && z[l] < PHI_SATURATED;
+    }
+    SaturatedSteps {
+        velocity_m_s,
+        displacement_m,
+        ok,
+    }
 }

@@ -400,3 +400,83 @@ fn tabulated_step_lanes_match_one_sphere_bit_for_bit() {
     }
     assert!(some > 50 && none > 50, "{some} steps, {none} refusals");
 }
+
+/// The tabulated step of several spheres of one kind at once, where its φ factors are
+/// saturated (`terminal::exponential_near_terminal_kind_saturated`, what the cylinder's free
+/// update calls on a run of grains of one kind): every lane it takes gives the one-sphere step
+/// bit for bit, and every lane it leaves is one where the one-sphere step refuses (None) or is
+/// not saturated (it takes those lanes then); lanes at voidages inside and outside the table,
+/// at, near and far from terminal settling and thrown upwards; and so do its builds for AVX2
+/// and AVX-512 where the processor has them (the free update picks one at run time: nothing
+/// may depend on the vector width).
+#[test]
+fn tabulated_step_of_one_kind_matches_one_sphere_bit_for_bit_on_every_vector_width() {
+    use super::terminal::{
+        exponential_near_terminal, exponential_near_terminal_kind_saturated, SaturatedSteps,
+        TerminalTable,
+    };
+    use super::PHI_SATURATED;
+    const L: usize = 16;
+    type Kind = fn(&TerminalTable, [f64; L], f64, [f64; L], f64) -> SaturatedSteps<L>;
+    let mut builds: Vec<(&str, Kind)> =
+        vec![("baseline", exponential_near_terminal_kind_saturated::<L>)];
+    #[cfg(target_arch = "x86_64")]
+    {
+        #[target_feature(enable = "avx2")]
+        fn avx2(t: &TerminalTable, e: [f64; L], k: f64, v: [f64; L], dt: f64) -> SaturatedSteps<L> {
+            exponential_near_terminal_kind_saturated::<L>(t, e, k, v, dt)
+        }
+        #[target_feature(enable = "avx512f")]
+        fn avx512(
+            t: &TerminalTable,
+            e: [f64; L],
+            k: f64,
+            v: [f64; L],
+            dt: f64,
+        ) -> SaturatedSteps<L> {
+            exponential_near_terminal_kind_saturated::<L>(t, e, k, v, dt)
+        }
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the processor has AVX2.
+            builds.push(("avx2", |t, e, k, v, dt| unsafe { avx2(t, e, k, v, dt) }));
+        }
+        if std::arch::is_x86_feature_detected!("avx512f") {
+            // SAFETY: the processor has AVX-512F.
+            builds.push(("avx512", |t, e, k, v, dt| unsafe { avx512(t, e, k, v, dt) }));
+        }
+    }
+    let (mut taken, mut left) = (0, 0);
+    for (d, rho_p) in DIAMETERS
+        .iter()
+        .flat_map(|d| DENSITIES.iter().map(move |r| (*d, *r)))
+    {
+        let table = TerminalTable::new(&cylinder_grain(d, rho_p, VISCOSITIES[0], 1.0).0);
+        let eps: [f64; L] = std::array::from_fn(|l| [0.5, 0.8, 0.83, 0.9, 0.97, 0.999, 1.0][l % 7]);
+        let grains = eps.map(|e| cylinder_grain(d, rho_p, VISCOSITIES[0], e).0);
+        let v0: [f64; L] = std::array::from_fn(|l| {
+            let ut = super::terminal::terminal_state(&grains[l]).0;
+            [-ut, -ut * (1.0 + 1e-6), -0.5 * ut, 0.3 * ut, 0.0][l % 5]
+        });
+        for dt in [1e-5, 1e-3, 0.5, 10.0] {
+            for (name, build) in &builds {
+                let lanes = build(&table, eps, dt / grains[0].mass_kg, v0, dt);
+                for l in 0..L {
+                    let one = exponential_near_terminal(&table, &grains[l], v0[l], dt);
+                    let bits = |(a, b): (f64, f64)| (a.to_bits(), b.to_bits());
+                    if lanes.ok[l] {
+                        let got = (lanes.velocity_m_s[l], lanes.displacement_m[l]);
+                        assert_eq!(Some(bits(got)), one.map(bits), "{name}, lane {l}, dt {dt}");
+                        taken += 1;
+                    } else {
+                        // Refused, or the step of an unsaturated lane: λdt = k dt/m small.
+                        let k = super::terminal::terminal_state(&grains[l]).1;
+                        let saturated = -k * dt / grains[l].mass_kg < PHI_SATURATED;
+                        assert!(one.is_none() || !saturated, "{name}, lane {l}, dt {dt}");
+                        left += 1;
+                    }
+                }
+            }
+        }
+    }
+    assert!(taken > 50 && left > 50, "{taken} taken, {left} left");
+}

@@ -3,29 +3,38 @@
 //! packed so that each pass streams through memory.
 //!
 //! Without contacts a grain moves only vertically, only while it is suspended, and once it has
-//! settled nothing moves it again. So the run keeps, for its suspended grains only and in
-//! ascending grain order, the height, speed and voidage cell that change with every step, and the
-//! constants those passes read (diameter, size class, real solid volume, Stokes terminal speed).
-//! A grain leaves when it settles: deposition writes it into the [`State`] and drops it. The
-//! heights and speeds of the grains still suspended are written back into the [`State`] only when
-//! something reads them there ([`Suspension::write_back`]: the records, snapshots, readings,
-//! checkpoints, a fault report and the end of the run). Each grain's free update and deposition
-//! are those of [`super::step::kernel`], as in the per-grain passes over the [`State`]
-//! ([`Stepper::free_update`], [`VoidageGrid::fill`], [`Stepper::deposit_vmax`]), on the same
-//! grains in the same order: the results are the same, bit for bit.
+//! settled nothing moves it again. So the run keeps, for its suspended grains only, the height,
+//! speed and voidage cell that change with every step, and the constants those passes read
+//! (diameter, size class, real solid volume, Stokes terminal speed) once per grain kind. The
+//! grains are held in kind order (ascending grain index within a kind), so that the free update
+//! takes neighbouring grains of one kind together, on vectors (issue 28). A grain leaves when it
+//! settles: deposition writes it into the [`State`] and drops it. The heights and speeds of the
+//! grains still suspended are written back into the [`State`] only when something reads them
+//! there ([`Suspension::write_back`]: the records, snapshots, readings, checkpoints, a fault
+//! report and the end of the run). Each grain's free update and deposition are those of
+//! [`super::step::kernel`], as in the per-grain passes over the [`State`]
+//! ([`Stepper::free_update`], [`VoidageGrid::fill`], [`Stepper::deposit_vmax`]): deposition
+//! visits its grains in grain order, and the voidage sums are exact (the same in any order,
+//! [`SolidQuanta`](super::voidage::SolidQuanta)), so the results are the same, bit for bit.
 
 use super::setup::Setup;
 use super::state::State;
-use super::step::kernel::{after_step, bed_rise_m, free_step, on_bed, CellDrag, CellGrain, Limits};
-use super::step::{Stepper, INTERRUPT_CHECK_GRAINS};
+use super::step::kernel::{bed_rise_m, on_bed, CellDrag, Limits};
+use super::step::Stepper;
 use super::voidage::VoidageGrid;
-use crate::dynamics::terminal::{exponential_near_terminal_lanes, TerminalTable};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
+use update::{Chunk, Found, Kind, KindStep, Update, GONE};
 
-/// Grains whose terminal-state tables the free update evaluates together
-/// ([`exponential_near_terminal_lanes`]).
-const LANES: usize = 16;
+mod update;
+
+/// Entries per task of the free update ([`Suspension::free_update`]) of `len` entries: about
+/// a quarter of each thread's share, so that the threads stay busy when few grains are left
+/// suspended (late in a run), between 2¹¹ and 2¹⁴ (a task holds long runs of one kind, and its
+/// bookkeeping is small beside its grains). The results do not depend on it.
+fn update_chunk_grains(len: usize) -> usize {
+    (len / (4 * rayon::current_num_threads().max(1))).clamp(1 << 11, 1 << 14)
+}
 
 /// The suspended grains of a run without contacts (see the module doc). SI units.
 #[derive(Clone, Debug, Default)]
@@ -48,13 +57,15 @@ pub struct Suspension {
     /// Height above the bed surface within which a grain may join the bed in one deposition
     /// pass, m: more than the bed's rise if every grain suspended at the start settled at once.
     reach_m: f64,
-    /// Per chunk of [`INTERRUPT_CHECK_GRAINS`] entries, after a free update: the entries within
+    /// Per chunk of `chunk` entries, after a free update: the entries within
     /// `reach_m` of the bed surface (ascending), and the largest speed of the others (each the
     /// larger of its speed and its Stokes terminal speed), m/s.
     near_bed: Vec<(Vec<u32>, f64)>,
+    /// Entries per chunk of the last free update ([`update_chunk_grains`]).
+    chunk: usize,
     /// Per part of the entries ([`Suspension::fill`]), the solid volume of its suspended
-    /// grains per voidage cell, m³.
-    parts: Vec<Vec<f64>>,
+    /// grains per voidage cell, in quanta ([`SolidQuanta`](super::voidage::SolidQuanta)).
+    parts: Vec<Vec<i128>>,
 }
 
 /// The entries per part of the voidage fill ([`Suspension::fill`]) in a grid of `cells` cells:
@@ -64,25 +75,6 @@ pub struct Suspension {
 pub fn fill_part_grains(cells: usize) -> usize {
     (1 << 16).max(16 * cells)
 }
-
-/// The constants of the grains of one size class, diameter and weight. SI units.
-#[derive(Clone, Copy, Debug)]
-struct Kind {
-    /// Size class.
-    class: usize,
-    /// Diameter, m.
-    diameter_m: f64,
-    /// Real solid volume of one grain (its weight times its volume), m³.
-    volume_m3: f64,
-    /// Stokes terminal speed ([`Stepper::stokes_speed_m_s`]), m/s.
-    stokes_m_s: f64,
-}
-
-/// Entries per task of [`Suspension::write_back`].
-const WRITE_BACK_GRAINS: usize = 1 << 15;
-
-/// The `cell` of an entry whose grain has settled.
-const GONE: u32 = u32::MAX;
 
 impl Suspension {
     /// The suspended grains of `st` in the cells of `grid`, or None if a grain index or a cell
@@ -112,6 +104,7 @@ impl Suspension {
                     class: k.class,
                     diameter_m: k.diameter_m,
                     volume_m3: k.volume_m3(),
+                    volume_q: grid.quanta().of(k.volume_m3()),
                     stokes_m_s: stepper.stokes_speed_m_s(k.diameter_m),
                 })
                 .collect(),
@@ -136,14 +129,51 @@ impl Suspension {
             speeds[me.index.len()] = v;
             me.index.push(i as u32);
             me.y_m.push(y);
-            me.cell.push(cells.cell_of(x, y) as u32);
+            me.cell.push(0); // found by `order_by_kind`
             me.kind.push(kind);
             total_m3 += me.kinds[kind as usize].volume_m3;
         }
         speeds.truncate(me.index.len());
         me.v_m_s = speeds;
         me.reach_m = 1.01 * total_m3 / stepper.bed_area_m2 + 1e-12;
+        me.order_by_kind(|j| cells.cell_of(st.x_m(grains, j), st.y_m[j]) as u32);
         Some((me, suspect))
+    }
+
+    /// Puts the entries in kind order, ascending grain index within a kind, in place: each
+    /// entry's place (a counting sort by kind) is held in `cell` for the while, and every swap
+    /// puts one entry in its place; then each entry's cell is found again (`cell_of`, from its
+    /// grain's index): no memory beyond the entries'.
+    fn order_by_kind(&mut self, cell_of: impl Fn(usize) -> u32) {
+        let mut next = vec![0u32; self.kinds.len() + 1];
+        for &k in &self.kind {
+            next[k as usize + 1] += 1;
+        }
+        for k in 1..next.len() {
+            next[k] += next[k - 1];
+        }
+        let place = &mut self.cell;
+        for (p, &k) in place.iter_mut().zip(&self.kind) {
+            let slot = &mut next[k as usize];
+            *p = *slot;
+            *slot += 1;
+        }
+        for j in 0..place.len() {
+            loop {
+                let d = place[j] as usize;
+                if d == j {
+                    break;
+                }
+                place.swap(j, d);
+                self.index.swap(j, d);
+                self.y_m.swap(j, d);
+                self.v_m_s.swap(j, d);
+                self.kind.swap(j, d);
+            }
+        }
+        for (c, &i) in self.cell.iter_mut().zip(&self.index) {
+            *c = cell_of(i as usize);
+        }
     }
 
     /// The largest speed of the suspended grains, each the larger of its speed and its Stokes
@@ -181,12 +211,12 @@ impl Suspension {
         self.parts
             .resize_with(self.cell.len().div_ceil(n), Vec::new);
         let kinds = &self.kinds;
-        let sum = |((solid, cs), ks): ((&mut Vec<f64>, &[u32]), &[u32])| {
+        let sum = |((solid, cs), ks): ((&mut Vec<i128>, &[u32]), &[u32])| {
             solid.clear();
-            solid.resize(cells, 0.0);
+            solid.resize(cells, 0);
             for (&c, &k) in cs.iter().zip(ks) {
                 if c != GONE {
-                    solid[c as usize] += kinds[k as usize].volume_m3;
+                    solid[c as usize] += kinds[k as usize].volume_q;
                 }
             }
         };
@@ -209,7 +239,7 @@ impl Suspension {
 
     /// The free update of every suspended grain over `dt_s` ([`free_step`] with [`CellDrag`]) above the
     /// bed surface `floor_m` (a grain reaching it stops on it; deposition then flags it), in
-    /// parallel by chunks of [`INTERRUPT_CHECK_GRAINS`] grains, with each grain's new voidage
+    /// parallel by chunks of [`update_chunk_grains`] grains, with each grain's new voidage
     /// cell. Returns the grains advanced and whether any now fails the test of
     /// [`Stepper::grain_fault`] in the cylinder of `setup` (after [`Suspension::write_back`], the
     /// fault scan names the first).
@@ -245,7 +275,8 @@ impl Suspension {
             },
         };
         let suspect = AtomicBool::new(false);
-        let n = INTERRUPT_CHECK_GRAINS;
+        let n = update_chunk_grains(self.index.len());
+        self.chunk = n;
         let chunks = self.index.len().div_ceil(n);
         self.near_bed.resize_with(chunks, Default::default);
         let reach = floor_m + 1e-15 + self.reach_m;
@@ -295,11 +326,21 @@ impl Suspension {
     ) -> (f64, bool) {
         let mut vmax = 0.0f64;
         let mut suspect = false;
-        let n = INTERRUPT_CHECK_GRAINS;
-        for (chunk, (near, chunk_vmax)) in self.near_bed.iter().enumerate() {
+        let n = self.chunk;
+        // The entries within reach, in ascending grain order (the entries are in kind order).
+        let mut near: Vec<(u32, u32)> = Vec::new();
+        for (chunk, (list, chunk_vmax)) in self.near_bed.iter().enumerate() {
             vmax = vmax.max(*chunk_vmax);
-            for &k in near {
+            near.extend(list.iter().map(|&k| {
                 let j = chunk * n + k as usize;
+                (self.index[j], j as u32)
+            }));
+        }
+        // Ascending runs (one per kind of each chunk): the stable sort merges them.
+        near.sort();
+        {
+            for (_, j) in near {
+                let j = j as usize;
                 let kind = self.kinds[self.kind[j] as usize];
                 let (y, v, d) = (self.y_m[j], self.v_m_s[j], kind.diameter_m);
                 let half_d = 0.5 * d;
@@ -351,31 +392,29 @@ impl Suspension {
         self.kind.truncate(n);
     }
 
-    /// Writes the heights of the suspended grains into `st`, in parallel by chunks of
-    /// [`WRITE_BACK_GRAINS`] entries: the indices ascend, so each chunk writes its own range of
-    /// the state's grains. Their speeds stay here ([`Suspension::speeds_m_s`]).
+    /// Writes the heights of the suspended grains into `st`, in parallel: the state's grains
+    /// are cut in one range per thread, and each thread writes the entries whose grains are in
+    /// its range (the entries are in kind order, so a range's grains are anywhere among them).
+    /// Copies only: the same heights whatever the threads. Their speeds stay here
+    /// ([`Suspension::speeds_m_s`]).
     pub fn write_back(&self, st: &mut State) {
-        let n = WRITE_BACK_GRAINS;
-        let len = self.index.len();
-        let mut tasks = Vec::with_capacity(len.div_ceil(n));
-        let mut heights = &mut st.y_m[..];
-        let mut base = 0;
-        for lo in (0..len).step_by(n) {
-            let end = self
-                .index
-                .get(lo + n)
-                .map_or(base + heights.len(), |&i| i as usize);
-            let (g, rest) = std::mem::take(&mut heights).split_at_mut(end - base);
-            tasks.push((lo, base, g));
-            (heights, base) = (rest, end);
-        }
-        tasks.into_par_iter().for_each(|(lo, base, g)| {
-            for j in lo..len.min(lo + n) {
-                if self.cell[j] != GONE {
-                    g[self.index[j] as usize - base] = self.y_m[j];
+        let per = st.y_m.len().div_ceil(rayon::current_num_threads()).max(1);
+        st.y_m
+            .par_chunks_mut(per)
+            .enumerate()
+            .for_each(|(c, heights)| {
+                let lo = c * per;
+                for ((&i, &y), &cell) in self.index.iter().zip(&self.y_m).zip(&self.cell) {
+                    if let Some(h) = (i as usize)
+                        .checked_sub(lo)
+                        .and_then(|k| heights.get_mut(k))
+                    {
+                        if cell != GONE {
+                            *h = y;
+                        }
+                    }
                 }
-            }
-        });
+            });
     }
 
     /// The vertical velocity of every one of the `n` grains of the state, m/s: a suspended
@@ -395,7 +434,8 @@ impl Suspension {
     /// Ends the suspension: writes the heights of the suspended grains into `st` and gives it
     /// back every grain's speed ([`Suspension::speeds_m_s`]), spread in place over the array of
     /// speeds [`Suspension::new`] took from `st` (which still has room for every grain): no
-    /// new array, so the end of a run needs no more memory than its steps.
+    /// new array of speeds (two of flags, a byte per grain), so the end of a run needs no more memory
+    /// than its steps.
     pub fn into_state(self, st: &mut State) {
         self.write_back(st);
         let Self {
@@ -405,206 +445,38 @@ impl Suspension {
             ..
         } = self;
         let n = st.len();
-        let mut j = index.len();
+        let len = index.len();
         v_m_s.resize(n, 0.0);
-        // From the last grain down: entry j goes to grain index[j] ≥ j, so every entry is read
-        // before its slot is written.
-        for i in (0..n).rev() {
-            let speed = if j > 0 && index[j - 1] as usize == i {
-                j -= 1;
-                if cell[j] == GONE {
-                    0.0
-                } else {
-                    v_m_s[j]
+        // Entry j's speed goes to slot index[j]: follow each chain of entries whose slot holds
+        // another entry not yet moved. `moved`: the entry first at j has left; `set`: slot j
+        // holds its grain's speed.
+        let (mut moved, mut set) = (vec![false; len], vec![false; n]);
+        for j in 0..len {
+            if moved[j] {
+                continue;
+            }
+            moved[j] = true;
+            let mut carry = (index[j] as usize, v_m_s[j], cell[j] == GONE);
+            loop {
+                let (slot, v, gone) = carry;
+                let next = (slot < len && !moved[slot])
+                    .then(|| (index[slot] as usize, v_m_s[slot], cell[slot] == GONE));
+                v_m_s[slot] = if gone { 0.0 } else { v };
+                set[slot] = true;
+                match next {
+                    Some(c) => {
+                        moved[slot] = true;
+                        carry = c;
+                    }
+                    None => break,
                 }
-            } else {
-                0.0
-            };
-            v_m_s[i] = speed;
+            }
+        }
+        for (v, &s) in v_m_s.iter_mut().zip(&set) {
+            if !s {
+                *v = 0.0;
+            }
         }
         st.velocity_m_s = v_m_s;
     }
-}
-
-/// The constants of one free update ([`Suspension::free_update`]).
-struct Update<'a> {
-    /// The drag of the step.
-    drag: CellDrag<'a>,
-    /// What the update reads of each kind ([`KindStep`]).
-    kinds: Vec<KindStep<'a>>,
-    /// The bed surface and the speed bound.
-    lim: Limits,
-}
-
-/// What the free update reads of one grain kind, computed once per step: the same operations
-/// on the same values as per grain, so the same bits. SI units.
-#[derive(Clone, Copy)]
-struct KindStep<'a> {
-    /// Its terminal-state table, on the fast path ([`Stepper::fast_path`]) when its size class
-    /// has one.
-    table: Option<&'a TerminalTable>,
-    /// The step over the mass, dt/m, s/kg (NaN without a table): one division per kind and step
-    /// instead of one per grain.
-    dt_over_mass: f64,
-    /// Half the diameter, m.
-    half_d_m: f64,
-    /// The cylinder height plus the diameter, m: a centre above it is a fault.
-    top_m: f64,
-    /// Stokes terminal speed, m/s.
-    stokes_m_s: f64,
-}
-
-/// One chunk of the suspended grains' arrays in a free update.
-struct Chunk<'a> {
-    ys: &'a mut [f64],
-    vs: &'a mut [f64],
-    cs: &'a mut [u32],
-    /// The grains' kinds, and the kinds.
-    ks: &'a [u32],
-    kinds: &'a [Kind],
-}
-
-/// What the free update of one chunk found ([`Chunk::update`]).
-struct Found<'a> {
-    /// The entries within reach of the bed after the update (ascending).
-    near: &'a mut Vec<u32>,
-    /// The largest speed of the others, each the larger of its speed and its Stokes terminal
-    /// speed, m/s.
-    vmax: f64,
-    /// Whether any grain now fails the fault test.
-    bad: bool,
-}
-
-impl Chunk<'_> {
-    /// The free update of every grain of the chunk ([`Suspension::free_update`]); `reach` is
-    /// the height below which a grain's bottom may touch the bed in this step's deposition, m.
-    fn update(self, u: &Update, reach: f64, found: &mut Found) {
-        let Chunk {
-            ys,
-            vs,
-            cs,
-            ks,
-            kinds,
-        } = self;
-        let len = ys.len();
-        let voidage = u.drag.grid.voidages();
-        let kind_of = |j: usize| &u.kinds[ks[j] as usize];
-        // Grains with a terminal-state table, `LANES` at a time (the same steps as
-        // `CellDrag` gives them one by one); the others one by one. A settled
-        // entry's lane computes a step that is not used.
-        let mut k = 0;
-        while k + LANES <= len {
-            let lanes: [&KindStep; LANES] = std::array::from_fn(|l| kind_of(k + l));
-            let tables = lanes.map(|q| q.table);
-            let steps = if u.drag.fast && tables.iter().all(Option::is_some) {
-                let tables = tables.map(|t| t.expect("all tables present"));
-                exponential_near_terminal_lanes(
-                    tables,
-                    std::array::from_fn(|l| match cs[k + l] {
-                        GONE => 1.0,
-                        cell => voidage[cell as usize],
-                    }),
-                    lanes.map(|q| q.dt_over_mass),
-                    tables.map(|t| t.body_force_n),
-                    std::array::from_fn(|l| vs[k + l]),
-                    u.drag.dt_s,
-                )
-            } else {
-                [None; LANES]
-            };
-            for (l, step) in steps.into_iter().enumerate() {
-                let j = k + l;
-                if cs[j] == GONE {
-                    continue;
-                }
-                match step {
-                    Some(step) => finish(u, lanes[l], reach, j, step, ys, vs, cs, found),
-                    None => {
-                        let kind = &kinds[ks[j] as usize];
-                        one_grain(u, kind, lanes[l], reach, j, ys, vs, cs, found)
-                    }
-                }
-            }
-            k += LANES;
-        }
-        for j in k..len {
-            if cs[j] != GONE {
-                let kind = &kinds[ks[j] as usize];
-                one_grain(u, kind, kind_of(j), reach, j, ys, vs, cs, found);
-            }
-        }
-    }
-}
-
-/// The free update ([`free_step`] with [`CellDrag`]) of entry `j` of kind `kind` (its
-/// constants `q`) outside the lanes. Out of line: the lanes cover nearly every grain-step (all
-/// but the first step from rest and steps after a large change of voidage, 0.4 % in sample 5).
-#[cold]
-#[inline(never)]
-#[allow(clippy::too_many_arguments)]
-fn one_grain(
-    u: &Update,
-    kind: &Kind,
-    q: &KindStep,
-    reach: f64,
-    j: usize,
-    ys: &mut [f64],
-    vs: &mut [f64],
-    cs: &mut [u32],
-    found: &mut Found,
-) {
-    let g = CellGrain {
-        diameter_m: kind.diameter_m,
-        class: kind.class,
-        cell: cs[j] as usize,
-    };
-    let moved = free_step(&u.drag, &g, ys[j], vs[j], q.half_d_m, q.top_m, u.lim);
-    record(u, q, reach, j, moved, ys, vs, cs, found);
-}
-
-/// Entry `j` of kind `q` after its step `(v1, dx)` ([`after_step`]).
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn finish(
-    u: &Update,
-    q: &KindStep,
-    reach: f64,
-    j: usize,
-    step: (f64, f64),
-    ys: &mut [f64],
-    vs: &mut [f64],
-    cs: &mut [u32],
-    found: &mut Found,
-) {
-    let moved = after_step(ys[j], step, q.half_d_m, q.top_m, u.lim);
-    record(u, q, reach, j, moved, ys, vs, cs, found);
-}
-
-/// Stores entry `j`'s new height and speed, finds its new cell, and lists it in `found` as
-/// within `reach` of the bed or counts its speed; records whether it now fails the test of
-/// [`Stepper::grain_fault`] (`fault`; its horizontal position, constant, was tested by
-/// [`Suspension::new`]).
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn record(
-    u: &Update,
-    q: &KindStep,
-    reach: f64,
-    j: usize,
-    (y, v, fault): (f64, f64, bool),
-    ys: &mut [f64],
-    vs: &mut [f64],
-    cs: &mut [u32],
-    found: &mut Found,
-) {
-    (ys[j], vs[j]) = (y, v);
-    if y.is_finite() {
-        cs[j] = u.drag.grid.cell_after(cs[j] as usize, y) as u32;
-    }
-    if y - q.half_d_m <= reach {
-        found.near.push(j as u32);
-    } else {
-        found.vmax = found.vmax.max(v.abs().max(q.stokes_m_s));
-    }
-    found.bad |= fault;
 }

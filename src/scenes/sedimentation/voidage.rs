@@ -9,7 +9,7 @@ use crate::dynamics::terminal::TerminalTable;
 use crate::dynamics::DallavalleGrain;
 use crate::fluid::hindered::richardson_zaki_drag_factor;
 use crate::fluid::{sphere_mass_kg, DragLaw, HinderedLaw, SphereDrag};
-use crate::sample::Grains;
+use crate::sample::{GrainKind, Grains};
 use rayon::prelude::*;
 
 /// The grid of solid volume per cell (real units, m³) and the drag it gives.
@@ -24,6 +24,8 @@ pub struct VoidageGrid {
     cell_volume_m3: f64,
     /// Solid volume of the suspended grains per cell, m³ (row-major, bottom row first).
     solid_m3: Vec<f64>,
+    /// The fixed point of the fills' sums ([`SolidQuanta`]).
+    quanta: SolidQuanta,
     /// Voidage ε of every cell as [`VoidageGrid::drag`] takes it, set by [`VoidageGrid::fill`]
     /// only where the fast path of the free update reads it (full physics with the Di Felice
     /// factor, [`VoidageGrid::is_di_felice`]).
@@ -61,6 +63,7 @@ impl VoidageGrid {
                 * (setup.height_m / ncy as f64)
                 * setup.thickness_m,
             solid_m3: vec![0.0; ncx * ncy],
+            quanta: SolidQuanta::for_kinds(&setup.grains.kinds, &setup.grains.kind),
             voidage: vec![1.0; ncx * ncy],
             bounds_m: Vec::new(),
             ideal,
@@ -188,14 +191,18 @@ impl VoidageGrid {
     }
 
     /// Refills the grid with the solid volumes (m³) of `cells_volumes` (cell, real solid volume
-    /// of a grain), summed in the order given.
+    /// of a grain), summed exactly ([`SolidQuanta`]): the same sums in any order.
     pub fn fill_cells(&mut self, cells_volumes: impl IntoIterator<Item = (usize, f64)>) {
-        let mut solid = std::mem::take(&mut self.solid_m3);
-        solid.iter_mut().for_each(|x| *x = 0.0);
+        let mut sums = vec![0i128; self.cell_count()];
         for (c, v) in cells_volumes {
-            solid[c] += v;
+            sums[c] += self.quanta.of(v);
         }
-        self.set_solid(solid);
+        self.set_sums(&sums);
+    }
+
+    /// The fixed point of this grid's sums of solid volume ([`SolidQuanta`]).
+    pub fn quanta(&self) -> SolidQuanta {
+        self.quanta
     }
 
     /// The solid volume of the suspended grains per cell, m³, as the last fill left it.
@@ -209,31 +216,34 @@ impl VoidageGrid {
         self.solid_m3.len()
     }
 
-    /// Refills the grid with the solid volumes (m³) of `parts`, each the solid volume per cell
-    /// of a part of the grains ([`VoidageGrid::cell_count`] values, or none for an empty part),
-    /// summed part by part in the order given: cell c holds ((0 + parts[0][c]) + parts[1][c]) + ….
-    /// A single part gives its own sums exactly. Serial: a grid holds a few thousand cells,
-    /// less work than a hand-over to the thread pool costs on a busy machine.
-    pub fn fill_parts(&mut self, parts: &[Vec<f64>]) {
-        let mut solid = std::mem::take(&mut self.solid_m3);
-        solid.iter_mut().for_each(|x| *x = 0.0);
+    /// Refills the grid with the solid volumes of `parts`, each the solid volume per cell of a
+    /// part of the grains in quanta ([`SolidQuanta`]; [`VoidageGrid::cell_count`] values, or
+    /// none for an empty part): integers, so the parts add exactly, in any order. Serial: a
+    /// grid holds a few thousand cells, less work than a hand-over to the thread pool costs on a
+    /// busy machine.
+    pub fn fill_parts(&mut self, parts: &[Vec<i128>]) {
+        let mut sums = vec![0i128; self.cell_count()];
         for p in parts.iter().filter(|p| !p.is_empty()) {
-            for (x, &v) in solid.iter_mut().zip(p) {
+            for (x, &v) in sums.iter_mut().zip(p) {
                 *x += v;
             }
         }
-        self.set_solid(solid);
+        self.set_sums(&sums);
     }
 
-    /// Stores `solid` (m³ per cell) and the voidage it gives.
-    fn set_solid(&mut self, solid: Vec<f64>) {
+    /// Stores the solid volume of each cell from its sum in quanta `sums` (m³, the exact sum
+    /// rounded once) and the voidage it gives.
+    fn set_sums(&mut self, sums: &[i128]) {
+        let quanta = self.quanta;
+        for (s, &q) in self.solid_m3.iter_mut().zip(sums) {
+            *s = quanta.volume_m3(q);
+        }
         if self.is_di_felice() {
             let cell_volume_m3 = self.cell_volume_m3;
-            for (e, &s) in self.voidage.iter_mut().zip(&solid) {
+            for (e, &s) in self.voidage.iter_mut().zip(&self.solid_m3) {
                 *e = voidage_of(s, cell_volume_m3);
             }
         }
-        self.solid_m3 = solid;
     }
 
     /// The voidage ε of every cell, as [`VoidageGrid::voidage`] reads it.
@@ -283,6 +293,63 @@ impl VoidageGrid {
     /// The drag of a grain of diameter `d_m` centred at (x, y), m.
     pub fn drag_at(&self, d_m: f64, x_m: f64, y_m: f64) -> SphereDrag {
         self.drag(d_m, self.cell_of(x_m, y_m))
+    }
+}
+
+/// The fixed point in which a [`VoidageGrid`] sums the solid volume of its cells: a volume v
+/// (m³) counts as the integer v·2^q (`i128`), so sums are exact and the same in any order
+/// (the grains of a cell summed in grain order, kind by kind, in parts on any number of
+/// threads), and a cell's volume is its sum converted back, rounded once (to nearest): the
+/// exact sum, correctly rounded. q is the largest power for which every kind's volume v·2^q is
+/// an integer (v has 53 significant bits: q = 52 − ⌊log₂ v⌋ for the smallest v), lowered if
+/// needed so that the volume of every grain at once stays below 2^120; then the smallest
+/// volumes are rounded down to whole quanta (the same quanta in every sum).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SolidQuanta {
+    /// 2^q.
+    scale: f64,
+    /// 2^−q.
+    unscale: f64,
+}
+
+impl SolidQuanta {
+    /// The quanta of grains of kinds `kinds` (their volumes, weight × volume), grain i of
+    /// kind `kind[i]`.
+    pub fn for_kinds(kinds: &[GrainKind], kind: &[u32]) -> Self {
+        let mut counts = vec![0f64; kinds.len()];
+        for &k in kind {
+            counts[k as usize] += 1.0;
+        }
+        let (mut q, mut total_m3) = (0i32, 0.0f64);
+        for (k, &n) in kinds.iter().zip(&counts) {
+            let v = k.volume_m3();
+            if n > 0.0 && v > 0.0 && v.is_finite() {
+                // ⌊log₂ v⌋, exactly: the exponent of v (a volume is a normal number).
+                let exponent = ((v.to_bits() >> 52) & 0x7ff) as i32 - 1023;
+                q = q.max(52 - exponent);
+                total_m3 += n * v;
+            }
+        }
+        if total_m3 > 0.0 && total_m3.is_finite() {
+            q = q.min(119 - total_m3.log2().ceil() as i32);
+        }
+        let q = q.clamp(-1000, 1000);
+        Self {
+            scale: 2f64.powi(q),
+            unscale: 2f64.powi(-q),
+        }
+    }
+
+    /// Volume `v_m3` (m³) in quanta (rounded towards zero when not a whole number of them).
+    #[inline(always)]
+    pub fn of(&self, v_m3: f64) -> i128 {
+        (v_m3 * self.scale) as i128
+    }
+
+    /// The volume (m³) of `q` quanta, rounded to nearest.
+    #[inline(always)]
+    pub fn volume_m3(&self, q: i128) -> f64 {
+        q as f64 * self.unscale
     }
 }
 

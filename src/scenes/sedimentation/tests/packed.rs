@@ -8,13 +8,12 @@ use crate::scenes::sedimentation::suspension::{fill_part_grains, Suspension};
 use crate::scenes::sedimentation::{setup, State};
 use std::path::Path;
 
-/// The voidage fill of the packed suspension sums each part of [`fill_part_grains`] entries in
-/// grain order, in parallel, then adds the parts in order. With more than one part that
-/// reorders each cell's sum against the fill of the state in grain order, so the two agree to
-/// rounding (within 1e-13 relative per cell, solid volume and voidage), not bit for bit; and
-/// the sums must be the same bits whatever the number of threads (1, 2 and 3).
+/// The voidage fill of the packed suspension sums each part of [`fill_part_grains`] entries (in
+/// kind order) in parallel, then adds the parts; the fill of the state sums the grains in grain
+/// order. Both sum exactly, in the quanta of `SolidQuanta`, so they must give the same bits,
+/// whatever the number of threads (1, 2 and 3).
 #[test]
-fn packed_voidage_fill_agrees_with_grain_order_whatever_the_threads() {
+fn packed_voidage_fill_equals_grain_order_whatever_the_threads() {
     let ov: Vec<String> = [
         "physics=full",
         "sample.particles=200000",
@@ -49,10 +48,104 @@ fn packed_voidage_fill_agrees_with_grain_order_whatever_the_threads() {
     assert!(by_threads.windows(2).all(|w| w[0] == w[1]));
     let filled = grid.solid_m3().iter().filter(|&&x| x > 0.0).count();
     assert!(filled > 50, "{filled} cells hold grains");
-    let rel = |a: f64, b: f64| (a - b).abs() / b.abs().max(1e-300);
     for (c, (a, b)) in grid.solid_m3().iter().zip(serial.solid_m3()).enumerate() {
-        assert!(rel(*a, *b) < 1e-13, "cell {c}: solid {a} against {b}");
+        assert_eq!(a.to_bits(), b.to_bits(), "cell {c}: solid {a} against {b}");
         let (e, f) = (grid.voidage(c), serial.voidage(c));
-        assert!(rel(e, f) < 1e-13, "cell {c}: voidage {e} against {f}");
+        assert_eq!(
+            e.to_bits(),
+            f.to_bits(),
+            "cell {c}: voidage {e} against {f}"
+        );
     }
+}
+
+/// A cell's solid volume is the exact sum of its grains' volumes, rounded once: one grain of
+/// 10⁻¹² m³ and 10⁶ of 10⁻³⁰ m³ hold 1.000000000001·10⁻¹² m³ (what exact arithmetic gives: a
+/// sum in f64, grain by grain, would stay at 10⁻¹² m³, each small volume below half an ulp),
+/// the same in any order of the grains.
+#[test]
+fn a_cell_holds_the_exact_sum_of_its_grains_in_any_order() {
+    use crate::sample::GrainKind;
+    use crate::scenes::sedimentation::voidage::SolidQuanta;
+    let kind = |volume_m3: f64| GrainKind {
+        class: 0,
+        // weight × π d³/6 = volume with d = 1 m.
+        diameter_m: 1.0,
+        weight: volume_m3 * 6.0 / std::f64::consts::PI,
+    };
+    let kinds = vec![kind(1e-12), kind(1e-30)];
+    let (big, small) = (kinds[0].volume_m3(), kinds[1].volume_m3());
+    let n_small = 1_000_000usize;
+    // The large grain first: a sum in f64 then loses every small one.
+    let mut order = vec![0u32];
+    order.extend(std::iter::repeat_n(1u32, n_small));
+    let q = SolidQuanta::for_kinds(&kinds, &order);
+    let sum = |ks: &[u32]| {
+        let total: i128 = ks.iter().map(|&k| q.of([big, small][k as usize])).sum();
+        q.volume_m3(total)
+    };
+    let naive = order.iter().fold(0.0, |s, &k| s + [big, small][k as usize]);
+    let first = sum(&order);
+    order.rotate_left(1);
+    let last = sum(&order);
+    assert_eq!(first.to_bits(), last.to_bits());
+    let exact = big + n_small as f64 * small;
+    assert!((naive - big).abs() <= f64::EPSILON * big, "naive {naive:e}");
+    assert!(
+        (first - exact).abs() <= 2.0 * f64::EPSILON * exact,
+        "{first:e} against {exact:e}"
+    );
+    assert!((first - 1.000000000001e-12).abs() < 1e-27, "{first:e}");
+}
+
+/// The packed suspension holds its grains in kind order, cut in chunks updated in parallel,
+/// drops the settled ones as it goes, and writes heights back (records) and speeds (the end)
+/// by grain index: against the per-grain loop over the state in grain order, every record's
+/// heights and settled flags and the final heights, speeds and bed must be the same bits
+/// (sample 5, 40 000 grains: three chunks of the free update, several hundred steps with
+/// grains settling).
+#[test]
+fn the_packed_loop_in_kind_order_is_the_per_grain_loop_bit_for_bit() {
+    use crate::scenes::sedimentation::observer::OnRecord;
+    use crate::scenes::sedimentation::simulate::{simulate_on, StepLoop};
+    let ov: Vec<String> = [
+        "sample.particles=40000",
+        "time.end_s=1800.0",
+        "physics=full",
+        "sample.snapshot_times_s=[]",
+    ]
+    .map(String::from)
+    .to_vec();
+    let p = prepare(Path::new("scenarios/sedimentation_sample5.toml"), None, &ov).unwrap();
+    let su = setup(&p).unwrap();
+    type Seen = (Vec<u64>, Vec<bool>);
+    let on = |step_loop| {
+        let mut seen: Vec<Seen> = Vec::new();
+        let mut obs = OnRecord(|st: &State| {
+            seen.push((
+                st.y_m.iter().map(|y| y.to_bits()).collect(),
+                st.settled.clone(),
+            ))
+        });
+        let st = simulate_on(step_loop, &su, State::initial(&su), &[], &mut obs);
+        (st, seen)
+    };
+    let (packed, packed_seen) = on(StepLoop::Chosen);
+    let (per_grain, per_grain_seen) = on(StepLoop::PerGrain);
+    let settled = packed.settled.iter().filter(|&&s| s).count();
+    assert!(
+        settled > 1000 && settled < su.grains.len(),
+        "{settled} grains settled"
+    );
+    assert!(packed_seen.len() >= 3, "{} records", packed_seen.len());
+    assert!(packed_seen == per_grain_seen, "the records' heights differ");
+    let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+    assert_eq!(bits(&packed.y_m), bits(&per_grain.y_m));
+    assert_eq!(bits(&packed.velocity_m_s), bits(&per_grain.velocity_m_s));
+    assert_eq!(packed.settled, per_grain.settled);
+    assert_eq!(
+        packed.bed_height_m.to_bits(),
+        per_grain.bed_height_m.to_bits()
+    );
+    assert_eq!(packed.steps, per_grain.steps);
 }

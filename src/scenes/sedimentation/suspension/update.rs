@@ -1,0 +1,273 @@
+//! The free update of the packed suspension's grains ([`super::Suspension::free_update`]), chunk by
+//! chunk: runs of one kind on vectors ([`Chunk::update`]), the rare others one by one.
+
+use super::super::step::kernel::{after_step, free_step, CellDrag, CellGrain, Limits};
+use crate::dynamics::terminal::{exponential_near_terminal_kind_saturated, TerminalTable};
+
+/// Grains of one kind whose terminal-state table the free update evaluates together
+/// ([`exponential_near_terminal_kind_saturated`]).
+const LANES: usize = 16;
+
+/// The `cell` of an entry whose grain has settled.
+pub(super) const GONE: u32 = u32::MAX;
+
+/// The constants of the grains of one size class, diameter and weight. SI units.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Kind {
+    /// Size class.
+    pub(super) class: usize,
+    /// Diameter, m.
+    pub(super) diameter_m: f64,
+    /// Real solid volume of one grain (its weight times its volume), m³.
+    pub(super) volume_m3: f64,
+    /// The same in the quanta of the voidage grid's sums ([`SolidQuanta`](super::super::voidage::SolidQuanta)).
+    pub(super) volume_q: i128,
+    /// Stokes terminal speed ([`crate::scenes::sedimentation::step::Stepper::stokes_speed_m_s`]), m/s.
+    pub(super) stokes_m_s: f64,
+}
+
+/// The constants of one free update ([`super::Suspension::free_update`]).
+pub(super) struct Update<'a> {
+    /// The drag of the step.
+    pub(super) drag: CellDrag<'a>,
+    /// What the update reads of each kind ([`KindStep`]).
+    pub(super) kinds: Vec<KindStep<'a>>,
+    /// The bed surface and the speed bound.
+    pub(super) lim: Limits,
+}
+
+/// What the free update reads of one grain kind, computed once per step: the same operations
+/// on the same values as per grain, so the same bits. SI units.
+#[derive(Clone, Copy)]
+pub(super) struct KindStep<'a> {
+    /// Its terminal-state table, on the fast path ([`Stepper::fast_path`]) when its size class
+    /// has one.
+    pub(super) table: Option<&'a TerminalTable>,
+    /// The step over the mass, dt/m, s/kg (NaN without a table): one division per kind and step
+    /// instead of one per grain.
+    pub(super) dt_over_mass: f64,
+    /// Half the diameter, m.
+    pub(super) half_d_m: f64,
+    /// The cylinder height plus the diameter, m: a centre above it is a fault.
+    pub(super) top_m: f64,
+    /// Stokes terminal speed, m/s.
+    pub(super) stokes_m_s: f64,
+}
+
+/// One chunk of the suspended grains' arrays in a free update.
+pub(super) struct Chunk<'a> {
+    pub(super) ys: &'a mut [f64],
+    pub(super) vs: &'a mut [f64],
+    pub(super) cs: &'a mut [u32],
+    /// The grains' kinds, and the kinds.
+    pub(super) ks: &'a [u32],
+    pub(super) kinds: &'a [Kind],
+}
+
+/// What the free update of one chunk found ([`Chunk::update`]).
+pub(super) struct Found<'a> {
+    /// The entries within reach of the bed after the update (ascending).
+    pub(super) near: &'a mut Vec<u32>,
+    /// The largest speed of the others, each the larger of its speed and its Stokes terminal
+    /// speed, m/s.
+    pub(super) vmax: f64,
+    /// Whether any grain now fails the fault test.
+    pub(super) bad: bool,
+}
+
+impl Chunk<'_> {
+    /// The free update of every grain of the chunk ([`super::Suspension::free_update`]); `reach` is
+    /// the height below which a grain's bottom may touch the bed in this step's deposition, m.
+    ///
+    /// The entries are in kind order ([`super::Suspension::new`]), so the chunk is a few runs of one
+    /// kind each: `LANES` neighbouring grains of a run share one terminal-state table
+    /// ([`exponential_near_terminal_kind_saturated`]: its coefficients read once, the lanes computed as
+    /// vectors, on the widest vectors the processor has: [`Chunk::update`] picks the build).
+    /// Every grain's update is the same operations as [`CellDrag`] gives it alone.
+    #[inline(always)]
+    fn update_any(self, u: &Update, reach: f64, found: &mut Found) {
+        let Chunk {
+            ys,
+            vs,
+            cs,
+            ks,
+            kinds,
+        } = self;
+        let voidage = u.drag.grid.voidages();
+        let len = ys.len();
+        let mut a = 0;
+        while a < len {
+            let k = ks[a];
+            let b = a + ks[a..].iter().take_while(|&&x| x == k).count();
+            let (q, kind) = (&u.kinds[k as usize], &kinds[k as usize]);
+            let Some(table) = q.table else {
+                for j in a..b {
+                    if cs[j] != GONE {
+                        one_grain(u, kind, q, reach, j, ys, vs, cs, found);
+                    }
+                }
+                a = b;
+                continue;
+            };
+            let eps = |c: u32| if c == GONE { 1.0 } else { voidage[c as usize] };
+            let mut j0 = a;
+            while j0 < b {
+                let n = (b - j0).min(LANES);
+                // A short block's missing lanes repeat its last grain (their steps unused).
+                let at = |l: usize| j0 + l.min(n - 1);
+                // Plain loops (not `array::from_fn` or `map`, which may be left out of line,
+                // built for the baseline).
+                let (mut y0, mut c0, mut v0) = ([0.0; LANES], [0u32; LANES], [0.0; LANES]);
+                let mut e0 = [0.0; LANES];
+                if n == LANES {
+                    let (y, c, v) = (
+                        &ys[j0..j0 + LANES],
+                        &cs[j0..j0 + LANES],
+                        &vs[j0..j0 + LANES],
+                    );
+                    for l in 0..LANES {
+                        (y0[l], c0[l], v0[l]) = (y[l], c[l], v[l]);
+                    }
+                } else {
+                    for l in 0..LANES {
+                        (y0[l], c0[l], v0[l]) = (ys[at(l)], cs[at(l)], vs[at(l)]);
+                    }
+                }
+                for l in 0..LANES {
+                    e0[l] = eps(c0[l]);
+                }
+                let step = exponential_near_terminal_kind_saturated::<LANES>(
+                    table,
+                    e0,
+                    q.dt_over_mass,
+                    v0,
+                    u.drag.dt_s,
+                );
+                let (v1, dx) = (step.velocity_m_s, step.displacement_m);
+                // `after_step` and the tests of `record`, lane by lane without a branch.
+                let (mut y1, mut fault, mut near) = ([0.0; LANES], [false; LANES], [false; LANES]);
+                let mut vmax = 0.0f64;
+                for l in 0..LANES {
+                    (y1[l], _, fault[l]) =
+                        after_step(y0[l], (v1[l], dx[l]), q.half_d_m, q.top_m, u.lim);
+                    near[l] = y1[l] - q.half_d_m <= reach;
+                    let counted = step.ok[l] && !near[l] && c0[l] != GONE && l < n;
+                    vmax = vmax.max(if counted {
+                        v1[l].abs().max(q.stokes_m_s)
+                    } else {
+                        0.0
+                    });
+                }
+                found.vmax = found.vmax.max(vmax);
+                for l in 0..n {
+                    let j = j0 + l;
+                    if c0[l] == GONE {
+                        continue;
+                    }
+                    if !step.ok[l] {
+                        one_grain(u, kind, q, reach, j, ys, vs, cs, found);
+                        continue;
+                    }
+                    (ys[j], vs[j]) = (y1[l], v1[l]);
+                    if y1[l].is_finite() {
+                        cs[j] = u.drag.grid.cell_after(c0[l] as usize, y1[l]) as u32;
+                    }
+                    if near[l] {
+                        found.near.push(j as u32);
+                    }
+                    found.bad |= fault[l];
+                }
+                j0 += n;
+            }
+            a = b;
+        }
+    }
+
+    /// [`Chunk::update_any`] built for the widest vectors this processor has (AVX-512, AVX2,
+    /// else the build's baseline), chosen at run time. Additions, multiplications and divisions
+    /// are rounded alike on every width (nothing is fused into a multiply-add), so every build
+    /// gives the same bits.
+    pub(super) fn update(self, u: &Update, reach: f64, found: &mut Found) {
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::arch::is_x86_feature_detected!("avx512f") {
+                // SAFETY: the processor has AVX-512F (checked just above).
+                return unsafe { self.update_avx512(u, reach, found) };
+            }
+            if std::arch::is_x86_feature_detected!("avx2") {
+                // SAFETY: the processor has AVX2 (checked just above).
+                return unsafe { self.update_avx2(u, reach, found) };
+            }
+        }
+        self.update_any(u, reach, found)
+    }
+
+    /// [`Chunk::update_any`] on AVX-512 vectors.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx512f")]
+    fn update_avx512(self, u: &Update, reach: f64, found: &mut Found) {
+        self.update_any(u, reach, found)
+    }
+
+    /// [`Chunk::update_any`] on AVX2 vectors.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn update_avx2(self, u: &Update, reach: f64, found: &mut Found) {
+        self.update_any(u, reach, found)
+    }
+}
+
+/// The free update ([`free_step`] with [`CellDrag`]) of entry `j` of kind `kind` (its
+/// constants `q`) outside the lanes. Out of line: the lanes cover nearly every grain-step (all
+/// but the first step from rest and steps after a large change of voidage, 0.4 % in sample 5).
+#[cold]
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+fn one_grain(
+    u: &Update,
+    kind: &Kind,
+    q: &KindStep,
+    reach: f64,
+    j: usize,
+    ys: &mut [f64],
+    vs: &mut [f64],
+    cs: &mut [u32],
+    found: &mut Found,
+) {
+    let g = CellGrain {
+        diameter_m: kind.diameter_m,
+        class: kind.class,
+        cell: cs[j] as usize,
+    };
+    let moved = free_step(&u.drag, &g, ys[j], vs[j], q.half_d_m, q.top_m, u.lim);
+    record(u, q, reach, j, moved, ys, vs, cs, found);
+}
+
+/// Stores entry `j`'s new height and speed, finds its new cell, and lists it in `found` as
+/// within `reach` of the bed or counts its speed; records whether it now fails the test of
+/// [`Stepper::grain_fault`] (`fault`; its horizontal position, constant, was tested by
+/// [`super::Suspension::new`]).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn record(
+    u: &Update,
+    q: &KindStep,
+    reach: f64,
+    j: usize,
+    (y, v, fault): (f64, f64, bool),
+    ys: &mut [f64],
+    vs: &mut [f64],
+    cs: &mut [u32],
+    found: &mut Found,
+) {
+    (ys[j], vs[j]) = (y, v);
+    if y.is_finite() {
+        cs[j] = u.drag.grid.cell_after(cs[j] as usize, y) as u32;
+    }
+    if y - q.half_d_m <= reach {
+        found.near.push(j as u32);
+    } else {
+        found.vmax = found.vmax.max(v.abs().max(q.stokes_m_s));
+    }
+    found.bad |= fault;
+}
