@@ -6,6 +6,7 @@
 use super::chart::data::Figure;
 use super::chart::Chart;
 use super::table::Table;
+use rayon::prelude::*;
 use std::io;
 use std::path::Path;
 use std::sync::Arc;
@@ -192,18 +193,20 @@ impl Outputs {
     }
 
     /// Writes every table (as CSV) and file into the folder `dir` (a staging folder), creating
-    /// sub-folders as needed; each file atomically (written beside, then renamed).
+    /// sub-folders as needed; each file atomically (written beside, then renamed). The files
+    /// are written in parallel (a large run's snapshots are formatted as they are written);
+    /// the error returned is that of the first file that failed, in the order they were made.
     pub fn write_into(&self, dir: &Path) -> io::Result<()> {
-        for t in &self.tables {
-            write_file(dir, t.name(), &|w| t.write_csv(w))?;
-        }
-        for (n, b) in &self.files {
-            match b {
-                FileBody::Bytes(b) => write_file(dir, n, &|w| w.write_all(b))?,
-                FileBody::Made(make) => write_file(dir, n, &**make)?,
-            }
-        }
-        Ok(())
+        let tables = self
+            .tables
+            .par_iter()
+            .map(|t| write_file(dir, t.name(), &|w| t.write_csv(w)));
+        let files = self.files.par_iter().map(|(n, b)| match b {
+            FileBody::Bytes(b) => write_file(dir, n, &|w| w.write_all(b)),
+            FileBody::Made(make) => write_file(dir, n, &**make),
+        });
+        let done: Vec<io::Result<()>> = tables.chain(files).collect();
+        done.into_iter().collect()
     }
 
     /// Reads the files of a folder (recursively): `.csv` files as tables, the others as bytes.
