@@ -327,19 +327,52 @@ impl Suspension {
         let mut vmax = 0.0f64;
         let mut suspect = false;
         let n = self.chunk;
-        // The entries within reach, in ascending grain order (the entries are in kind order).
-        let mut near: Vec<(u32, u32)> = Vec::new();
+        // The entries within reach: (gap above the bed, rise of the bed if it joins, entry).
+        let bed0 = st.bed_height_m;
+        let mut near: Vec<(f64, f64, u32)> = Vec::new();
         for (chunk, (list, chunk_vmax)) in self.near_bed.iter().enumerate() {
             vmax = vmax.max(*chunk_vmax);
             near.extend(list.iter().map(|&k| {
                 let j = chunk * n + k as usize;
-                (self.index[j], j as u32)
+                let kind = &self.kinds[self.kind[j] as usize];
+                let gap = self.y_m[j] - 0.5 * kind.diameter_m - bed0;
+                (gap, kind.volume_m3 / stepper.bed_area_m2, j as u32)
             }));
         }
+        // Only a grain within the rise of the bed that the grains able to join could make can
+        // join (the bed rises only as grains join): that bound, with ample margin for rounding,
+        // found by adding such grains until none is added. The others are visited for their
+        // speeds only; the possible ones in grain order (the entries are in kind order), as
+        // the per-grain pass visits them, so the same grains join in the same order.
+        let mut limit = 1e-15 + 1e-12;
+        let mut count = usize::MAX;
+        for _ in 0..16 {
+            let (rise, c) = near
+                .iter()
+                .filter(|x| x.0 <= limit)
+                .fold((0.0, 0), |(r, c), x| (r + x.1, c + 1));
+            limit = 1e-15 + 1e-12 + 1.01 * rise;
+            if c == count {
+                break;
+            }
+            count = c;
+        }
+        if count != near.iter().filter(|x| x.0 <= limit).count() {
+            limit = f64::INFINITY;
+        }
+        let mut may_join: Vec<(u32, u32)> = Vec::new();
+        for &(gap, _, j) in &near {
+            if gap <= limit {
+                may_join.push((self.index[j as usize], j));
+            } else {
+                let kind = &self.kinds[self.kind[j as usize] as usize];
+                vmax = vmax.max(self.v_m_s[j as usize].abs().max(kind.stokes_m_s));
+            }
+        }
         // Ascending runs (one per kind of each chunk): the stable sort merges them.
-        near.sort();
+        may_join.sort();
         {
-            for (_, j) in near {
+            for (_, j) in may_join {
                 let j = j as usize;
                 let kind = self.kinds[self.kind[j] as usize];
                 let (y, v, d) = (self.y_m[j], self.v_m_s[j], kind.diameter_m);
