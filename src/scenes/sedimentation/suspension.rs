@@ -63,6 +63,11 @@ pub struct Suspension {
     near_bed: Vec<(Vec<u32>, f64)>,
     /// Entries per chunk of the last free update ([`update_chunk_grains`]).
     chunk: usize,
+    /// Deposition's lists, kept from step to step (no allocation per step): the entries
+    /// within reach (gap above the bed, m; the bed's rise if it joins, m; entry), and those
+    /// that may join (grain index, entry).
+    near_scratch: Vec<(f64, f64, u32)>,
+    may_join: Vec<(u32, u32)>,
     /// Per part of the entries ([`Suspension::fill`]), the solid volume of its suspended
     /// grains per voidage cell, in quanta ([`SolidQuanta`](super::voidage::SolidQuanta)).
     parts: Vec<Vec<i128>>,
@@ -329,7 +334,8 @@ impl Suspension {
         let n = self.chunk;
         // The entries within reach: (gap above the bed, rise of the bed if it joins, entry).
         let bed0 = st.bed_height_m;
-        let mut near: Vec<(f64, f64, u32)> = Vec::new();
+        let mut near = std::mem::take(&mut self.near_scratch);
+        near.clear();
         for (chunk, (list, chunk_vmax)) in self.near_bed.iter().enumerate() {
             vmax = vmax.max(*chunk_vmax);
             near.extend(list.iter().map(|&k| {
@@ -360,7 +366,8 @@ impl Suspension {
         if count != near.iter().filter(|x| x.0 <= limit).count() {
             limit = f64::INFINITY;
         }
-        let mut may_join: Vec<(u32, u32)> = Vec::new();
+        let mut may_join = std::mem::take(&mut self.may_join);
+        may_join.clear();
         for &(gap, _, j) in &near {
             if gap <= limit {
                 may_join.push((self.index[j as usize], j));
@@ -371,27 +378,26 @@ impl Suspension {
         }
         // Ascending runs (one per kind of each chunk): the stable sort merges them.
         may_join.sort();
-        {
-            for (_, j) in may_join {
-                let j = j as usize;
-                let kind = self.kinds[self.kind[j] as usize];
-                let (y, v, d) = (self.y_m[j], self.v_m_s[j], kind.diameter_m);
-                let half_d = 0.5 * d;
-                if on_bed(y, half_d, st.bed_height_m) {
-                    let i = self.index[j] as usize;
-                    let y = st.bed_height_m + half_d;
-                    st.y_m[i] = y;
-                    st.settled[i] = true;
-                    let grain = setup.grains.grain(i, st.x_m(&setup.grains, i), y);
-                    st.bed_height_m += bed_rise_m(grain.weight, d, stepper.bed_area_m2);
-                    suspect |= stepper.is_faulty(&grain, 0.0, setup);
-                    self.cell[j] = GONE;
-                    self.gone += 1;
-                } else {
-                    vmax = vmax.max(v.abs().max(kind.stokes_m_s));
-                }
+        for &(_, j) in &may_join {
+            let j = j as usize;
+            let kind = self.kinds[self.kind[j] as usize];
+            let (y, v, d) = (self.y_m[j], self.v_m_s[j], kind.diameter_m);
+            let half_d = 0.5 * d;
+            if on_bed(y, half_d, st.bed_height_m) {
+                let i = self.index[j] as usize;
+                let y = st.bed_height_m + half_d;
+                st.y_m[i] = y;
+                st.settled[i] = true;
+                let grain = setup.grains.grain(i, st.x_m(&setup.grains, i), y);
+                st.bed_height_m += bed_rise_m(grain.weight, d, stepper.bed_area_m2);
+                suspect |= stepper.is_faulty(&grain, 0.0, setup);
+                self.cell[j] = GONE;
+                self.gone += 1;
+            } else {
+                vmax = vmax.max(v.abs().max(kind.stokes_m_s));
             }
         }
+        (self.near_scratch, self.may_join) = (near, may_join);
         if self.gone * 16 > self.index.len() {
             self.drop_gone();
         }
@@ -467,8 +473,8 @@ impl Suspension {
     /// Ends the suspension: writes the heights of the suspended grains into `st` and gives it
     /// back every grain's speed ([`Suspension::speeds_m_s`]), spread in place over the array of
     /// speeds [`Suspension::new`] took from `st` (which still has room for every grain): no
-    /// new array of speeds (two of flags, a byte per grain), so the end of a run needs no more memory
-    /// than its steps.
+    /// new array of speeds (two of flags, a byte per grain), so the end of a run needs no more
+    /// memory than its steps.
     pub fn into_state(self, st: &mut State) {
         self.write_back(st);
         let Self {

@@ -1,7 +1,9 @@
-//! The free update of the packed suspension's grains ([`super::Suspension::free_update`]), chunk by
-//! chunk: runs of one kind on vectors ([`Chunk::update`]), the rare others one by one.
+//! The free update of the packed suspension's grains ([`super::Suspension::free_update`]),
+//! chunk by chunk: runs of one kind on vectors ([`Chunk::update`]), the rare others one by one.
 
 use super::super::step::kernel::{after_step, free_step, CellDrag, CellGrain, Limits};
+#[cfg(doc)]
+use super::super::step::Stepper;
 use crate::dynamics::terminal::{exponential_near_terminal_kind_saturated, TerminalTable};
 
 /// Grains of one kind whose terminal-state table the free update evaluates together
@@ -20,9 +22,10 @@ pub(super) struct Kind {
     pub(super) diameter_m: f64,
     /// Real solid volume of one grain (its weight times its volume), m³.
     pub(super) volume_m3: f64,
-    /// The same in the quanta of the voidage grid's sums ([`SolidQuanta`](super::super::voidage::SolidQuanta)).
+    /// The same in the quanta of the voidage grid's sums
+    /// ([`SolidQuanta`](super::super::voidage::SolidQuanta)).
     pub(super) volume_q: i128,
-    /// Stokes terminal speed ([`crate::scenes::sedimentation::step::Stepper::stokes_speed_m_s`]), m/s.
+    /// Stokes terminal speed ([`Stepper::stokes_speed_m_s`]), m/s.
     pub(super) stokes_m_s: f64,
 }
 
@@ -76,13 +79,15 @@ pub(super) struct Found<'a> {
 }
 
 impl Chunk<'_> {
-    /// The free update of every grain of the chunk ([`super::Suspension::free_update`]); `reach` is
-    /// the height below which a grain's bottom may touch the bed in this step's deposition, m.
+    /// The free update of every grain of the chunk ([`super::Suspension::free_update`]);
+    /// `reach` is the height below which a grain's bottom may touch the bed in this step's
+    /// deposition, m.
     ///
-    /// The entries are in kind order ([`super::Suspension::new`]), so the chunk is a few runs of one
-    /// kind each: `LANES` neighbouring grains of a run share one terminal-state table
-    /// ([`exponential_near_terminal_kind_saturated`]: its coefficients read once, the lanes computed as
-    /// vectors, on the widest vectors the processor has: [`Chunk::update`] picks the build).
+    /// The entries are in kind order ([`super::Suspension::new`]), so the chunk is a few runs of
+    /// one kind each: `LANES` neighbouring grains of a run share one terminal-state table
+    /// ([`exponential_near_terminal_kind_saturated`]: its coefficients read once, the lanes
+    /// computed as vectors, on the widest vectors the processor has: [`Chunk::update`] picks
+    /// the build).
     /// Every grain's update is the same operations as [`CellDrag`] gives it alone.
     #[inline(always)]
     fn update_any(self, u: &Update, reach: f64, found: &mut Found) {
@@ -168,14 +173,10 @@ impl Chunk<'_> {
                         one_grain(u, kind, q, reach, j, ys, vs, cs, found);
                         continue;
                     }
-                    (ys[j], vs[j]) = (y1[l], v1[l]);
-                    if y1[l].is_finite() {
-                        cs[j] = u.drag.grid.cell_after(c0[l] as usize, y1[l]) as u32;
-                    }
+                    store(u, j, (y1[l], v1[l], fault[l]), ys, vs, cs, found);
                     if near[l] {
                         found.near.push(j as u32);
                     }
-                    found.bad |= fault[l];
                 }
                 j0 += n;
             }
@@ -260,14 +261,29 @@ fn record(
     cs: &mut [u32],
     found: &mut Found,
 ) {
-    (ys[j], vs[j]) = (y, v);
-    if y.is_finite() {
-        cs[j] = u.drag.grid.cell_after(cs[j] as usize, y) as u32;
-    }
+    store(u, j, (y, v, fault), ys, vs, cs, found);
     if y - q.half_d_m <= reach {
         found.near.push(j as u32);
     } else {
         found.vmax = found.vmax.max(v.abs().max(q.stokes_m_s));
+    }
+}
+
+/// Stores entry `j`'s new height and speed, finds its new cell, and records whether it now
+/// fails the fault test (what [`record`] and the lanes of [`Chunk::update_any`] share).
+#[inline(always)]
+fn store(
+    u: &Update,
+    j: usize,
+    (y, v, fault): (f64, f64, bool),
+    ys: &mut [f64],
+    vs: &mut [f64],
+    cs: &mut [u32],
+    found: &mut Found,
+) {
+    (ys[j], vs[j]) = (y, v);
+    if y.is_finite() {
+        cs[j] = u.drag.grid.cell_after(cs[j] as usize, y) as u32;
     }
     found.bad |= fault;
 }
