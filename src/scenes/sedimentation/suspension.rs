@@ -26,7 +26,12 @@ use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 use update::{Chunk, Found, Kind, KindStep, Update, GONE};
 
+mod block;
+#[cfg(test)]
+mod tests;
 mod update;
+#[cfg(target_arch = "x86_64")]
+mod wide;
 
 /// Entries per task of the free update ([`Suspension::free_update`]) of `len` entries: about
 /// a quarter of each thread's share, so that the threads stay busy when few grains are left
@@ -61,6 +66,14 @@ pub struct Suspension {
     /// `reach_m` of the bed surface (ascending), and the largest speed of the others (each the
     /// larger of its speed and its Stokes terminal speed), m/s.
     near_bed: Vec<(Vec<u32>, f64)>,
+    /// Per chunk of the last free update, the entries that changed cell (entry within the
+    /// chunk, its cell before the step).
+    moved: Vec<Vec<(u32, u32)>>,
+    /// The solid volume of the suspended grains per voidage cell, in quanta
+    /// ([`SolidQuanta`](super::voidage::SolidQuanta)), once a fill has summed it: kept exact
+    /// from step to step by the grains that change cell or settle (integers: the same as a
+    /// sum afresh).
+    sums_q: Option<Vec<i128>>,
     /// Entries per chunk of the last free update ([`update_chunk_grains`]).
     chunk: usize,
     /// Deposition's lists, kept from step to step (no allocation per step): the entries
@@ -68,17 +81,15 @@ pub struct Suspension {
     /// that may join (grain index, entry).
     near_scratch: Vec<(f64, f64, u32)>,
     may_join: Vec<(u32, u32)>,
-    /// Per part of the entries ([`Suspension::fill`]), the solid volume of its suspended
-    /// grains per voidage cell, in quanta ([`SolidQuanta`](super::voidage::SolidQuanta)).
-    parts: Vec<Vec<i128>>,
 }
 
-/// The entries per part of the voidage fill ([`Suspension::fill`]) in a grid of `cells` cells:
-/// at least 2¹⁶, and sixteen per cell so that zeroing and adding the parts (`cells` values
-/// each, streamed) costs little beside summing the grains (a scattered add each). A function
-/// of the grid only: the same sums whatever the threads.
-pub fn fill_part_grains(cells: usize) -> usize {
-    (1 << 16).max(16 * cells)
+/// The entries per part of the voidage fill ([`Suspension::fill`]) of `len` entries in a grid
+/// of `cells` cells on `threads` threads: one part per thread, each of at least 2¹⁴ entries and
+/// two per cell, so that zeroing and adding the parts (`cells` values each, streamed) costs
+/// little beside summing the grains (a scattered add each). The sums are exact integers, the
+/// same whatever the parts.
+pub fn fill_part_grains(cells: usize, len: usize, threads: usize) -> usize {
+    len.div_ceil(threads.max(1)).max(1 << 14).max(2 * cells)
 }
 
 impl Suspension {
@@ -204,17 +215,20 @@ impl Suspension {
         self.len() == 0
     }
 
-    /// Refills `grid` with the solid volume of the suspended grains: in parallel, each part of
-    /// [`fill_part_grains`] consecutive entries sums its grains per cell in grain order, then
-    /// [`VoidageGrid::fill_parts`] adds the parts in order. The order of every sum depends on the
-    /// grains and the grid only, not on the threads; with one part (up to
-    /// [`fill_part_grains`] entries) it is grain order, as [`VoidageGrid::fill`] sums; with
-    /// more, a sum's last digits may differ from grain order's.
+    /// Refills `grid` with the solid volume of the suspended grains. The first time, in
+    /// parallel: each part of [`fill_part_grains`] consecutive entries sums its grains per cell,
+    /// then the parts are added. Afterwards from the sums kept up to date by the free update
+    /// (a grain that changed cell moves its volume) and deposition (a grain that settled takes
+    /// it away). Every sum is exact (integer quanta), so the same in any order, any cut into
+    /// parts and any sequence of such changes, as [`VoidageGrid::fill`] sums in grain order.
     pub fn fill(&mut self, grid: &mut VoidageGrid) {
+        if let Some(sums) = &self.sums_q {
+            grid.fill_sums(sums);
+            return;
+        }
         let cells = grid.cell_count();
-        let n = fill_part_grains(cells);
-        self.parts
-            .resize_with(self.cell.len().div_ceil(n), Vec::new);
+        let n = fill_part_grains(cells, self.cell.len(), rayon::current_num_threads());
+        let mut parts: Vec<Vec<i128>> = vec![Vec::new(); self.cell.len().div_ceil(n)];
         let kinds = &self.kinds;
         let sum = |((solid, cs), ks): ((&mut Vec<i128>, &[u32]), &[u32])| {
             solid.clear();
@@ -225,24 +239,31 @@ impl Suspension {
                 }
             }
         };
-        if self.parts.len() > 1 {
-            self.parts
+        if parts.len() > 1 {
+            parts
                 .par_iter_mut()
                 .zip(self.cell.par_chunks(n))
                 .zip(self.kind.par_chunks(n))
                 .for_each(sum);
         } else {
             // One part: on this thread (no hand-over to the pool), the same sums.
-            self.parts
+            parts
                 .iter_mut()
                 .zip(self.cell.chunks(n))
                 .zip(self.kind.chunks(n))
                 .for_each(sum);
         }
-        grid.fill_parts(&self.parts);
+        let mut sums = vec![0i128; cells];
+        for p in parts.iter().filter(|p| !p.is_empty()) {
+            for (x, &v) in sums.iter_mut().zip(p) {
+                *x += v;
+            }
+        }
+        grid.fill_sums(&sums);
+        self.sums_q = Some(sums);
     }
 
-    /// The free update of every suspended grain over `dt_s` ([`free_step`] with [`CellDrag`]) above the
+    /// The free update of every suspended grain over `dt_s` ([`free_step`](super::step::kernel::free_step) with [`CellDrag`]) above the
     /// bed surface `floor_m` (a grain reaching it stops on it; deposition then flags it), in
     /// parallel by chunks of [`update_chunk_grains`] grains, with each grain's new voidage
     /// cell. Returns the grains advanced and whether any now fails the test of
@@ -284,6 +305,7 @@ impl Suspension {
         self.chunk = n;
         let chunks = self.index.len().div_ceil(n);
         self.near_bed.resize_with(chunks, Default::default);
+        self.moved.resize_with(chunks, Default::default);
         let reach = floor_m + 1e-15 + self.reach_m;
         self.y_m
             .par_chunks_mut(n)
@@ -291,10 +313,13 @@ impl Suspension {
             .zip(self.cell.par_chunks_mut(n))
             .zip(self.kind.par_chunks(n))
             .zip(self.near_bed.par_iter_mut())
-            .for_each(|((((ys, vs), cs), ks), (near, vmax))| {
+            .zip(self.moved.par_iter_mut())
+            .for_each(|(((((ys, vs), cs), ks), (near, vmax)), moved)| {
                 near.clear();
+                moved.clear();
                 let mut found = Found {
                     near,
+                    moved,
                     vmax: 0.0,
                     bad: false,
                 };
@@ -311,6 +336,16 @@ impl Suspension {
                     suspect.store(true, Ordering::Relaxed);
                 }
             });
+        if let Some(sums) = &mut self.sums_q {
+            for (chunk, moved) in self.moved.iter().enumerate() {
+                for &(k, old) in moved {
+                    let j = chunk * n + k as usize;
+                    let q = self.kinds[self.kind[j] as usize].volume_q;
+                    sums[old as usize] -= q;
+                    sums[self.cell[j] as usize] += q;
+                }
+            }
+        }
         (self.len() as u64, suspect.into_inner())
     }
 
@@ -391,6 +426,9 @@ impl Suspension {
                 let grain = setup.grains.grain(i, st.x_m(&setup.grains, i), y);
                 st.bed_height_m += bed_rise_m(grain.weight, d, stepper.bed_area_m2);
                 suspect |= stepper.is_faulty(&grain, 0.0, setup);
+                if let Some(sums) = &mut self.sums_q {
+                    sums[self.cell[j] as usize] -= kind.volume_q;
+                }
                 self.cell[j] = GONE;
                 self.gone += 1;
             } else {

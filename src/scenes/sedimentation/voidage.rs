@@ -24,6 +24,11 @@ pub struct VoidageGrid {
     cell_volume_m3: f64,
     /// Solid volume of the suspended grains per cell, m³ (row-major, bottom row first).
     solid_m3: Vec<f64>,
+    /// The sums `solid_m3` and `voidage` were last set from, in quanta: a fill converts only
+    /// the cells whose sum changed (the same values, fewer conversions).
+    sums_q: Vec<i128>,
+    /// A fill's new sums (kept from fill to fill: no allocation per step).
+    next_q: Vec<i128>,
     /// The fixed point of the fills' sums ([`SolidQuanta`]).
     quanta: SolidQuanta,
     /// Voidage ε of every cell as [`VoidageGrid::drag`] takes it, set by [`VoidageGrid::fill`]
@@ -63,6 +68,8 @@ impl VoidageGrid {
                 * (setup.height_m / ncy as f64)
                 * setup.thickness_m,
             solid_m3: vec![0.0; ncx * ncy],
+            sums_q: vec![0; ncx * ncy],
+            next_q: Vec::new(),
             quanta: SolidQuanta::for_kinds(&setup.grains.kinds, &setup.grains.kind),
             voidage: vec![1.0; ncx * ncy],
             bounds_m: Vec::new(),
@@ -193,11 +200,13 @@ impl VoidageGrid {
     /// Refills the grid with the solid volumes (m³) of `cells_volumes` (cell, real solid volume
     /// of a grain), summed exactly ([`SolidQuanta`]): the same sums in any order.
     pub fn fill_cells(&mut self, cells_volumes: impl IntoIterator<Item = (usize, f64)>) {
-        let mut sums = vec![0i128; self.cell_count()];
+        let mut sums = std::mem::take(&mut self.next_q);
+        sums.clear();
+        sums.resize(self.cell_count(), 0);
         for (c, v) in cells_volumes {
             sums[c] += self.quanta.of(v);
         }
-        self.set_sums(&sums);
+        self.set_sums(sums);
     }
 
     /// The fixed point of this grid's sums of solid volume ([`SolidQuanta`]).
@@ -216,40 +225,41 @@ impl VoidageGrid {
         self.solid_m3.len()
     }
 
-    /// Refills the grid with the solid volumes of `parts`, each the solid volume per cell of a
-    /// part of the grains in quanta ([`SolidQuanta`]; [`VoidageGrid::cell_count`] values, or
-    /// none for an empty part): integers, so the parts add exactly, in any order. Serial: a
-    /// grid holds a few thousand cells, less work than a hand-over to the thread pool costs on a
-    /// busy machine.
-    pub fn fill_parts(&mut self, parts: &[Vec<i128>]) {
-        let mut sums = vec![0i128; self.cell_count()];
-        for p in parts.iter().filter(|p| !p.is_empty()) {
-            for (x, &v) in sums.iter_mut().zip(p) {
-                *x += v;
-            }
-        }
-        self.set_sums(&sums);
+    /// Refills the grid with the solid volume per cell `sums`, in quanta ([`SolidQuanta`];
+    /// [`VoidageGrid::cell_count`] values).
+    pub fn fill_sums(&mut self, sums: &[i128]) {
+        let mut next = std::mem::take(&mut self.next_q);
+        next.clear();
+        next.extend_from_slice(sums);
+        self.set_sums(next);
     }
 
     /// Stores the solid volume of each cell from its sum in quanta `sums` (m³, the exact sum
-    /// rounded once) and the voidage it gives.
-    fn set_sums(&mut self, sums: &[i128]) {
-        let quanta = self.quanta;
-        for (s, &q) in self.solid_m3.iter_mut().zip(sums) {
-            *s = quanta.volume_m3(q);
-        }
-        if self.is_di_felice() {
-            let cell_volume_m3 = self.cell_volume_m3;
-            for (e, &s) in self.voidage.iter_mut().zip(&self.solid_m3) {
-                *e = voidage_of(s, cell_volume_m3);
+    /// rounded once) and the voidage it gives, where the sum changed since the last fill
+    /// (elsewhere the same values are already there); keeps `sums` for the next fill.
+    fn set_sums(&mut self, sums: Vec<i128>) {
+        let (quanta, cell_volume_m3, di_felice) =
+            (self.quanta, self.cell_volume_m3, self.is_di_felice());
+        for (c, (&q, last)) in sums.iter().zip(&self.sums_q).enumerate() {
+            if q != *last {
+                self.solid_m3[c] = quanta.volume_m3(q);
+                if di_felice {
+                    self.voidage[c] = voidage_of(self.solid_m3[c], cell_volume_m3);
+                }
             }
         }
+        self.next_q = std::mem::replace(&mut self.sums_q, sums);
     }
 
     /// The voidage ε of every cell, as [`VoidageGrid::voidage`] reads it.
     #[inline(always)]
     pub fn voidages(&self) -> &[f64] {
         &self.voidage
+    }
+
+    /// Every cell's height bounds [lo, hi), m (what [`VoidageGrid::cell_after`] tests).
+    pub fn cell_bounds(&self) -> &[(f64, f64)] {
+        &self.bounds_m
     }
 
     /// The voidage ε of cell `cell` as [`VoidageGrid::drag`] takes it (valid after
@@ -349,7 +359,10 @@ impl SolidQuanta {
     /// The volume (m³) of `q` quanta, rounded to nearest.
     #[inline(always)]
     pub fn volume_m3(&self, q: i128) -> f64 {
-        q as f64 * self.unscale
+        // Through i64 where it fits (a conversion in hardware; the same rounding to nearest of
+        // the same integer as the i128 one, a library call).
+        let real = i64::try_from(q).map_or(q as f64, |q| q as f64);
+        real * self.unscale
     }
 }
 

@@ -4,11 +4,10 @@
 use super::super::step::kernel::{after_step, free_step, CellDrag, CellGrain, Limits};
 #[cfg(doc)]
 use super::super::step::Stepper;
+pub(super) use super::block::{BlockEnd, EndConstants, LANES};
+#[cfg(target_arch = "x86_64")]
+use super::wide;
 use crate::dynamics::terminal::{exponential_near_terminal_kind_saturated, TerminalTable};
-
-/// Grains of one kind whose terminal-state table the free update evaluates together
-/// ([`exponential_near_terminal_kind_saturated`]).
-const LANES: usize = 16;
 
 /// The `cell` of an entry whose grain has settled.
 pub(super) const GONE: u32 = u32::MAX;
@@ -71,6 +70,8 @@ pub(super) struct Chunk<'a> {
 pub(super) struct Found<'a> {
     /// The entries within reach of the bed after the update (ascending).
     pub(super) near: &'a mut Vec<u32>,
+    /// The entries that changed cell, with their cell before the step.
+    pub(super) moved: &'a mut Vec<(u32, u32)>,
     /// The largest speed of the others, each the larger of its speed and its Stokes terminal
     /// speed, m/s.
     pub(super) vmax: f64,
@@ -90,7 +91,7 @@ impl Chunk<'_> {
     /// the build).
     /// Every grain's update is the same operations as [`CellDrag`] gives it alone.
     #[inline(always)]
-    fn update_any(self, u: &Update, reach: f64, found: &mut Found) {
+    fn update_any<const WIDE: bool>(self, u: &Update, reach: f64, found: &mut Found) {
         let Chunk {
             ys,
             vs,
@@ -99,6 +100,8 @@ impl Chunk<'_> {
             kinds,
         } = self;
         let voidage = u.drag.grid.voidages();
+        let bounds = u.drag.grid.cell_bounds();
+        let cells = voidage.len().min(bounds.len());
         let len = ys.len();
         let mut a = 0;
         while a < len {
@@ -118,28 +121,25 @@ impl Chunk<'_> {
             let mut j0 = a;
             while j0 < b {
                 let n = (b - j0).min(LANES);
-                // A short block's missing lanes repeat its last grain (their steps unused).
-                let at = |l: usize| j0 + l.min(n - 1);
-                // Plain loops (not `array::from_fn` or `map`, which may be left out of line,
-                // built for the baseline).
-                let (mut y0, mut c0, mut v0) = ([0.0; LANES], [0u32; LANES], [0.0; LANES]);
+                let (y0, c0, v0) = load(j0, n, ys, cs, vs);
                 let mut e0 = [0.0; LANES];
-                if n == LANES {
-                    let (y, c, v) = (
-                        &ys[j0..j0 + LANES],
-                        &cs[j0..j0 + LANES],
-                        &vs[j0..j0 + LANES],
-                    );
-                    for l in 0..LANES {
-                        (y0[l], c0[l], v0[l]) = (y[l], c[l], v[l]);
+                // AVX-512: the voidages gathered, and the end of the step on vectors, when
+                // every lane holds a suspended grain (`wide`).
+                #[cfg(target_arch = "x86_64")]
+                // SAFETY: WIDE only in `update_avx512`, whose processor has AVX-512F.
+                let wide = WIDE && n == LANES && unsafe { wide::gatherable(&c0, cells) };
+                #[cfg(not(target_arch = "x86_64"))]
+                let wide = false;
+                if wide {
+                    #[cfg(target_arch = "x86_64")]
+                    // SAFETY: as above; the cells pass `gatherable`.
+                    {
+                        e0 = unsafe { wide::gather(voidage, &c0) };
                     }
                 } else {
                     for l in 0..LANES {
-                        (y0[l], c0[l], v0[l]) = (ys[at(l)], cs[at(l)], vs[at(l)]);
+                        e0[l] = eps(c0[l]);
                     }
-                }
-                for l in 0..LANES {
-                    e0[l] = eps(c0[l]);
                 }
                 let step = exponential_near_terminal_kind_saturated::<LANES>(
                     table,
@@ -149,6 +149,14 @@ impl Chunk<'_> {
                     u.drag.dt_s,
                 );
                 let (v1, dx) = (step.velocity_m_s, step.displacement_m);
+                let all_ok = (0..LANES).all(|l| step.ok[l]);
+                let full = all_ok && n == LANES && (0..LANES).all(|l| c0[l] != GONE);
+                if full {
+                    let block = Block { j0, y0, c0, v1, dx };
+                    block.finish::<WIDE>(u, q, reach, wide, ys, vs, cs, found);
+                    j0 += n;
+                    continue;
+                }
                 // `after_step` and the tests of `record`, lane by lane without a branch.
                 let (mut y1, mut fault, mut near) = ([0.0; LANES], [false; LANES], [false; LANES]);
                 let mut vmax = 0.0f64;
@@ -200,21 +208,197 @@ impl Chunk<'_> {
                 return unsafe { self.update_avx2(u, reach, found) };
             }
         }
-        self.update_any(u, reach, found)
+        self.update_any::<false>(u, reach, found)
     }
 
     /// [`Chunk::update_any`] on AVX-512 vectors.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx512f")]
     fn update_avx512(self, u: &Update, reach: f64, found: &mut Found) {
-        self.update_any(u, reach, found)
+        self.update_any::<true>(u, reach, found)
     }
 
     /// [`Chunk::update_any`] on AVX2 vectors.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
     fn update_avx2(self, u: &Update, reach: f64, found: &mut Found) {
-        self.update_any(u, reach, found)
+        self.update_any::<false>(u, reach, found)
+    }
+}
+
+/// A full block of [`LANES`] entries from `j0` whose grains are all suspended and all took
+/// the saturated step ([`exponential_near_terminal_kind_saturated`]): their heights `y0` (m)
+/// and cells `c0` before it, their speeds `v1` (m/s) and displacements `dx` (m) over it.
+pub(super) struct Block {
+    pub(super) j0: usize,
+    pub(super) y0: [f64; LANES],
+    pub(super) c0: [u32; LANES],
+    pub(super) v1: [f64; LANES],
+    pub(super) dx: [f64; LANES],
+}
+
+/// The heights, cells and speeds of the `n` entries from `j0` (`n` ≤ [`LANES`]; a short
+/// block's missing lanes repeat its last grain, their steps unused). Plain loops (not
+/// `array::from_fn` or `map`, which may be left out of line, built for the baseline).
+#[inline(always)]
+fn load(
+    j0: usize,
+    n: usize,
+    ys: &[f64],
+    cs: &[u32],
+    vs: &[f64],
+) -> ([f64; LANES], [u32; LANES], [f64; LANES]) {
+    let (mut y0, mut c0, mut v0) = ([0.0; LANES], [0u32; LANES], [0.0; LANES]);
+    if n == LANES {
+        let (y, c, v) = (
+            &ys[j0..j0 + LANES],
+            &cs[j0..j0 + LANES],
+            &vs[j0..j0 + LANES],
+        );
+        for l in 0..LANES {
+            (y0[l], c0[l], v0[l]) = (y[l], c[l], v[l]);
+        }
+    } else {
+        let at = |l: usize| j0 + l.min(n - 1);
+        for l in 0..LANES {
+            (y0[l], c0[l], v0[l]) = (ys[at(l)], cs[at(l)], vs[at(l)]);
+        }
+    }
+    (y0, c0, v0)
+}
+
+/// The constants of the end of a block of kind `q` ([`EndConstants`]).
+#[inline(always)]
+fn block_constants(u: &Update, q: &KindStep, reach: f64) -> EndConstants {
+    EndConstants {
+        half_d_m: q.half_d_m,
+        top_m: q.top_m,
+        floor_m: u.lim.floor_m,
+        speed_bound_m_s: u.lim.speed_bound_m_s,
+        reach_m: reach,
+        stokes_m_s: q.stokes_m_s,
+    }
+}
+
+impl Block {
+    /// The end of the block's step of kind `q` ([`Block::end`], or [`wide::finish`] where
+    /// `wide`: the AVX-512 build, cells that pass [`wide::gatherable`]), stored
+    /// ([`Block::apply`]).
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn finish<const WIDE: bool>(
+        self,
+        u: &Update,
+        q: &KindStep,
+        reach: f64,
+        wide: bool,
+        ys: &mut [f64],
+        vs: &mut [f64],
+        cs: &mut [u32],
+        found: &mut Found,
+    ) {
+        let bounds = u.drag.grid.cell_bounds();
+        let k = block_constants(u, q, reach);
+        let mut y1 = [0.0; LANES];
+        #[cfg(target_arch = "x86_64")]
+        // SAFETY: `wide` only in the AVX-512 build, whose processor has AVX-512F, and where
+        // the cells pass `gatherable` (`voidage` and `bounds` have one entry per cell).
+        let end = if WIDE && wide {
+            unsafe { wide::finish(k, &self.y0, &self.dx, &self.v1, &self.c0, bounds, &mut y1) }
+        } else {
+            self.end(k, bounds, &mut y1)
+        };
+        #[cfg(not(target_arch = "x86_64"))]
+        let end = {
+            let _ = wide;
+            self.end(k, bounds, &mut y1)
+        };
+        self.apply(u, &end, &y1, ys, vs, cs, found);
+    }
+
+    /// The end of the block's step lane by lane ([`after_step`] and the tests of [`record`]):
+    /// the new heights into `y1`, and what [`BlockEnd`] lists, against the cells' `bounds`.
+    /// The same as [`wide::finish`], which does it on vectors.
+    #[inline(always)]
+    pub(super) fn end(
+        &self,
+        k: EndConstants,
+        bounds: &[(f64, f64)],
+        y1: &mut [f64; LANES],
+    ) -> BlockEnd {
+        let lim = Limits {
+            floor_m: k.floor_m,
+            speed_bound_m_s: k.speed_bound_m_s,
+        };
+        let mut end = BlockEnd {
+            left: 0,
+            near: 0,
+            bad: false,
+            vmax: 0.0,
+        };
+        for l in 0..LANES {
+            let bad;
+            (y1[l], _, bad) = after_step(
+                self.y0[l],
+                (self.v1[l], self.dx[l]),
+                k.half_d_m,
+                k.top_m,
+                lim,
+            );
+            let near = y1[l] - k.half_d_m <= k.reach_m;
+            if !near {
+                end.vmax = end.vmax.max(self.v1[l].abs().max(k.stokes_m_s));
+            }
+            let (lo, hi) = bounds[self.c0[l] as usize];
+            let inside = lo <= y1[l] && y1[l] < hi;
+            end.bad |= bad;
+            end.left |= u32::from(!inside) << l;
+            end.near |= u32::from(near) << l;
+        }
+        end
+    }
+
+    /// Stores the block's new heights `y1` and speeds, the new cells of the grains that left
+    /// theirs, and what `end` found into `found` (the entries near the bed in ascending order):
+    /// what [`store`] and [`record`] do lane by lane.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn apply(
+        &self,
+        u: &Update,
+        end: &BlockEnd,
+        y1: &[f64; LANES],
+        ys: &mut [f64],
+        vs: &mut [f64],
+        cs: &mut [u32],
+        found: &mut Found,
+    ) {
+        let j0 = self.j0;
+        ys[j0..j0 + LANES].copy_from_slice(y1);
+        vs[j0..j0 + LANES].copy_from_slice(&self.v1);
+        found.vmax = found.vmax.max(end.vmax);
+        found.bad |= end.bad;
+        let mut left = end.left;
+        while left != 0 {
+            let l = left.trailing_zeros() as usize;
+            left &= left - 1;
+            if y1[l].is_finite() {
+                let (old, new) = (
+                    self.c0[l],
+                    u.drag.grid.cell_after(self.c0[l] as usize, y1[l]),
+                );
+                if new as u32 != old {
+                    cs[j0 + l] = new as u32;
+                    found.moved.push(((j0 + l) as u32, old));
+                }
+            }
+        }
+        let mut near = end.near;
+        while near != 0 {
+            let l = near.trailing_zeros() as usize;
+            near &= near - 1;
+            found.near.push((j0 + l) as u32);
+        }
     }
 }
 
@@ -283,7 +467,11 @@ fn store(
 ) {
     (ys[j], vs[j]) = (y, v);
     if y.is_finite() {
-        cs[j] = u.drag.grid.cell_after(cs[j] as usize, y) as u32;
+        let (old, new) = (cs[j], u.drag.grid.cell_after(cs[j] as usize, y) as u32);
+        if new != old {
+            cs[j] = new;
+            found.moved.push((j as u32, old));
+        }
     }
     found.bad |= fault;
 }
