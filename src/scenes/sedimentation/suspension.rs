@@ -66,9 +66,9 @@ pub struct Suspension {
     /// `reach_m` of the bed surface (ascending), and the largest speed of the others (each the
     /// larger of its speed and its Stokes terminal speed), m/s.
     near_bed: Vec<(Vec<u32>, f64)>,
-    /// Per chunk of the last free update, the entries that changed cell (entry within the
-    /// chunk, its cell before the step).
-    moved: Vec<Vec<(u32, u32)>>,
+    /// Per chunk of the last free update, the grains that changed cell (cell before the
+    /// step, cell after it, kind), not yet in `sums_q`.
+    moved: Vec<Vec<(u32, u32, u32)>>,
     /// The solid volume of the suspended grains per voidage cell, in quanta
     /// ([`SolidQuanta`](super::voidage::SolidQuanta)), once a fill has summed it: kept exact
     /// from step to step by the grains that change cell or settle (integers: the same as a
@@ -90,6 +90,38 @@ pub struct Suspension {
 /// same whatever the parts.
 pub fn fill_part_grains(cells: usize, len: usize, threads: usize) -> usize {
     len.div_ceil(threads.max(1)).max(1 << 14).max(2 * cells)
+}
+
+/// Moves the volume of each grain of `moved` (cell before, cell after, kind: per chunk of a
+/// free update) in the sums per cell `sums` (quanta), and empties `moved`: in parallel, each
+/// thread the cells of one range (every list read by each; exact integers, so the same sums
+/// however cut).
+fn move_volumes(sums: &mut [i128], moved: &mut [Vec<(u32, u32, u32)>], kinds: &[Kind]) {
+    let count: usize = moved.iter().map(Vec::len).sum();
+    if count == 0 {
+        return;
+    }
+    let part = if count < 1 << 14 {
+        sums.len().max(1)
+    } else {
+        sums.len().div_ceil(rayon::current_num_threads()).max(1)
+    };
+    sums.par_chunks_mut(part)
+        .enumerate()
+        .for_each(|(p, range)| {
+            let (lo, hi) = (p * part, p * part + range.len());
+            for &(old, new, k) in moved.iter().flatten() {
+                let q = kinds[k as usize].volume_q;
+                let (old, new) = (old as usize, new as usize);
+                if (lo..hi).contains(&old) {
+                    range[old - lo] -= q;
+                }
+                if (lo..hi).contains(&new) {
+                    range[new - lo] += q;
+                }
+            }
+        });
+    moved.iter_mut().for_each(Vec::clear);
 }
 
 impl Suspension {
@@ -222,7 +254,8 @@ impl Suspension {
     /// it away). Every sum is exact (integer quanta), so the same in any order, any cut into
     /// parts and any sequence of such changes, as [`VoidageGrid::fill`] sums in grain order.
     pub fn fill(&mut self, grid: &mut VoidageGrid) {
-        if let Some(sums) = &self.sums_q {
+        if let Some(sums) = &mut self.sums_q {
+            move_volumes(sums, &mut self.moved, &self.kinds);
             grid.fill_sums(sums);
             return;
         }
@@ -261,6 +294,8 @@ impl Suspension {
         }
         grid.fill_sums(&sums);
         self.sums_q = Some(sums);
+        // Already in the cells just summed.
+        self.moved.iter_mut().for_each(Vec::clear);
     }
 
     /// The free update of every suspended grain over `dt_s` ([`free_step`](super::step::kernel::free_step) with [`CellDrag`]) above the
@@ -284,9 +319,11 @@ impl Suspension {
             kinds: self
                 .kinds
                 .iter()
-                .map(|k| {
+                .enumerate()
+                .map(|(i, k)| {
                     let table = grid.terminal_table(k.class, k.diameter_m).filter(|_| fast);
                     KindStep {
+                        kind: i as u32,
                         table,
                         dt_over_mass: table.map_or(f64::NAN, |t| dt_s / t.mass_kg),
                         half_d_m: 0.5 * k.diameter_m,
@@ -305,6 +342,11 @@ impl Suspension {
         self.chunk = n;
         let chunks = self.index.len().div_ceil(n);
         self.near_bed.resize_with(chunks, Default::default);
+        // Grains moved by an update not followed by a fill: into the sums first.
+        match &mut self.sums_q {
+            Some(sums) => move_volumes(sums, &mut self.moved, &self.kinds),
+            None => self.moved.iter_mut().for_each(Vec::clear),
+        }
         self.moved.resize_with(chunks, Default::default);
         let reach = floor_m + 1e-15 + self.reach_m;
         self.y_m
@@ -316,7 +358,6 @@ impl Suspension {
             .zip(self.moved.par_iter_mut())
             .for_each(|(((((ys, vs), cs), ks), (near, vmax)), moved)| {
                 near.clear();
-                moved.clear();
                 let mut found = Found {
                     near,
                     moved,
@@ -336,16 +377,6 @@ impl Suspension {
                     suspect.store(true, Ordering::Relaxed);
                 }
             });
-        if let Some(sums) = &mut self.sums_q {
-            for (chunk, moved) in self.moved.iter().enumerate() {
-                for &(k, old) in moved {
-                    let j = chunk * n + k as usize;
-                    let q = self.kinds[self.kind[j] as usize].volume_q;
-                    sums[old as usize] -= q;
-                    sums[self.cell[j] as usize] += q;
-                }
-            }
-        }
         (self.len() as u64, suspect.into_inner())
     }
 

@@ -42,6 +42,8 @@ pub(super) struct Update<'a> {
 /// on the same values as per grain, so the same bits. SI units.
 #[derive(Clone, Copy)]
 pub(super) struct KindStep<'a> {
+    /// Its index among the kinds.
+    pub(super) kind: u32,
     /// Its terminal-state table, on the fast path ([`Stepper::fast_path`]) when its size class
     /// has one.
     pub(super) table: Option<&'a TerminalTable>,
@@ -70,8 +72,8 @@ pub(super) struct Chunk<'a> {
 pub(super) struct Found<'a> {
     /// The entries within reach of the bed after the update (ascending).
     pub(super) near: &'a mut Vec<u32>,
-    /// The entries that changed cell, with their cell before the step.
-    pub(super) moved: &'a mut Vec<(u32, u32)>,
+    /// The grains that changed cell: (cell before the step, cell after it, kind).
+    pub(super) moved: &'a mut Vec<(u32, u32, u32)>,
     /// The largest speed of the others, each the larger of its speed and its Stokes terminal
     /// speed, m/s.
     pub(super) vmax: f64,
@@ -181,7 +183,7 @@ impl Chunk<'_> {
                         one_grain(u, kind, q, reach, j, ys, vs, cs, found);
                         continue;
                     }
-                    store(u, j, (y1[l], v1[l], fault[l]), ys, vs, cs, found);
+                    store(u, q, j, (y1[l], v1[l], fault[l]), ys, vs, cs, found);
                     if near[l] {
                         found.near.push(j as u32);
                     }
@@ -313,7 +315,7 @@ impl Block {
             let _ = wide;
             self.end(k, bounds, &mut y1)
         };
-        self.apply(u, &end, &y1, ys, vs, cs, found);
+        self.apply(u, q.kind, &end, &y1, ys, vs, cs, found);
     }
 
     /// The end of the block's step lane by lane ([`after_step`] and the tests of [`record`]):
@@ -358,14 +360,15 @@ impl Block {
         end
     }
 
-    /// Stores the block's new heights `y1` and speeds, the new cells of the grains that left
-    /// theirs, and what `end` found into `found` (the entries near the bed in ascending order):
+    /// Stores the block's new heights `y1` and speeds, the new cells of the grains (of kind
+    /// `kind`) that left theirs, and what `end` found into `found` (the entries near the bed in ascending order):
     /// what [`store`] and [`record`] do lane by lane.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     fn apply(
         &self,
         u: &Update,
+        kind: u32,
         end: &BlockEnd,
         y1: &[f64; LANES],
         ys: &mut [f64],
@@ -389,7 +392,7 @@ impl Block {
                 );
                 if new as u32 != old {
                     cs[j0 + l] = new as u32;
-                    found.moved.push(((j0 + l) as u32, old));
+                    found.moved.push((old, new as u32, kind));
                 }
             }
         }
@@ -445,7 +448,7 @@ fn record(
     cs: &mut [u32],
     found: &mut Found,
 ) {
-    store(u, j, (y, v, fault), ys, vs, cs, found);
+    store(u, q, j, (y, v, fault), ys, vs, cs, found);
     if y - q.half_d_m <= reach {
         found.near.push(j as u32);
     } else {
@@ -454,10 +457,13 @@ fn record(
 }
 
 /// Stores entry `j`'s new height and speed, finds its new cell, and records whether it now
-/// fails the fault test (what [`record`] and the lanes of [`Chunk::update_any`] share).
+/// fails the fault test (what [`record`] and the lanes of [`Chunk::update_any`] share); a
+/// grain that changed cell is listed in `found.moved`.
 #[inline(always)]
+#[allow(clippy::too_many_arguments)]
 fn store(
     u: &Update,
+    q: &KindStep,
     j: usize,
     (y, v, fault): (f64, f64, bool),
     ys: &mut [f64],
@@ -470,7 +476,7 @@ fn store(
         let (old, new) = (cs[j], u.drag.grid.cell_after(cs[j] as usize, y) as u32);
         if new != old {
             cs[j] = new;
-            found.moved.push((j as u32, old));
+            found.moved.push((old, new, q.kind));
         }
     }
     found.bad |= fault;
