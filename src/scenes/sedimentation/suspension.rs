@@ -298,12 +298,14 @@ impl Suspension {
         self.moved.iter_mut().for_each(Vec::clear);
     }
 
-    /// The free update of every suspended grain over `dt_s` ([`free_step`](super::step::kernel::free_step) with [`CellDrag`]) above the
-    /// bed surface `floor_m` (a grain reaching it stops on it; deposition then flags it), in
-    /// parallel by chunks of [`update_chunk_grains`] grains, with each grain's new voidage
-    /// cell. Returns the grains advanced and whether any now fails the test of
-    /// [`Stepper::grain_fault`] in the cylinder of `setup` (after [`Suspension::write_back`], the
-    /// fault scan names the first).
+    /// The free update of every suspended grain over `dt_s` ([`free_step`] with [`CellDrag`])
+    /// above the bed surface `floor_m` (a grain reaching it stops on it; deposition then flags
+    /// it), in parallel by chunks of [`update_chunk_grains`] grains, with each grain's new
+    /// voidage cell (a grain that changed cell is listed for the next fill's sums). Returns the
+    /// grains advanced and whether any now fails the test of [`Stepper::grain_fault`] in the
+    /// cylinder of `setup` (after [`Suspension::write_back`], the fault scan names the first).
+    ///
+    /// [`free_step`]: super::step::kernel::free_step
     pub fn free_update(
         &mut self,
         stepper: &Stepper,

@@ -361,8 +361,8 @@ impl Block {
     }
 
     /// Stores the block's new heights `y1` and speeds, the new cells of the grains (of kind
-    /// `kind`) that left theirs, and what `end` found into `found` (the entries near the bed in ascending order):
-    /// what [`store`] and [`record`] do lane by lane.
+    /// `kind`) that left theirs, and what `end` found into `found` (the entries near the bed
+    /// in ascending order): what [`store`] and [`record`] do lane by lane.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     fn apply(
