@@ -27,7 +27,8 @@ pub struct VoidageGrid {
     /// The sums `solid_m3` and `voidage` were last set from, in quanta: a fill converts only
     /// the cells whose sum changed (the same values, fewer conversions).
     sums_q: Vec<i128>,
-    /// A fill's new sums (kept from fill to fill: no allocation per step).
+    /// The sums of [`VoidageGrid::fill_cells`] (kept from fill to fill: no allocation per
+    /// step).
     next_q: Vec<i128>,
     /// The fixed point of the fills' sums ([`SolidQuanta`]).
     quanta: SolidQuanta,
@@ -206,7 +207,8 @@ impl VoidageGrid {
         for (c, v) in cells_volumes {
             sums[c] += self.quanta.of(v);
         }
-        self.set_sums(sums);
+        self.set_sums(&sums);
+        self.next_q = sums;
     }
 
     /// The fixed point of this grid's sums of solid volume ([`SolidQuanta`]).
@@ -228,27 +230,24 @@ impl VoidageGrid {
     /// Refills the grid with the solid volume per cell `sums`, in quanta ([`SolidQuanta`];
     /// [`VoidageGrid::cell_count`] values).
     pub fn fill_sums(&mut self, sums: &[i128]) {
-        let mut next = std::mem::take(&mut self.next_q);
-        next.clear();
-        next.extend_from_slice(sums);
-        self.set_sums(next);
+        self.set_sums(sums);
     }
 
     /// Stores the solid volume of each cell from its sum in quanta `sums` (m³, the exact sum
     /// rounded once) and the voidage it gives, where the sum changed since the last fill
-    /// (elsewhere the same values are already there); keeps `sums` for the next fill.
-    fn set_sums(&mut self, sums: Vec<i128>) {
+    /// (elsewhere the same values are already there), and keeps the sums for the next fill.
+    fn set_sums(&mut self, sums: &[i128]) {
         let (quanta, cell_volume_m3, di_felice) =
             (self.quanta, self.cell_volume_m3, self.is_di_felice());
-        for (c, (&q, last)) in sums.iter().zip(&self.sums_q).enumerate() {
+        for (c, (&q, last)) in sums.iter().zip(self.sums_q.iter_mut()).enumerate() {
             if q != *last {
+                *last = q;
                 self.solid_m3[c] = quanta.volume_m3(q);
                 if di_felice {
                     self.voidage[c] = voidage_of(self.solid_m3[c], cell_volume_m3);
                 }
             }
         }
-        self.next_q = std::mem::replace(&mut self.sums_q, sums);
     }
 
     /// The voidage ε of every cell, as [`VoidageGrid::voidage`] reads it.

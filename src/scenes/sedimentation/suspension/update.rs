@@ -155,7 +155,7 @@ impl Chunk<'_> {
                 let full = all_ok && n == LANES && (0..LANES).all(|l| c0[l] != GONE);
                 if full {
                     let block = Block { j0, y0, c0, v1, dx };
-                    block.finish::<WIDE>(u, q, reach, wide, ys, vs, cs, found);
+                    block.finish(u, q, reach, wide, ys, vs, cs, found);
                     j0 += n;
                     continue;
                 }
@@ -284,11 +284,11 @@ fn block_constants(u: &Update, q: &KindStep, reach: f64) -> EndConstants {
 
 impl Block {
     /// The end of the block's step of kind `q` ([`Block::end`], or [`wide::finish`] where
-    /// `wide`: the AVX-512 build, cells that pass [`wide::gatherable`]), stored
+    /// `wide`: only in the AVX-512 build, for cells that pass [`wide::gatherable`]), stored
     /// ([`Block::apply`]).
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
-    fn finish<const WIDE: bool>(
+    fn finish(
         self,
         u: &Update,
         q: &KindStep,
@@ -305,7 +305,7 @@ impl Block {
         #[cfg(target_arch = "x86_64")]
         // SAFETY: `wide` only in the AVX-512 build, whose processor has AVX-512F, and where
         // the cells pass `gatherable` (`voidage` and `bounds` have one entry per cell).
-        let end = if WIDE && wide {
+        let end = if wide {
             unsafe { wide::finish(k, &self.y0, &self.dx, &self.v1, &self.c0, bounds, &mut y1) }
         } else {
             self.end(k, bounds, &mut y1)
@@ -385,16 +385,7 @@ impl Block {
         while left != 0 {
             let l = left.trailing_zeros() as usize;
             left &= left - 1;
-            if y1[l].is_finite() {
-                let (old, new) = (
-                    self.c0[l],
-                    u.drag.grid.cell_after(self.c0[l] as usize, y1[l]),
-                );
-                if new as u32 != old {
-                    cs[j0 + l] = new as u32;
-                    found.moved.push((old, new as u32, kind));
-                }
-            }
+            move_cell(u, kind, j0 + l, y1[l], cs, found);
         }
         let mut near = end.near;
         while near != 0 {
@@ -472,12 +463,21 @@ fn store(
     found: &mut Found,
 ) {
     (ys[j], vs[j]) = (y, v);
-    if y.is_finite() {
-        let (old, new) = (cs[j], u.drag.grid.cell_after(cs[j] as usize, y) as u32);
-        if new != old {
-            cs[j] = new;
-            found.moved.push((old, new, q.kind));
-        }
-    }
+    move_cell(u, q.kind, j, y, cs, found);
     found.bad |= fault;
+}
+
+/// Finds the new cell of entry `j` (of kind `kind`) at height `y` (m; none if not finite) and,
+/// if it changed, stores it and lists the grain in `found.moved` (what [`store`] and
+/// [`Block::apply`] share).
+#[inline(always)]
+fn move_cell(u: &Update, kind: u32, j: usize, y: f64, cs: &mut [u32], found: &mut Found) {
+    if !y.is_finite() {
+        return;
+    }
+    let (old, new) = (cs[j], u.drag.grid.cell_after(cs[j] as usize, y) as u32);
+    if new != old {
+        cs[j] = new;
+        found.moved.push((old, new, kind));
+    }
 }
