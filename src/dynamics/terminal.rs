@@ -294,15 +294,53 @@ fn near_terminal_core<const L: usize>(
     body_force_n: [f64; L],
     v0_m_s: [f64; L],
 ) -> NearTerminal<L> {
+    let mut inv_h1 = [0.0; L];
+    for l in 0..L {
+        inv_h1[l] = inv_h1_of(dt_over_mass_s_kg[l], kt[l]);
+    }
+    let mut near = near_terminal_after(
+        [ut, kt, ct],
+        inv_h1,
+        dt_over_mass_s_kg,
+        body_force_n,
+        v0_m_s,
+    );
+    for (applies, &e) in near.applies.iter_mut().zip(&voidage) {
+        *applies &= in_table(e);
+    }
+    near
+}
+
+/// 1/(1 + k_t dt/m), the factor of the first Newton correction (the tabulated step's one
+/// division that depends on the voidage and the kind alone).
+#[inline(always)]
+fn inv_h1_of(dt_over_mass_s_kg: f64, kt: f64) -> f64 {
+    1.0 / (1.0 + dt_over_mass_s_kg * kt)
+}
+
+/// Whether `voidage` is in the table's range [[`TABLE_VOIDAGE_MIN`], 1] (false for NaN).
+#[inline(always)]
+fn in_table(voidage: f64) -> bool {
+    (TABLE_VOIDAGE_MIN..=1.0).contains(&voidage)
+}
+
+/// [`near_terminal_core`] from the terminal state and 1/(1 + k_t dt/m) of each lane
+/// (`applies` without the test of the table's range, which the caller adds).
+#[inline(always)]
+fn near_terminal_after<const L: usize>(
+    [ut, kt, ct]: [[f64; L]; 3],
+    inv_h1: [f64; L],
+    dt_over_mass_s_kg: [f64; L],
+    body_force_n: [f64; L],
+    v0_m_s: [f64; L],
+) -> NearTerminal<L> {
     let (w, v0) = (body_force_n, v0_m_s);
-    let (mut kk, mut p, mut inv_h1, mut d0, mut delta) =
-        ([0.0; L], [0.0; L], [0.0; L], [0.0; L], [0.0; L]);
+    let (mut kk, mut p, mut d0, mut delta) = ([0.0; L], [0.0; L], [0.0; L], [0.0; L]);
     let (mut k, mut f0, mut num, mut z, mut inv) =
         ([0.0; L], [0.0; L], [0.0; L], [0.0; L], [0.0; L]);
     for l in 0..L {
         kk[l] = dt_over_mass_s_kg[l];
         p[l] = v0[l] + w[l] * kk[l];
-        inv_h1[l] = 1.0 / (1.0 + kk[l] * kt[l]);
     }
     for l in 0..L {
         d0[l] = (p[l].abs() - ut[l] - w[l].abs() * kk[l]) * inv_h1[l];
@@ -323,10 +361,9 @@ fn near_terminal_core<const L: usize>(
     // and so not built for the caller's vector width).
     let mut applies = [false; L];
     for l in 0..L {
-        let in_table = (TABLE_VOIDAGE_MIN..=1.0).contains(&voidage[l]);
         let same_way = p[l] * w[l] > 0.0;
         let near = delta[l].abs() <= NEAR_TERMINAL * ut[l];
-        applies[l] = in_table && same_way && near;
+        applies[l] = same_way && near;
     }
     NearTerminal {
         applies,
@@ -408,19 +445,25 @@ pub fn exponential_near_terminal_kind_saturated<const L: usize>(
         horner_one(&table.k, t),
         horner_one(&table.c, t),
     ];
-    let (v0, dt) = (v0_m_s, dt_s);
-    let NearTerminal {
-        applies,
-        z,
-        inv,
-        num,
-    } = near_terminal_core(
+    let near = near_terminal_core(
         terminal,
         voidage,
         [dt_over_mass_s_kg; L],
         [table.body_force_n; L],
         v0_m_s,
     );
+    saturated(near, v0_m_s, dt_s)
+}
+
+/// The saturated step of each lane ([`SaturatedSteps`]) from its [`NearTerminal`] stages.
+#[inline(always)]
+fn saturated<const L: usize>(near: NearTerminal<L>, v0: [f64; L], dt: f64) -> SaturatedSteps<L> {
+    let NearTerminal {
+        applies,
+        z,
+        inv,
+        num,
+    } = near;
     let (mut velocity_m_s, mut displacement_m, mut ok) = ([0.0; L], [0.0; L], [false; L]);
     for l in 0..L {
         let (phi1, phi2) = (-inv[l], (-1.0 - z[l]) * (inv[l] * inv[l]));
@@ -433,4 +476,56 @@ pub fn exponential_near_terminal_kind_saturated<const L: usize>(
         displacement_m,
         ok,
     }
+}
+
+/// What the tabulated step of a sphere of `table` at each of `L` voidages over a step with
+/// dt/m = `dt_over_mass_s_kg` (s/kg) reads of its voidage: `[u_t, k_t, c_t, 1/(1 + k_t dt/m)]`
+/// per lane (m/s, N·s/m, N·s²/m², 1), u_t NaN where the voidage is outside the table (so that
+/// the step does not apply there). The same operations as
+/// [`exponential_near_terminal_kind_saturated`] does per lane, so the same bits: computed once
+/// per voidage cell and kind (`L` cells at a time, the Horner chains interleaved), it serves
+/// every grain of that kind in that cell ([`exponential_near_terminal_kind_at`]).
+#[inline(always)]
+pub fn kind_at_voidage<const L: usize>(
+    table: &TerminalTable,
+    voidage: [f64; L],
+    dt_over_mass_s_kg: f64,
+) -> [[f64; L]; 4] {
+    let mut t = [0.0; L];
+    for l in 0..L {
+        t[l] = cheb_t(voidage[l]);
+    }
+    let mut ut = horner_one(&table.u, t);
+    let kt = horner_one(&table.k, t);
+    let ct = horner_one(&table.c, t);
+    let mut inv_h1 = [0.0; L];
+    for l in 0..L {
+        if !in_table(voidage[l]) {
+            ut[l] = f64::NAN;
+        }
+        inv_h1[l] = inv_h1_of(dt_over_mass_s_kg, kt[l]);
+    }
+    [ut, kt, ct, inv_h1]
+}
+
+/// [`exponential_near_terminal_kind_saturated`] from what each lane reads of its voidage,
+/// `at[i][l]` = [`kind_at_voidage`]`[i][l]` (of the same table and dt/m): the same bits, without the
+/// Horner chains and the division they feed.
+#[inline(always)]
+pub fn exponential_near_terminal_kind_at<const L: usize>(
+    table: &TerminalTable,
+    at: [[f64; L]; 4],
+    dt_over_mass_s_kg: f64,
+    v0_m_s: [f64; L],
+    dt_s: f64,
+) -> SaturatedSteps<L> {
+    let [ut, kt, ct, inv_h1] = at;
+    let near = near_terminal_after(
+        [ut, kt, ct],
+        inv_h1,
+        [dt_over_mass_s_kg; L],
+        [table.body_force_n; L],
+        v0_m_s,
+    );
+    saturated(near, v0_m_s, dt_s)
 }

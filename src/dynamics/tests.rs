@@ -408,18 +408,27 @@ fn tabulated_step_lanes_match_one_sphere_bit_for_bit() {
 /// not saturated (it takes those lanes then); lanes at voidages inside and outside the table,
 /// at, near and far from terminal settling and thrown upwards; and so do its builds for AVX2
 /// and AVX-512 where the processor has them (the free update picks one at run time: nothing
-/// may depend on the vector width).
+/// may depend on the vector width); and so does the step from what each lane reads of its
+/// voidage (`terminal::kind_at_voidage`, the free update's table per cell and kind).
 #[test]
 fn tabulated_step_of_one_kind_matches_one_sphere_bit_for_bit_on_every_vector_width() {
     use super::terminal::{
-        exponential_near_terminal, exponential_near_terminal_kind_saturated, SaturatedSteps,
-        TerminalTable,
+        exponential_near_terminal, exponential_near_terminal_kind_at,
+        exponential_near_terminal_kind_saturated, kind_at_voidage, SaturatedSteps, TerminalTable,
     };
     use super::PHI_SATURATED;
     const L: usize = 16;
     type Kind = fn(&TerminalTable, [f64; L], f64, [f64; L], f64) -> SaturatedSteps<L>;
-    let mut builds: Vec<(&str, Kind)> =
-        vec![("baseline", exponential_near_terminal_kind_saturated::<L>)];
+    let at = |t: &TerminalTable, e: [f64; L], k: f64, v: [f64; L], dt: f64| {
+        // Each lane's reading computed alone (the free update computes 8 cells at a time).
+        let rows = e.map(|e| kind_at_voidage::<1>(t, [e], k));
+        let read = std::array::from_fn(|i| std::array::from_fn(|l| rows[l][i][0]));
+        exponential_near_terminal_kind_at::<L>(t, read, k, v, dt)
+    };
+    let mut builds: Vec<(&str, Kind)> = vec![
+        ("baseline", exponential_near_terminal_kind_saturated::<L>),
+        ("per-cell table", at),
+    ];
     #[cfg(target_arch = "x86_64")]
     {
         #[target_feature(enable = "avx2")]

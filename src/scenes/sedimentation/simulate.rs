@@ -52,6 +52,11 @@ pub enum StepLoop {
     /// agree with (runs with contacts take it anyway).
     #[cfg_attr(not(test), allow(dead_code))] // chosen by the unit tests only
     PerGrain,
+    /// The packed loop of full physics without contacts with every path taken however few the
+    /// grains ([`Suspension::every_path`]: tables per cell, parallel deposition): they must
+    /// agree with the per-grain loop too.
+    #[cfg_attr(not(test), allow(dead_code))] // chosen by the unit tests only
+    PackedEveryPath,
 }
 
 /// [`simulate`], the grains visited by the loop `step_loop`.
@@ -72,9 +77,13 @@ pub fn simulate_on(
         stepper: &stepper,
     };
     let mut grid = voidage_grid(setup, &stepper);
-    let chosen = step_loop == StepLoop::Chosen;
+    let every = step_loop == StepLoop::PackedEveryPath;
+    let chosen = step_loop == StepLoop::Chosen || every;
     if chosen && !stepper.ideal && !sm.contacts {
-        if let Some((suspension, suspect)) = Suspension::new(&mut st, &grid, &stepper, setup) {
+        if let Some((mut suspension, suspect)) = Suspension::new(&mut st, &grid, &stepper, setup) {
+            if every {
+                suspension.every_path();
+            }
             return run.packed(st, suspension, suspect, &mut grid, obs);
         }
     }

@@ -22,11 +22,14 @@ use super::state::State;
 use super::step::kernel::{bed_rise_m, on_bed, CellDrag, Limits};
 use super::step::Stepper;
 use super::voidage::VoidageGrid;
+#[cfg(doc)]
+use crate::dynamics::terminal::kind_at_voidage;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 use update::{Chunk, Found, Kind, KindStep, Update, GONE};
 
 mod block;
+mod tables;
 #[cfg(test)]
 mod tests;
 mod update;
@@ -81,7 +84,22 @@ pub struct Suspension {
     /// that may join (grain index, entry).
     near_scratch: Vec<(f64, f64, u32)>,
     may_join: Vec<(u32, u32)>,
+    /// Per kind, what its tabulated step reads of each voidage cell in this step
+    /// ([`kind_at_voidage`], the last entry at voidage 1), for the kinds with at least
+    /// `tables_from` entries; empty for the others.
+    at: Vec<Vec<[f64; 4]>>,
+    /// The fewest entries of a kind for which the free update reads its tabulated step from a
+    /// table per cell, computed once per cell and step, rather than per grain; `None`:
+    /// [`TABLES_PER_CELL`](tables::TABLES_PER_CELL) per cell of the grid. The results are the same either way.
+    tables_from: Option<usize>,
+    /// The fewest entries within reach of the bed that deposition lists and sums in parallel;
+    /// `None`: [`DEPOSIT_PAR_MIN`]. The results are the same either way.
+    deposit_par_from: Option<usize>,
 }
+
+/// The entries within reach of the bed from which deposition lists and sums them in parallel
+/// (fewer: the hand-over to the threads would cost more than it saves).
+const DEPOSIT_PAR_MIN: usize = 1 << 16;
 
 /// The entries per part of the voidage fill ([`Suspension::fill`]) of `len` entries in a grid
 /// of `cells` cells on `threads` threads: one part per thread, each of at least 2¹⁴ entries and
@@ -316,6 +334,8 @@ impl Suspension {
     ) -> (u64, bool) {
         let drag = CellDrag::new(stepper, grid, dt_s);
         let fast = drag.fast;
+        self.fill_tables(grid, fast, dt_s);
+        let at = &self.at;
         let ctx = Update {
             drag,
             kinds: self
@@ -327,6 +347,7 @@ impl Suspension {
                     KindStep {
                         kind: i as u32,
                         table,
+                        at: Some(&at[i][..]).filter(|a| !a.is_empty()),
                         dt_over_mass: table.map_or(f64::NAN, |t| dt_s / t.mass_kg),
                         half_d_m: 0.5 * k.diameter_m,
                         top_m: setup.height_m + k.diameter_m,
@@ -382,6 +403,15 @@ impl Suspension {
         (self.len() as u64, suspect.into_inner())
     }
 
+    /// Every path of the free update and deposition taken however few the grains: every
+    /// kind's tabulated step from its table per cell (by default from [`TABLES_PER_CELL`](tables::TABLES_PER_CELL)
+    /// entries per cell), deposition's lists and sums in parallel (by default from
+    /// [`DEPOSIT_PAR_MIN`] entries). The results are the same: for the tests that show it.
+    pub fn every_path(&mut self) {
+        self.tables_from = Some(0);
+        self.deposit_par_from = Some(1);
+    }
+
     /// Deposition (as [`Stepper::deposit_vmax`], in ascending grain order), after
     /// [`Suspension::free_update`]: every suspended grain touching the bed surface of `st` joins
     /// the bed, at rest on it, the bed rising by its real volume over `stepper.bed_area_m2`; its
@@ -404,34 +434,58 @@ impl Suspension {
         let bed0 = st.bed_height_m;
         let mut near = std::mem::take(&mut self.near_scratch);
         near.clear();
-        for (chunk, (list, chunk_vmax)) in self.near_bed.iter().enumerate() {
+        for (_, chunk_vmax) in &self.near_bed {
             vmax = vmax.max(*chunk_vmax);
-            near.extend(list.iter().map(|&k| {
-                let j = chunk * n + k as usize;
-                let kind = &self.kinds[self.kind[j] as usize];
-                let gap = self.y_m[j] - 0.5 * kind.diameter_m - bed0;
-                (gap, kind.volume_m3 / stepper.bed_area_m2, j as u32)
-            }));
+        }
+        // In parallel where many (late in a run most grains are within reach), in chunk order.
+        let (kinds, kind, y_m) = (&self.kinds, &self.kind, &self.y_m);
+        let entry = |chunk: usize, k: u32| {
+            let j = chunk * n + k as usize;
+            let kind = &kinds[kind[j] as usize];
+            let gap = y_m[j] - 0.5 * kind.diameter_m - bed0;
+            (gap, kind.volume_m3 / stepper.bed_area_m2, j as u32)
+        };
+        let par_min = self.deposit_par_from.unwrap_or(DEPOSIT_PAR_MIN).max(1);
+        let many = self.near_bed.iter().map(|(l, _)| l.len()).sum::<usize>() >= par_min;
+        let lists = self.near_bed.iter().map(|(l, _)| l).enumerate();
+        if many {
+            let lists = self.near_bed.par_iter().map(|(l, _)| l).enumerate();
+            near.par_extend(lists.flat_map_iter(|(c, l)| l.iter().map(move |&k| entry(c, k))));
+        } else {
+            near.extend(lists.flat_map(|(c, l)| l.iter().map(move |&k| entry(c, k))));
         }
         // Only a grain within the rise of the bed that the grains able to join could make can
         // join (the bed rises only as grains join): that bound, with ample margin for rounding,
         // found by adding such grains until none is added. The others are visited for their
         // speeds only; the possible ones in grain order (the entries are in kind order), as
         // the per-grain pass visits them, so the same grains join in the same order.
+        // In parallel where many: the rise's rounding depends on how the sum is cut, but the
+        // bound's 1 % margin covers it, and a grain beyond the true bound cannot join whatever
+        // the bound.
+        let within = |limit: f64| {
+            let part = |s: &[(f64, f64, u32)]| {
+                s.iter()
+                    .filter(|x| x.0 <= limit)
+                    .fold((0.0, 0), |(r, c), x| (r + x.1, c + 1))
+            };
+            if near.len() < par_min {
+                return part(&near);
+            }
+            near.par_chunks(par_min.div_ceil(4))
+                .map(part)
+                .reduce(|| (0.0, 0), |a, b| (a.0 + b.0, a.1 + b.1))
+        };
         let mut limit = 1e-15 + 1e-12;
         let mut count = usize::MAX;
         for _ in 0..16 {
-            let (rise, c) = near
-                .iter()
-                .filter(|x| x.0 <= limit)
-                .fold((0.0, 0), |(r, c), x| (r + x.1, c + 1));
+            let (rise, c) = within(limit);
             limit = 1e-15 + 1e-12 + 1.01 * rise;
             if c == count {
                 break;
             }
             count = c;
         }
-        if count != near.iter().filter(|x| x.0 <= limit).count() {
+        if count != within(limit).1 {
             limit = f64::INFINITY;
         }
         let mut may_join = std::mem::take(&mut self.may_join);

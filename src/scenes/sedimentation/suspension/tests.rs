@@ -141,4 +141,13 @@ fn wide_block_end_is_the_lane_by_lane_end() {
     // SAFETY: as above; every index below 100.
     let e = unsafe { super::wide::gather(&voidage, &c) };
     assert_eq!(e, c.map(|i| voidage[i as usize]));
+    // A kind's table per cell: each of its four readings of each lane's cell.
+    let at: Vec<[f64; 4]> = (0..100)
+        .map(|i| std::array::from_fn(|r| (i * 4 + r) as f64 + 0.5))
+        .collect();
+    // SAFETY: as above; every index below 100.
+    let read = unsafe { super::wide::gather_at(&at, &c) };
+    for (r, row) in read.iter().enumerate() {
+        assert_eq!(*row, c.map(|i| at[i as usize][r]));
+    }
 }

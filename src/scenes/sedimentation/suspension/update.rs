@@ -7,7 +7,12 @@ use super::super::step::Stepper;
 pub(super) use super::block::{BlockEnd, EndConstants, LANES};
 #[cfg(target_arch = "x86_64")]
 use super::wide;
-use crate::dynamics::terminal::{exponential_near_terminal_kind_saturated, TerminalTable};
+#[cfg(doc)]
+use crate::dynamics::terminal::kind_at_voidage;
+use crate::dynamics::terminal::{
+    exponential_near_terminal_kind_at, exponential_near_terminal_kind_saturated, SaturatedSteps,
+    TerminalTable,
+};
 
 /// The `cell` of an entry whose grain has settled.
 pub(super) const GONE: u32 = u32::MAX;
@@ -47,6 +52,9 @@ pub(super) struct KindStep<'a> {
     /// Its terminal-state table, on the fast path ([`Stepper::fast_path`]) when its size class
     /// has one.
     pub(super) table: Option<&'a TerminalTable>,
+    /// What its tabulated step reads of each voidage cell ([`kind_at_voidage`], one entry
+    /// per cell and one at voidage 1 for the settled lanes), where computed for this step.
+    pub(super) at: Option<&'a [[f64; 4]]>,
     /// The step over the mass, dt/m, s/kg (NaN without a table): one division per kind and step
     /// instead of one per grain.
     pub(super) dt_over_mass: f64,
@@ -104,11 +112,13 @@ impl Chunk<'_> {
         let voidage = u.drag.grid.voidages();
         let bounds = u.drag.grid.cell_bounds();
         let cells = voidage.len().min(bounds.len());
+        debug_assert!(ks.is_sorted(), "the entries are in kind order");
         let len = ys.len();
         let mut a = 0;
         while a < len {
             let k = ks[a];
-            let b = a + ks[a..].iter().take_while(|&&x| x == k).count();
+            // The kinds ascend (kind order): the run's end by bisection, not a scan.
+            let b = a + ks[a..].partition_point(|&x| x <= k);
             let (q, kind) = (&u.kinds[k as usize], &kinds[k as usize]);
             let Some(table) = q.table else {
                 for j in a..b {
@@ -119,12 +129,10 @@ impl Chunk<'_> {
                 a = b;
                 continue;
             };
-            let eps = |c: u32| if c == GONE { 1.0 } else { voidage[c as usize] };
             let mut j0 = a;
             while j0 < b {
                 let n = (b - j0).min(LANES);
                 let (y0, c0, v0) = load(j0, n, ys, cs, vs);
-                let mut e0 = [0.0; LANES];
                 // AVX-512: the voidages gathered, and the end of the step on vectors, when
                 // every lane holds a suspended grain (`wide`).
                 #[cfg(target_arch = "x86_64")]
@@ -132,24 +140,7 @@ impl Chunk<'_> {
                 let wide = WIDE && n == LANES && unsafe { wide::gatherable(&c0, cells) };
                 #[cfg(not(target_arch = "x86_64"))]
                 let wide = false;
-                if wide {
-                    #[cfg(target_arch = "x86_64")]
-                    // SAFETY: as above; the cells pass `gatherable`.
-                    {
-                        e0 = unsafe { wide::gather(voidage, &c0) };
-                    }
-                } else {
-                    for l in 0..LANES {
-                        e0[l] = eps(c0[l]);
-                    }
-                }
-                let step = exponential_near_terminal_kind_saturated::<LANES>(
-                    table,
-                    e0,
-                    q.dt_over_mass,
-                    v0,
-                    u.drag.dt_s,
-                );
+                let step = block_step::<WIDE>(u, q, table, &c0, v0, n, wide);
                 let (v1, dx) = (step.velocity_m_s, step.displacement_m);
                 let all_ok = (0..LANES).all(|l| step.ok[l]);
                 let full = all_ok && n == LANES && (0..LANES).all(|l| c0[l] != GONE);
@@ -225,6 +216,74 @@ impl Chunk<'_> {
     #[target_feature(enable = "avx2")]
     fn update_avx2(self, u: &Update, reach: f64, found: &mut Found) {
         self.update_any::<false>(u, reach, found)
+    }
+}
+
+/// The saturated tabulated step of a block of grains of the kind `q` (whose table is `table`)
+/// in the cells `c0` at the speeds `v0` (m/s), `n` of its lanes in use: from the kind's table
+/// per cell where it has one ([`kind_at_voidage`]), else from each lane's voidage; both
+/// gathered on AVX-512 vectors where `WIDE` and the block is full (`wide`: its cells pass
+/// [`wide::gatherable`](super::wide) for the grid). The same bits either way.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn block_step<const WIDE: bool>(
+    u: &Update,
+    q: &KindStep,
+    table: &TerminalTable,
+    c0: &[u32; LANES],
+    v0: [f64; LANES],
+    n: usize,
+    wide: bool,
+) -> SaturatedSteps<LANES> {
+    let voidage = u.drag.grid.voidages();
+    let eps = |c: u32| if c == GONE { 1.0 } else { voidage[c as usize] };
+    if let Some(at) = q.at {
+        // The kind's table per cell (the last entry for settled lanes).
+        let last = at.len() - 1;
+        let mut read = [[0.0; LANES]; 4];
+        #[cfg(target_arch = "x86_64")]
+        // SAFETY: `WIDE` only in `update_avx512`, whose processor has AVX-512F.
+        let gathered =
+            WIDE && n == LANES && at.len() < 1 << 28 && unsafe { wide::gatherable(c0, at.len()) };
+        #[cfg(not(target_arch = "x86_64"))]
+        let gathered = false;
+        if gathered {
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: AVX-512F as above; the cells pass `gatherable` for the table, which
+            // is shorter than 2²⁸ entries (`gather_at`).
+            {
+                read = unsafe { wide::gather_at(at, c0) };
+            }
+        } else {
+            for l in 0..LANES {
+                let r = at[(c0[l] as usize).min(last)];
+                for (i, x) in r.into_iter().enumerate() {
+                    read[i][l] = x;
+                }
+            }
+        }
+        exponential_near_terminal_kind_at::<LANES>(table, read, q.dt_over_mass, v0, u.drag.dt_s)
+    } else {
+        let mut e0 = [0.0; LANES];
+        if wide {
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: `wide` only where `WIDE` (AVX-512F, as above) and the cells pass
+            // `gatherable` for the grid.
+            {
+                e0 = unsafe { wide::gather(voidage, c0) };
+            }
+        } else {
+            for l in 0..LANES {
+                e0[l] = eps(c0[l]);
+            }
+        }
+        exponential_near_terminal_kind_saturated::<LANES>(
+            table,
+            e0,
+            q.dt_over_mass,
+            v0,
+            u.drag.dt_s,
+        )
     }
 }
 

@@ -43,6 +43,31 @@ pub(super) fn gather(voidage: &[f64], c: &[u32; LANES]) -> [f64; LANES] {
     out
 }
 
+/// What each lane reads of its cell's entry of a kind's table per cell, `at[c[l]][i]` as
+/// `out[i][l]`; `c` must pass [`gatherable`] for `at.len()`, which must be below 2²⁸ (the
+/// indices 4c + i fit in 32 bits).
+#[inline]
+#[target_feature(enable = "avx512f")]
+pub(super) fn gather_at(at: &[[f64; 4]], c: &[u32; LANES]) -> [[f64; LANES]; 4] {
+    debug_assert!(at.len() < 1 << 28 && gatherable(c, at.len()));
+    let mut out = [[0.0; LANES]; 4];
+    let base = at.as_ptr().cast::<f64>();
+    for h in 0..LANES / 8 {
+        // SAFETY: 8 u32 read from `c`, in bounds; every index 4c + i < 4 at.len() (`c` passes
+        // [`gatherable`]) and below 2³⁰, so the offsets fit an i32 and stay within `at`'s
+        // 4 at.len() f64; 8 f64 written to each row of `out`, in bounds.
+        unsafe {
+            let idx = _mm256_slli_epi32::<2>(_mm256_loadu_si256(c.as_ptr().add(8 * h).cast()));
+            for (i, row) in out.iter_mut().enumerate() {
+                let at_i = _mm256_add_epi32(idx, _mm256_set1_epi32(i as i32));
+                let x = _mm512_i32gather_pd::<8>(at_i, base);
+                _mm512_storeu_pd(row.as_mut_ptr().add(8 * h), x);
+            }
+        }
+    }
+    out
+}
+
 /// The end of a block's step: from the heights `y0` (m) before it, the displacements `dx` (m)
 /// and speeds `v1` (m/s) over it, the new heights `y1` (m: [`after_step`]'s, stopping on the
 /// bed), and the tests of [`BlockEnd`] against the bounds of the cells `c0` (which must pass

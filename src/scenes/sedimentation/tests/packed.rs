@@ -157,6 +157,23 @@ fn a_refilled_grid_holds_what_a_fresh_one_holds() {
 /// grains settling).
 #[test]
 fn the_packed_loop_in_kind_order_is_the_per_grain_loop_bit_for_bit() {
+    use crate::scenes::sedimentation::simulate::StepLoop;
+    packed_loop_is_the_per_grain_loop_bit_for_bit(StepLoop::Chosen);
+}
+
+/// The same with every path taken however few the grains (`Suspension::every_path`): every
+/// kind's tabulated step read from its table per voidage cell, deposition's lists and sums in
+/// parallel (by default only kinds with many grains per cell, and many grains near the bed,
+/// as at the real count, take them).
+#[test]
+fn the_packed_loop_on_every_path_is_the_per_grain_loop_bit_for_bit() {
+    use crate::scenes::sedimentation::simulate::StepLoop;
+    packed_loop_is_the_per_grain_loop_bit_for_bit(StepLoop::PackedEveryPath);
+}
+
+fn packed_loop_is_the_per_grain_loop_bit_for_bit(
+    packed_loop: crate::scenes::sedimentation::simulate::StepLoop,
+) {
     use crate::scenes::sedimentation::observer::OnRecord;
     use crate::scenes::sedimentation::simulate::{simulate_on, StepLoop};
     let ov: Vec<String> = [
@@ -181,7 +198,7 @@ fn the_packed_loop_in_kind_order_is_the_per_grain_loop_bit_for_bit() {
         let st = simulate_on(step_loop, &su, State::initial(&su), &[], &mut obs);
         (st, seen)
     };
-    let (packed, packed_seen) = on(StepLoop::Chosen);
+    let (packed, packed_seen) = on(packed_loop);
     let (per_grain, per_grain_seen) = on(StepLoop::PerGrain);
     let settled = packed.settled.iter().filter(|&&s| s).count();
     assert!(
