@@ -509,8 +509,8 @@ pub fn kind_at_voidage<const L: usize>(
 }
 
 /// [`exponential_near_terminal_kind_saturated`] from what each lane reads of its voidage,
-/// `at[i][l]` = [`kind_at_voidage`]`[i][l]` (of the same table and dt/m): the same bits, without the
-/// Horner chains and the division they feed.
+/// `at[i][l]` = [`kind_at_voidage`]`[i][l]` (of the same table and dt/m): the same bits,
+/// without the Horner chains and the division they feed.
 #[inline(always)]
 pub fn exponential_near_terminal_kind_at<const L: usize>(
     table: &TerminalTable,

@@ -90,7 +90,8 @@ pub struct Suspension {
     at: Vec<Vec<[f64; 4]>>,
     /// The fewest entries of a kind for which the free update reads its tabulated step from a
     /// table per cell, computed once per cell and step, rather than per grain; `None`:
-    /// [`TABLES_PER_CELL`](tables::TABLES_PER_CELL) per cell of the grid. The results are the same either way.
+    /// [`TABLES_PER_CELL`](tables::TABLES_PER_CELL) per cell of the grid. The results are the
+    /// same either way.
     tables_from: Option<usize>,
     /// The fewest entries within reach of the bed that deposition lists and sums in parallel;
     /// `None`: [`DEPOSIT_PAR_MIN`]. The results are the same either way.
@@ -404,9 +405,10 @@ impl Suspension {
     }
 
     /// Every path of the free update and deposition taken however few the grains: every
-    /// kind's tabulated step from its table per cell (by default from [`TABLES_PER_CELL`](tables::TABLES_PER_CELL)
-    /// entries per cell), deposition's lists and sums in parallel (by default from
-    /// [`DEPOSIT_PAR_MIN`] entries). The results are the same: for the tests that show it.
+    /// kind's tabulated step from its table per cell (by default from
+    /// [`TABLES_PER_CELL`](tables::TABLES_PER_CELL) entries per cell), deposition's lists and
+    /// sums in parallel (by default from [`DEPOSIT_PAR_MIN`] entries). The results are the
+    /// same: for the tests that show it.
     pub fn every_path(&mut self) {
         self.tables_from = Some(0);
         self.deposit_par_from = Some(1);
@@ -447,11 +449,11 @@ impl Suspension {
         };
         let par_min = self.deposit_par_from.unwrap_or(DEPOSIT_PAR_MIN).max(1);
         let many = self.near_bed.iter().map(|(l, _)| l.len()).sum::<usize>() >= par_min;
-        let lists = self.near_bed.iter().map(|(l, _)| l).enumerate();
         if many {
             let lists = self.near_bed.par_iter().map(|(l, _)| l).enumerate();
             near.par_extend(lists.flat_map_iter(|(c, l)| l.iter().map(move |&k| entry(c, k))));
         } else {
+            let lists = self.near_bed.iter().map(|(l, _)| l).enumerate();
             near.extend(lists.flat_map(|(c, l)| l.iter().map(move |&k| entry(c, k))));
         }
         // Only a grain within the rise of the bed that the grains able to join could make can
