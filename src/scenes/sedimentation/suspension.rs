@@ -26,9 +26,11 @@ use super::voidage::VoidageGrid;
 use crate::dynamics::terminal::kind_at_voidage;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
+use sums::{move_volumes, Touched};
 use update::{Chunk, Found, Kind, KindStep, Update, GONE};
 
 mod block;
+mod sums;
 mod tables;
 #[cfg(test)]
 mod tests;
@@ -77,6 +79,8 @@ pub struct Suspension {
     /// from step to step by the grains that change cell or settle (integers: the same as a
     /// sum afresh).
     sums_q: Option<Vec<i128>>,
+    /// The cells whose sums changed since the last fill, while few.
+    touched: Touched,
     /// Entries per chunk of the last free update ([`update_chunk_grains`]).
     chunk: usize,
     /// Deposition's lists, kept from step to step (no allocation per step): the entries
@@ -109,38 +113,6 @@ const DEPOSIT_PAR_MIN: usize = 1 << 16;
 /// same whatever the parts.
 pub fn fill_part_grains(cells: usize, len: usize, threads: usize) -> usize {
     len.div_ceil(threads.max(1)).max(1 << 14).max(2 * cells)
-}
-
-/// Moves the volume of each grain of `moved` (cell before, cell after, kind: per chunk of a
-/// free update) in the sums per cell `sums` (quanta), and empties `moved`: in parallel, each
-/// thread the cells of one range (every list read by each; exact integers, so the same sums
-/// however cut).
-fn move_volumes(sums: &mut [i128], moved: &mut [Vec<(u32, u32, u32)>], kinds: &[Kind]) {
-    let count: usize = moved.iter().map(Vec::len).sum();
-    if count == 0 {
-        return;
-    }
-    let part = if count < 1 << 14 {
-        sums.len().max(1)
-    } else {
-        sums.len().div_ceil(rayon::current_num_threads()).max(1)
-    };
-    sums.par_chunks_mut(part)
-        .enumerate()
-        .for_each(|(p, range)| {
-            let (lo, hi) = (p * part, p * part + range.len());
-            for &(old, new, k) in moved.iter().flatten() {
-                let q = kinds[k as usize].volume_q;
-                let (old, new) = (old as usize, new as usize);
-                if (lo..hi).contains(&old) {
-                    range[old - lo] -= q;
-                }
-                if (lo..hi).contains(&new) {
-                    range[new - lo] += q;
-                }
-            }
-        });
-    moved.iter_mut().for_each(Vec::clear);
 }
 
 impl Suspension {
@@ -274,8 +246,13 @@ impl Suspension {
     /// parts and any sequence of such changes, as [`VoidageGrid::fill`] sums in grain order.
     pub fn fill(&mut self, grid: &mut VoidageGrid) {
         if let Some(sums) = &mut self.sums_q {
-            move_volumes(sums, &mut self.moved, &self.kinds);
-            grid.fill_sums(sums);
+            let t = &mut self.touched;
+            move_volumes(sums, &mut self.moved, &self.kinds, t);
+            // Only the cells listed, if the grid is as this suspension's last fill left it.
+            if t.all || !grid.fill_sums_at(sums, &t.cells, t.stamp) {
+                grid.fill_sums(sums);
+            }
+            t.reset(grid);
             return;
         }
         let cells = grid.cell_count();
@@ -312,6 +289,7 @@ impl Suspension {
             }
         }
         grid.fill_sums(&sums);
+        self.touched.reset(grid);
         self.sums_q = Some(sums);
         // Already in the cells just summed.
         self.moved.iter_mut().for_each(Vec::clear);
@@ -368,7 +346,7 @@ impl Suspension {
         self.near_bed.resize_with(chunks, Default::default);
         // Grains moved by an update not followed by a fill: into the sums first.
         match &mut self.sums_q {
-            Some(sums) => move_volumes(sums, &mut self.moved, &self.kinds),
+            Some(sums) => move_volumes(sums, &mut self.moved, &self.kinds, &mut self.touched),
             None => self.moved.iter_mut().for_each(Vec::clear),
         }
         self.moved.resize_with(chunks, Default::default);
@@ -517,6 +495,7 @@ impl Suspension {
                 suspect |= stepper.is_faulty(&grain, 0.0, setup);
                 if let Some(sums) = &mut self.sums_q {
                     sums[self.cell[j] as usize] -= kind.volume_q;
+                    self.touched.note(1, [self.cell[j]]);
                 }
                 self.cell[j] = GONE;
                 self.gone += 1;

@@ -11,6 +11,13 @@ use crate::fluid::hindered::richardson_zaki_drag_factor;
 use crate::fluid::{sphere_mass_kg, DragLaw, HinderedLaw, SphereDrag};
 use crate::sample::{GrainKind, Grains};
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// A number no grid or fill has taken yet ([`VoidageGrid::stamp`]).
+fn new_stamp() -> u64 {
+    static NEXT: AtomicU64 = AtomicU64::new(0);
+    NEXT.fetch_add(1, Ordering::Relaxed)
+}
 
 /// The grid of solid volume per cell (real units, m³) and the drag it gives.
 #[derive(Clone, Debug)]
@@ -27,6 +34,8 @@ pub struct VoidageGrid {
     /// The sums `solid_m3` and `voidage` were last set from, in quanta: a fill converts only
     /// the cells whose sum changed (the same values, fewer conversions).
     sums_q: Vec<i128>,
+    /// Which fill set `sums_q` ([`VoidageGrid::stamp`]).
+    stamp: u64,
     /// The sums of [`VoidageGrid::fill_cells`] (kept from fill to fill: no allocation per
     /// step).
     next_q: Vec<i128>,
@@ -70,6 +79,7 @@ impl VoidageGrid {
                 * setup.thickness_m,
             solid_m3: vec![0.0; ncx * ncy],
             sums_q: vec![0; ncx * ncy],
+            stamp: new_stamp(),
             next_q: Vec::new(),
             quanta: SolidQuanta::for_kinds(&setup.grains.kinds, &setup.grains.kind),
             voidage: vec![1.0; ncx * ncy],
@@ -233,19 +243,47 @@ impl VoidageGrid {
         self.set_sums(sums);
     }
 
-    /// Stores the solid volume of each cell from its sum in quanta `sums` (m³, the exact sum
-    /// rounded once) and the voidage it gives, where the sum changed since the last fill
-    /// (elsewhere the same values are already there), and keeps the sums for the next fill.
+    /// [`VoidageGrid::fill_sums`] where only the sums of the cells `changed` may differ from
+    /// those of the fill that left the grid at `stamp` ([`VoidageGrid::stamp`]; any order,
+    /// repeats allowed): those cells alone are read, the same values stored. Returns false,
+    /// and does nothing, if the grid's last fill is not that one.
+    #[must_use]
+    pub fn fill_sums_at(&mut self, sums: &[i128], changed: &[u32], stamp: u64) -> bool {
+        if stamp != self.stamp {
+            return false;
+        }
+        for &c in changed {
+            self.set_sum(c as usize, sums[c as usize]);
+        }
+        self.stamp = new_stamp();
+        true
+    }
+
+    /// Which fill left the grid as it is: a number that no other fill of any grid takes (a
+    /// copy of the grid keeps it, with the same sums).
+    pub fn stamp(&self) -> u64 {
+        self.stamp
+    }
+
+    /// Stores the solid volume of each cell from its sum in quanta `sums` ([`Self::set_sum`]),
+    /// and keeps the sums for the next fill.
     fn set_sums(&mut self, sums: &[i128]) {
-        let (quanta, cell_volume_m3, di_felice) =
-            (self.quanta, self.cell_volume_m3, self.is_di_felice());
-        for (c, (&q, last)) in sums.iter().zip(self.sums_q.iter_mut()).enumerate() {
-            if q != *last {
-                *last = q;
-                self.solid_m3[c] = quanta.volume_m3(q);
-                if di_felice {
-                    self.voidage[c] = voidage_of(self.solid_m3[c], cell_volume_m3);
-                }
+        for (c, &q) in sums.iter().enumerate() {
+            self.set_sum(c, q);
+        }
+        self.stamp = new_stamp();
+    }
+
+    /// Stores the solid volume of cell `c` from its sum in quanta `q` (m³, the exact sum
+    /// rounded once) and the voidage it gives, if the sum changed since the last fill (else the
+    /// same values are already there), and keeps the sum for the next fill.
+    #[inline(always)]
+    fn set_sum(&mut self, c: usize, q: i128) {
+        if q != self.sums_q[c] {
+            self.sums_q[c] = q;
+            self.solid_m3[c] = self.quanta.volume_m3(q);
+            if self.is_di_felice() {
+                self.voidage[c] = voidage_of(self.solid_m3[c], self.cell_volume_m3);
             }
         }
     }

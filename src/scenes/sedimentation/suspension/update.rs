@@ -98,8 +98,8 @@ impl Chunk<'_> {
     /// one kind each: `LANES` neighbouring grains of a run share one terminal-state table
     /// ([`exponential_near_terminal_kind_saturated`]: its coefficients read once, the lanes
     /// computed as vectors, on the widest vectors the processor has: [`Chunk::update`] picks
-    /// the build).
-    /// Every grain's update is the same operations as [`CellDrag`] gives it alone.
+    /// the build); a run's last grains (fewer than `LANES`) on blocks of a quarter or half as
+    /// many lanes ([`Tail`]). Every grain's update is the same operations as [`CellDrag`] gives it alone.
     #[inline(always)]
     fn update_any<const WIDE: bool>(self, u: &Update, reach: f64, found: &mut Found) {
         let Chunk {
@@ -130,54 +130,42 @@ impl Chunk<'_> {
                 continue;
             };
             let mut j0 = a;
-            while j0 < b {
-                let n = (b - j0).min(LANES);
-                let (y0, c0, v0) = load(j0, n, ys, cs, vs);
+            while j0 + LANES <= b {
+                let (y0, c0, v0) = load(j0, ys, cs, vs);
                 // AVX-512: the voidages gathered, and the end of the step on vectors, when
                 // every lane holds a suspended grain (`wide`).
                 #[cfg(target_arch = "x86_64")]
                 // SAFETY: WIDE only in `update_avx512`, whose processor has AVX-512F.
-                let wide = WIDE && n == LANES && unsafe { wide::gatherable(&c0, cells) };
+                let wide = WIDE && unsafe { wide::gatherable(&c0, cells) };
                 #[cfg(not(target_arch = "x86_64"))]
                 let wide = false;
-                let step = block_step::<WIDE>(u, q, table, &c0, v0, n, wide);
-                let (v1, dx) = (step.velocity_m_s, step.displacement_m);
+                let step = block_step::<WIDE>(u, q, table, &c0, v0, wide);
                 let all_ok = (0..LANES).all(|l| step.ok[l]);
-                let full = all_ok && n == LANES && (0..LANES).all(|l| c0[l] != GONE);
-                if full {
+                if all_ok && (0..LANES).all(|l| c0[l] != GONE) {
+                    let (v1, dx) = (step.velocity_m_s, step.displacement_m);
                     let block = Block { j0, y0, c0, v1, dx };
                     block.finish(u, q, reach, wide, ys, vs, cs, found);
-                    j0 += n;
-                    continue;
+                } else {
+                    let (at, grains) = ((j0, LANES), (&mut *ys, &mut *vs, &mut *cs));
+                    lanes_end(u, (kind, q), reach, at, (&y0, &c0), &step, grains, found);
                 }
-                // `after_step` and the tests of `record`, lane by lane without a branch.
-                let (mut y1, mut fault, mut near) = ([0.0; LANES], [false; LANES], [false; LANES]);
-                let mut vmax = 0.0f64;
-                for l in 0..LANES {
-                    (y1[l], _, fault[l]) =
-                        after_step(y0[l], (v1[l], dx[l]), q.half_d_m, q.top_m, u.lim);
-                    near[l] = y1[l] - q.half_d_m <= reach;
-                    let counted = step.ok[l] && !near[l] && c0[l] != GONE && l < n;
-                    vmax = vmax.max(if counted {
-                        v1[l].abs().max(q.stokes_m_s)
-                    } else {
-                        0.0
-                    });
-                }
-                found.vmax = found.vmax.max(vmax);
-                for l in 0..n {
-                    let j = j0 + l;
-                    if c0[l] == GONE {
-                        continue;
-                    }
-                    if !step.ok[l] {
-                        one_grain(u, kind, q, reach, j, ys, vs, cs, found);
-                        continue;
-                    }
-                    store(u, q, j, (y1[l], v1[l], fault[l]), ys, vs, cs, found);
-                    if near[l] {
-                        found.near.push(j as u32);
-                    }
+                j0 += LANES;
+            }
+            // The run's last grains (fewer than `LANES`) on blocks of a quarter or half as
+            // many lanes: fewer lanes computed for nothing (17 to 31: 16, then the rest).
+            while j0 < b {
+                let n = (b - j0).min(LANES / 2);
+                let t = Tail {
+                    j0,
+                    n,
+                    kind,
+                    q,
+                    table,
+                };
+                if n <= LANES / 4 {
+                    t.update::<{ LANES / 4 }>(u, reach, ys, vs, cs, found);
+                } else {
+                    t.update::<{ LANES / 2 }>(u, reach, ys, vs, cs, found);
                 }
                 j0 += n;
             }
@@ -220,10 +208,10 @@ impl Chunk<'_> {
 }
 
 /// The saturated tabulated step of a block of grains of the kind `q` (whose table is `table`)
-/// in the cells `c0` at the speeds `v0` (m/s), `n` of its lanes in use: from the kind's table
-/// per cell where it has one ([`kind_at_voidage`]), else from each lane's voidage; both
-/// gathered on AVX-512 vectors where `WIDE` and the block is full (`wide`: its cells pass
-/// [`wide::gatherable`](super::wide) for the grid). The same bits either way.
+/// in the cells `c0` at the speeds `v0` (m/s): from the kind's table per cell where it has one
+/// ([`kind_at_voidage`]), else from each lane's voidage; both gathered on AVX-512 vectors where
+/// `WIDE` and the cells are in the grid (`wide`: they pass [`wide::gatherable`](super::wide)
+/// for it). The same bits either way.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn block_step<const WIDE: bool>(
@@ -232,7 +220,6 @@ fn block_step<const WIDE: bool>(
     table: &TerminalTable,
     c0: &[u32; LANES],
     v0: [f64; LANES],
-    n: usize,
     wide: bool,
 ) -> SaturatedSteps<LANES> {
     let voidage = u.drag.grid.voidages();
@@ -243,8 +230,7 @@ fn block_step<const WIDE: bool>(
         let mut read = [[0.0; LANES]; 4];
         #[cfg(target_arch = "x86_64")]
         // SAFETY: `WIDE` only in `update_avx512`, whose processor has AVX-512F.
-        let gathered =
-            WIDE && n == LANES && at.len() < 1 << 28 && unsafe { wide::gatherable(c0, at.len()) };
+        let gathered = WIDE && at.len() < 1 << 28 && unsafe { wide::gatherable(c0, at.len()) };
         #[cfg(not(target_arch = "x86_64"))]
         let gathered = false;
         if gathered {
@@ -298,34 +284,150 @@ pub(super) struct Block {
     pub(super) dx: [f64; LANES],
 }
 
-/// The heights, cells and speeds of the `n` entries from `j0` (`n` ≤ [`LANES`]; a short
-/// block's missing lanes repeat its last grain, their steps unused). Plain loops (not
+/// The heights, cells and speeds of the [`LANES`] entries from `j0`. Plain loops (not
 /// `array::from_fn` or `map`, which may be left out of line, built for the baseline).
 #[inline(always)]
 fn load(
     j0: usize,
-    n: usize,
     ys: &[f64],
     cs: &[u32],
     vs: &[f64],
 ) -> ([f64; LANES], [u32; LANES], [f64; LANES]) {
     let (mut y0, mut c0, mut v0) = ([0.0; LANES], [0u32; LANES], [0.0; LANES]);
-    if n == LANES {
-        let (y, c, v) = (
-            &ys[j0..j0 + LANES],
-            &cs[j0..j0 + LANES],
-            &vs[j0..j0 + LANES],
-        );
-        for l in 0..LANES {
-            (y0[l], c0[l], v0[l]) = (y[l], c[l], v[l]);
-        }
-    } else {
-        let at = |l: usize| j0 + l.min(n - 1);
-        for l in 0..LANES {
-            (y0[l], c0[l], v0[l]) = (ys[at(l)], cs[at(l)], vs[at(l)]);
-        }
+    let (y, c, v) = (
+        &ys[j0..j0 + LANES],
+        &cs[j0..j0 + LANES],
+        &vs[j0..j0 + LANES],
+    );
+    for l in 0..LANES {
+        (y0[l], c0[l], v0[l]) = (y[l], c[l], v[l]);
     }
     (y0, c0, v0)
+}
+
+/// The last `n` entries of a run of one kind from `j0` (`n` ≤ L < [`LANES`]: kind `kind`,
+/// its constants `q` and terminal-state table `table`), stepped on blocks of `L` lanes: the
+/// same operations lane by lane as a block of [`LANES`], so the same bits.
+struct Tail<'a> {
+    j0: usize,
+    n: usize,
+    kind: &'a Kind,
+    q: &'a KindStep<'a>,
+    table: &'a TerminalTable,
+}
+
+impl Tail<'_> {
+    /// The free update of the tail's grains ([`Chunk::update_any`] lane by lane).
+    #[inline(always)]
+    fn update<const L: usize>(
+        self,
+        u: &Update,
+        reach: f64,
+        ys: &mut [f64],
+        vs: &mut [f64],
+        cs: &mut [u32],
+        found: &mut Found,
+    ) {
+        let Tail {
+            j0,
+            n,
+            kind,
+            q,
+            table,
+        } = self;
+        let (mut y0, mut c0, mut v0) = ([0.0; L], [0u32; L], [0.0; L]);
+        for l in 0..L {
+            let j = j0 + l.min(n - 1);
+            (y0[l], c0[l], v0[l]) = (ys[j], cs[j], vs[j]);
+        }
+        let step = match q.at {
+            Some(at) => {
+                let last = at.len() - 1;
+                let mut read = [[0.0; L]; 4];
+                for l in 0..L {
+                    let r = at[(c0[l] as usize).min(last)];
+                    for (i, x) in r.into_iter().enumerate() {
+                        read[i][l] = x;
+                    }
+                }
+                exponential_near_terminal_kind_at::<L>(table, read, q.dt_over_mass, v0, u.drag.dt_s)
+            }
+            None => {
+                let voidage = u.drag.grid.voidages();
+                let mut e0 = [0.0; L];
+                for l in 0..L {
+                    e0[l] = if c0[l] == GONE {
+                        1.0
+                    } else {
+                        voidage[c0[l] as usize]
+                    };
+                }
+                exponential_near_terminal_kind_saturated::<L>(
+                    table,
+                    e0,
+                    q.dt_over_mass,
+                    v0,
+                    u.drag.dt_s,
+                )
+            }
+        };
+        lanes_end::<L>(
+            u,
+            (kind, q),
+            reach,
+            (j0, n),
+            (&y0, &c0),
+            &step,
+            (ys, vs, cs),
+            found,
+        );
+    }
+}
+
+/// The end of the step `step` of the `n` lanes from `j0` of a block of `L` lanes of kind `q`
+/// (constants `kind`), from the heights `y0` (m) and cells `c0` before it, lane by lane:
+/// [`after_step`] and the tests of [`record`] without a branch, stored ([`store`]), the lanes
+/// outside the saturated step's range stepped alone ([`one_grain`]), the settled lanes left.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn lanes_end<const L: usize>(
+    u: &Update,
+    (kind, q): (&Kind, &KindStep),
+    reach: f64,
+    (j0, n): (usize, usize),
+    (y0, c0): (&[f64; L], &[u32; L]),
+    step: &SaturatedSteps<L>,
+    (ys, vs, cs): (&mut [f64], &mut [f64], &mut [u32]),
+    found: &mut Found,
+) {
+    let (v1, dx) = (&step.velocity_m_s, &step.displacement_m);
+    let (mut y1, mut fault, mut near) = ([0.0; L], [false; L], [false; L]);
+    let mut vmax = 0.0f64;
+    for l in 0..L {
+        (y1[l], _, fault[l]) = after_step(y0[l], (v1[l], dx[l]), q.half_d_m, q.top_m, u.lim);
+        near[l] = y1[l] - q.half_d_m <= reach;
+        let counted = step.ok[l] && !near[l] && c0[l] != GONE && l < n;
+        vmax = vmax.max(if counted {
+            v1[l].abs().max(q.stokes_m_s)
+        } else {
+            0.0
+        });
+    }
+    found.vmax = found.vmax.max(vmax);
+    for l in 0..n {
+        let j = j0 + l;
+        if c0[l] == GONE {
+            continue;
+        }
+        if !step.ok[l] {
+            one_grain(u, kind, q, reach, j, ys, vs, cs, found);
+            continue;
+        }
+        store(u, q, j, (y1[l], v1[l], fault[l]), ys, vs, cs, found);
+        if near[l] {
+            found.near.push(j as u32);
+        }
+    }
 }
 
 /// The constants of the end of a block of kind `q` ([`EndConstants`]).

@@ -103,17 +103,23 @@ fn a_cell_holds_the_exact_sum_of_its_grains_in_any_order() {
     assert!((first - 1.000000000001e-12).abs() < 1e-27, "{first:e}");
 }
 
-/// A fill converts only the cells whose sum changed since the last one: a grid refilled
-/// again and again must hold what a fresh grid filled once holds, cell by cell, bit for bit,
-/// including cells emptied, refilled, and the voidage on the Di Felice factor's clamp.
-#[test]
-fn a_refilled_grid_holds_what_a_fresh_one_holds() {
+/// Sample 2 with full physics and 2 000 grains: its setup and step constants.
+fn sample2_small() -> (crate::scenes::sedimentation::Setup, Stepper) {
     let ov: Vec<String> = ["physics=full", "sample.particles=2000"]
         .map(String::from)
         .to_vec();
     let p = prepare(Path::new("scenarios/sedimentation_sample2.toml"), None, &ov).unwrap();
     let su = setup(&p).unwrap();
     let stepper = Stepper::new(&su);
+    (su, stepper)
+}
+
+/// A fill converts only the cells whose sum changed since the last one: a grid refilled
+/// again and again must hold what a fresh grid filled once holds, cell by cell, bit for bit,
+/// including cells emptied, refilled, and the voidage on the Di Felice factor's clamp.
+#[test]
+fn a_refilled_grid_holds_what_a_fresh_one_holds() {
+    let (su, stepper) = sample2_small();
     let mut grid = voidage_grid(&su, &stepper);
     let cells = grid.cell_count();
     let cell_volume = su.width_m * su.height_m * su.thickness_m / cells as f64;
@@ -147,6 +153,70 @@ fn a_refilled_grid_holds_what_a_fresh_one_holds() {
         grid.is_di_felice() && changed > cells,
         "{changed} voidages changed"
     );
+}
+
+/// The packed suspension refills the grid from the list of cells whose sums changed since its
+/// last fill (while they are few): over rounds of changes, that grid must hold what a grid
+/// filled from every sum holds, bit for bit, and a grid filled by anything else in between
+/// (a stale stamp) must refuse the list, so that the caller reads every sum instead.
+#[test]
+fn a_grid_refilled_from_the_cells_that_changed_holds_the_full_fill() {
+    let (su, stepper) = sample2_small();
+    let mut listed = voidage_grid(&su, &stepper);
+    let cells = listed.cell_count();
+    let grain = listed
+        .quanta()
+        .of(su.width_m * su.height_m * su.thickness_m / cells as f64);
+    let mut sums = vec![0i128; cells];
+    listed.fill_sums(&sums);
+    let mut changed_voidages = 0;
+    for round in 1..7usize {
+        let before = sums.clone();
+        // Round r moves grains into every (r + 2)-th cell and out of every (r + 3)-th.
+        for c in (0..cells).step_by(round + 2) {
+            sums[c] += grain * (c % 3 + 1) as i128 / 4;
+        }
+        for c in (0..cells).step_by(round + 3) {
+            sums[c] -= sums[c] / 2;
+        }
+        // The cells that changed, each twice, and one that did not.
+        let list: Vec<u32> = (0..cells)
+            .filter(|&c| sums[c] != before[c])
+            .flat_map(|c| [c as u32, c as u32])
+            .chain([1])
+            .collect();
+        let old: Vec<u64> = listed.voidages().iter().map(|x| x.to_bits()).collect();
+        assert!(listed.fill_sums_at(&sums, &list, listed.stamp()));
+        let mut full = voidage_grid(&su, &stepper);
+        full.fill_sums(&sums);
+        let bits = |xs: &[f64]| xs.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(
+            bits(listed.solid_m3()),
+            bits(full.solid_m3()),
+            "round {round}"
+        );
+        assert_eq!(
+            bits(listed.voidages()),
+            bits(full.voidages()),
+            "round {round}"
+        );
+        changed_voidages += old
+            .iter()
+            .zip(bits(listed.voidages()))
+            .filter(|(a, b)| *a != b)
+            .count();
+    }
+    assert!(
+        changed_voidages > cells / 2,
+        "{changed_voidages} voidages changed"
+    );
+    let stale = listed.stamp();
+    listed.fill_sums(&vec![0; cells]);
+    assert!(
+        !listed.fill_sums_at(&sums, &[0], stale),
+        "a stale stamp is refused"
+    );
+    assert_ne!(voidage_grid(&su, &stepper).stamp(), listed.stamp());
 }
 
 /// The packed suspension holds its grains in kind order, cut in chunks updated in parallel,
