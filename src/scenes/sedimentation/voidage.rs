@@ -252,10 +252,7 @@ impl VoidageGrid {
         if stamp != self.stamp {
             return false;
         }
-        for &c in changed {
-            self.set_sum(c as usize, sums[c as usize]);
-        }
-        self.stamp = new_stamp();
+        self.set_sums_of(changed.iter().map(|&c| (c as usize, sums[c as usize])));
         true
     }
 
@@ -265,27 +262,31 @@ impl VoidageGrid {
         self.stamp
     }
 
-    /// Stores the solid volume of each cell from its sum in quanta `sums` ([`Self::set_sum`]),
-    /// and keeps the sums for the next fill.
+    /// Stores the solid volume of each cell from its sum in quanta `sums`
+    /// ([`Self::set_sums_of`]).
     fn set_sums(&mut self, sums: &[i128]) {
-        for (c, &q) in sums.iter().enumerate() {
-            self.set_sum(c, q);
-        }
-        self.stamp = new_stamp();
+        self.set_sums_of(sums.iter().copied().enumerate());
     }
 
-    /// Stores the solid volume of cell `c` from its sum in quanta `q` (m³, the exact sum
-    /// rounded once) and the voidage it gives, if the sum changed since the last fill (else the
-    /// same values are already there), and keeps the sum for the next fill.
+    /// Stores the solid volume of each cell `c` of `sums` from its sum in quanta `q` (m³, the
+    /// exact sum rounded once) and the voidage it gives, where the sum changed since the last
+    /// fill (elsewhere the same values are already there), keeps the sums for the next fill,
+    /// and stamps the grid with a new number.
     #[inline(always)]
-    fn set_sum(&mut self, c: usize, q: i128) {
-        if q != self.sums_q[c] {
-            self.sums_q[c] = q;
-            self.solid_m3[c] = self.quanta.volume_m3(q);
-            if self.is_di_felice() {
-                self.voidage[c] = voidage_of(self.solid_m3[c], self.cell_volume_m3);
+    fn set_sums_of(&mut self, sums: impl IntoIterator<Item = (usize, i128)>) {
+        let (quanta, cell_volume_m3, di_felice) =
+            (self.quanta, self.cell_volume_m3, self.is_di_felice());
+        for (c, q) in sums {
+            let last = &mut self.sums_q[c];
+            if q != *last {
+                *last = q;
+                self.solid_m3[c] = quanta.volume_m3(q);
+                if di_felice {
+                    self.voidage[c] = voidage_of(self.solid_m3[c], cell_volume_m3);
+                }
             }
         }
+        self.stamp = new_stamp();
     }
 
     /// The voidage ε of every cell, as [`VoidageGrid::voidage`] reads it.

@@ -99,7 +99,8 @@ impl Chunk<'_> {
     /// ([`exponential_near_terminal_kind_saturated`]: its coefficients read once, the lanes
     /// computed as vectors, on the widest vectors the processor has: [`Chunk::update`] picks
     /// the build); a run's last grains (fewer than `LANES`) on blocks of a quarter or half as
-    /// many lanes ([`Tail`]). Every grain's update is the same operations as [`CellDrag`] gives it alone.
+    /// many lanes ([`Tail`]). Every grain's update is the same operations as [`CellDrag`] gives
+    /// it alone.
     #[inline(always)]
     fn update_any<const WIDE: bool>(self, u: &Update, reach: f64, found: &mut Found) {
         let Chunk {
@@ -208,12 +209,11 @@ impl Chunk<'_> {
 }
 
 /// The saturated tabulated step of a block of grains of the kind `q` (whose table is `table`)
-/// in the cells `c0` at the speeds `v0` (m/s): from the kind's table per cell where it has one
-/// ([`kind_at_voidage`]), else from each lane's voidage; both gathered on AVX-512 vectors where
-/// `WIDE` and the cells are in the grid (`wide`: they pass [`wide::gatherable`](super::wide)
-/// for it). The same bits either way.
+/// in the cells `c0` at the speeds `v0` (m/s), as [`lanes_step`] computes it, with what each
+/// lane reads gathered on AVX-512 vectors where `WIDE` and the cells are in the table per cell
+/// or, without one, in the grid (`wide`: they pass [`wide::gatherable`](super::wide) for it).
+/// The same bits either way.
 #[inline(always)]
-#[allow(clippy::too_many_arguments)]
 fn block_step<const WIDE: bool>(
     u: &Update,
     q: &KindStep,
@@ -222,54 +222,62 @@ fn block_step<const WIDE: bool>(
     v0: [f64; LANES],
     wide: bool,
 ) -> SaturatedSteps<LANES> {
-    let voidage = u.drag.grid.voidages();
-    let eps = |c: u32| if c == GONE { 1.0 } else { voidage[c as usize] };
+    #[cfg(target_arch = "x86_64")]
+    if WIDE {
+        let (dt_m, dt) = (q.dt_over_mass, u.drag.dt_s);
+        match q.at {
+            // SAFETY: `WIDE` only in `update_avx512`, whose processor has AVX-512F; the cells
+            // pass `gatherable` for the table, shorter than 2²⁸ entries (`gather_at`).
+            Some(at) if at.len() < 1 << 28 && unsafe { wide::gatherable(c0, at.len()) } => {
+                let read = unsafe { wide::gather_at(at, c0) };
+                return exponential_near_terminal_kind_at::<LANES>(table, read, dt_m, v0, dt);
+            }
+            None if wide => {
+                // SAFETY: AVX-512F as above; `wide`: the cells pass `gatherable` for the grid.
+                let e0 = unsafe { wide::gather(u.drag.grid.voidages(), c0) };
+                return exponential_near_terminal_kind_saturated::<LANES>(table, e0, dt_m, v0, dt);
+            }
+            _ => {}
+        }
+    }
+    let _ = wide;
+    lanes_step(u, q, table, c0, v0)
+}
+
+/// The saturated tabulated step of `L` grains of the kind `q` (whose table is `table`) in the
+/// cells `c0` at the speeds `v0` (m/s), each lane's reading loaded alone: from the kind's table
+/// per cell where it has one ([`kind_at_voidage`]; its last entry, at voidage 1, for a settled
+/// lane), else from the lane's voidage (1 for a settled lane).
+#[inline(always)]
+fn lanes_step<const L: usize>(
+    u: &Update,
+    q: &KindStep,
+    table: &TerminalTable,
+    c0: &[u32; L],
+    v0: [f64; L],
+) -> SaturatedSteps<L> {
+    let (dt_m, dt) = (q.dt_over_mass, u.drag.dt_s);
     if let Some(at) = q.at {
-        // The kind's table per cell (the last entry for settled lanes).
         let last = at.len() - 1;
-        let mut read = [[0.0; LANES]; 4];
-        #[cfg(target_arch = "x86_64")]
-        // SAFETY: `WIDE` only in `update_avx512`, whose processor has AVX-512F.
-        let gathered = WIDE && at.len() < 1 << 28 && unsafe { wide::gatherable(c0, at.len()) };
-        #[cfg(not(target_arch = "x86_64"))]
-        let gathered = false;
-        if gathered {
-            #[cfg(target_arch = "x86_64")]
-            // SAFETY: AVX-512F as above; the cells pass `gatherable` for the table, which
-            // is shorter than 2²⁸ entries (`gather_at`).
-            {
-                read = unsafe { wide::gather_at(at, c0) };
-            }
-        } else {
-            for l in 0..LANES {
-                let r = at[(c0[l] as usize).min(last)];
-                for (i, x) in r.into_iter().enumerate() {
-                    read[i][l] = x;
-                }
+        let mut read = [[0.0; L]; 4];
+        for l in 0..L {
+            let r = at[(c0[l] as usize).min(last)];
+            for (i, x) in r.into_iter().enumerate() {
+                read[i][l] = x;
             }
         }
-        exponential_near_terminal_kind_at::<LANES>(table, read, q.dt_over_mass, v0, u.drag.dt_s)
+        exponential_near_terminal_kind_at::<L>(table, read, dt_m, v0, dt)
     } else {
-        let mut e0 = [0.0; LANES];
-        if wide {
-            #[cfg(target_arch = "x86_64")]
-            // SAFETY: `wide` only where `WIDE` (AVX-512F, as above) and the cells pass
-            // `gatherable` for the grid.
-            {
-                e0 = unsafe { wide::gather(voidage, c0) };
-            }
-        } else {
-            for l in 0..LANES {
-                e0[l] = eps(c0[l]);
-            }
+        let voidage = u.drag.grid.voidages();
+        let mut e0 = [0.0; L];
+        for l in 0..L {
+            e0[l] = if c0[l] == GONE {
+                1.0
+            } else {
+                voidage[c0[l] as usize]
+            };
         }
-        exponential_near_terminal_kind_saturated::<LANES>(
-            table,
-            e0,
-            q.dt_over_mass,
-            v0,
-            u.drag.dt_s,
-        )
+        exponential_near_terminal_kind_saturated::<L>(table, e0, dt_m, v0, dt)
     }
 }
 
@@ -340,37 +348,7 @@ impl Tail<'_> {
             let j = j0 + l.min(n - 1);
             (y0[l], c0[l], v0[l]) = (ys[j], cs[j], vs[j]);
         }
-        let step = match q.at {
-            Some(at) => {
-                let last = at.len() - 1;
-                let mut read = [[0.0; L]; 4];
-                for l in 0..L {
-                    let r = at[(c0[l] as usize).min(last)];
-                    for (i, x) in r.into_iter().enumerate() {
-                        read[i][l] = x;
-                    }
-                }
-                exponential_near_terminal_kind_at::<L>(table, read, q.dt_over_mass, v0, u.drag.dt_s)
-            }
-            None => {
-                let voidage = u.drag.grid.voidages();
-                let mut e0 = [0.0; L];
-                for l in 0..L {
-                    e0[l] = if c0[l] == GONE {
-                        1.0
-                    } else {
-                        voidage[c0[l] as usize]
-                    };
-                }
-                exponential_near_terminal_kind_saturated::<L>(
-                    table,
-                    e0,
-                    q.dt_over_mass,
-                    v0,
-                    u.drag.dt_s,
-                )
-            }
-        };
+        let step = lanes_step::<L>(u, q, table, &c0, v0);
         lanes_end::<L>(
             u,
             (kind, q),
